@@ -1,0 +1,263 @@
+// Ray tracing of the seabed height field on the reference scene: a 4096 x 4096 rough height field at
+// 0.25 m cells (1 km square; swell, dunes, ripples and white noise, +-2.5 m), a towfish 10 m above the
+// mean seabed, and pings of 2 x 2048 x 8 rays (port and starboard fans; 8 along-track angles within
+// +-0.5 deg; 2048 depression angles from 60 deg down to the one that reaches 100 m slant range on the
+// flat mean bottom, spaced evenly in slant range). Rays/s (items/s) per core, single-threaded, for
+//   reference    intersect_reference(): every cell along the ray,
+//   accelerated  intersect(): the maximum pyramid, one ray at a time,
+//   fans         intersect_many(): a ping's fans swept together,
+//   bilinear     a plain DDA over bilinear patches (a quadratic per cell), the alternative surface,
+// and the memory of the acceleration beyond the heights. Another tracer (for example Embree on the same
+// triangles) plugs in as one more `tracer` type: make_tracer builds it from the height field, and
+// trace(rays, t_max, hits) fills one optional hit per ray; register it with TRACE_BENCHMARKS.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <sss/scene/height_field.hpp>
+
+namespace {
+
+using sss::ray;
+using sss::vec2;
+using sss::vec3;
+using sss::scene::height_field;
+
+constexpr std::size_t grid_n = 4096;
+constexpr double cell_m = 0.25;
+constexpr double altitude_m = 10.0;
+constexpr double range_m = 100.0;
+constexpr int rays_per_fan = 2048;
+constexpr int along_track_angles = 8;
+constexpr int pings = 64;
+constexpr double pi = 3.141592653589793;
+
+// Heights of the rough surface: summed plane waves (evaluated separably: sin(a + b) = sin a cos b +
+// cos a sin b) plus white noise from a hash of the vertex index, +-0.05 m.
+template <class T> std::vector<T> rough_heights() {
+    struct wave {
+        double amplitude_m, wavelength_m, direction_deg, phase;
+    };
+    const wave waves[] = {{1.5, 180, 20, 0.3}, {0.6, 47, 75, 1.1}, {0.25, 11, 140, 2.0}, {0.08, 1.3, 30, 0.5}};
+    std::vector<double> z(grid_n * grid_n, 0.0);
+    std::vector<double> sx(grid_n), cx(grid_n), sy(grid_n), cy(grid_n);
+    for (const wave& w : waves) {
+        const double k = 2 * pi / w.wavelength_m, dir = w.direction_deg * pi / 180;
+        for (std::size_t i = 0; i < grid_n; ++i) {
+            const double a = k * std::cos(dir) * double(i) * cell_m, b = k * std::sin(dir) * double(i) * cell_m + w.phase;
+            sx[i] = std::sin(a);
+            cx[i] = std::cos(a);
+            sy[i] = std::sin(b);
+            cy[i] = std::cos(b);
+        }
+        for (std::size_t iy = 0; iy < grid_n; ++iy)
+            for (std::size_t ix = 0; ix < grid_n; ++ix) z[iy * grid_n + ix] += w.amplitude_m * (sx[ix] * cy[iy] + cx[ix] * sy[iy]);
+    }
+    std::vector<T> h(grid_n * grid_n);
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        std::uint64_t k = (i + 1) * 0x9E3779B97F4A7C15ull;
+        k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ull;
+        k = (k ^ (k >> 27)) * 0x94D049BB133111EBull;
+        k ^= k >> 31;
+        h[i] = T(z[i] + 0.1 * (double(k >> 11) * 0x1.0p-53 - 0.5));
+    }
+    return h;
+}
+
+template <class T> const height_field<T>& scene() {
+    static const height_field<T> hf(grid_n, grid_n, T(cell_m), vec2<T>{T(0), T(0)}, rough_heights<T>());
+    return hf;
+}
+
+// One ping from (x, y, altitude) heading +x: starboard then port, each 8 fans of 2048 rays ordered by
+// slant range (steep first).
+template <class T> std::vector<ray<T>> ping_rays(double x, double y) {
+    std::vector<ray<T>> rays;
+    rays.reserve(2 * along_track_angles * rays_per_fan);
+    const double r_min = altitude_m / std::sin(60 * pi / 180);
+    for (int side : {1, -1})
+        for (int a = 0; a < along_track_angles; ++a) {
+            const double along = (-0.5 + double(a) / (along_track_angles - 1)) * pi / 180;
+            for (int i = 0; i < rays_per_fan; ++i) {
+                const double slant = r_min + (double(i) + 0.5) / rays_per_fan * (range_m - r_min);
+                const double dep = std::asin(altitude_m / slant);
+                const vec3<double> d{std::cos(dep) * std::sin(along), side * std::cos(dep) * std::cos(along), -std::sin(dep)};
+                rays.push_back(ray<T>{vec3<T>{T(x), T(y), T(altitude_m)}, vec3<T>(d)});
+            }
+        }
+    return rays;
+}
+
+template <class T> const std::vector<std::vector<ray<T>>>& all_pings() {
+    static const auto p = [] {
+        std::vector<std::vector<ray<T>>> v;
+        for (int k = 0; k < pings; ++k) v.push_back(ping_rays<T>(150 + 11.5 * k, 512 + 37.0 * (k % 7)));
+        return v;
+    }();
+    return p;
+}
+
+// The tracers: trace(rays, t_max, hits).
+template <class T> struct reference_tracer {
+    const height_field<T>& hf;
+    void trace(std::span<const ray<T>> rays, T t_max, std::span<std::optional<sss::hit<T>>> hits) const {
+        for (std::size_t k = 0; k < rays.size(); ++k) hits[k] = hf.intersect_reference(rays[k], t_max);
+    }
+    static const char* name() { return "reference: every cell, triangles"; }
+};
+template <class T> struct accelerated_tracer {
+    const height_field<T>& hf;
+    void trace(std::span<const ray<T>> rays, T t_max, std::span<std::optional<sss::hit<T>>> hits) const {
+        for (std::size_t k = 0; k < rays.size(); ++k) hits[k] = hf.intersect(rays[k], t_max);
+    }
+    static const char* name() { return "accelerated: maximum pyramid, one ray at a time"; }
+};
+template <class T> struct fan_tracer {
+    const height_field<T>& hf;
+    void trace(std::span<const ray<T>> rays, T t_max, std::span<std::optional<sss::hit<T>>> hits) const {
+        hf.intersect_many(rays, t_max, hits);
+    }
+    static const char* name() { return "fans: intersect_many, one sweep per fan"; }
+};
+
+// The alternative surface: each cell a bilinear patch h = h00 (1-a)(1-b) + h10 a (1-b) + h01 (1-a) b +
+// h11 a b, traced by a plain DDA; along a ray f = z - h is quadratic inside a cell, so each cell needs
+// the first root of a quadratic where f goes from + to -. Only the distance is reported (no normals).
+template <class T> struct bilinear_tracer {
+    const height_field<T>& hf;
+    void trace(std::span<const ray<T>> rays, T t_max, std::span<std::optional<sss::hit<T>>> hits) const {
+        for (std::size_t k = 0; k < rays.size(); ++k) hits[k] = one(rays[k], t_max);
+    }
+    static const char* name() { return "bilinear patches: every cell, quadratic per cell (distance only)"; }
+
+    std::optional<sss::hit<T>> one(const ray<T>& r, T t_max) const {
+        namespace d = sss::scene::detail;
+        const auto& g = hf.grid();
+        d::grid_ray<T> q;
+        if (!d::setup_ray(g, sss::scene::height_bounds<T>{hf.bottom_m(), hf.top_m()}, r, t_max, q)) return std::nullopt;
+        std::int32_t ix = d::cell_of(q.u0 + q.du * q.s_lo, g.nx - 2), iy = d::cell_of(q.v0 + q.dv * q.s_lo, g.ny - 2);
+        T s = q.s_lo;
+        for (;;) {
+            const T inf = std::numeric_limits<T>::infinity();
+            const T sx = q.su > 0 ? d::cross_u(q, ix + 1) : (q.su < 0 ? d::cross_u(q, ix) : inf);
+            const T sy = q.sv > 0 ? d::cross_v(q, iy + 1) : (q.sv < 0 ? d::cross_v(q, iy) : inf);
+            const T se = std::min(std::min(sx, sy), q.s_hi);
+            // f(t) on t = s' - s in [0, se - s], from a, b at s.
+            const T a0 = q.u0 + q.du * s - T(ix), b0 = q.v0 + q.dv * s - T(iy);
+            const T h00 = g.at(ix, iy), h10 = g.at(ix + 1, iy), h01 = g.at(ix, iy + 1), h11 = g.at(ix + 1, iy + 1);
+            const T e = h10 - h00, n = h01 - h00, k = h00 - h10 - h01 + h11;
+            const T c0 = (q.z0 + q.dz * s) - (h00 + a0 * e + b0 * n + a0 * b0 * k);
+            const T c1 = q.dz - (q.du * (e + b0 * k) + q.dv * (n + a0 * k));
+            const T c2 = -q.du * q.dv * k;
+            const T len = se - s;
+            if (const auto t = first_entry(c0, c1, c2, len)) {
+                sss::hit<T> h;
+                h.distance_m = s + *t;
+                h.point = r.at(h.distance_m);
+                return h;
+            }
+            if (!(se < q.s_hi)) return std::nullopt;
+            if (sx <= sy) ix += q.su;
+            if (sy <= sx) iy += q.sv;
+            if (ix < 0 || iy < 0 || ix > g.nx - 2 || iy > g.ny - 2) return std::nullopt;
+            s = se;
+        }
+    }
+    // First t in [0, len] where c0 + c1 t + c2 t^2 goes from > 0 to <= 0.
+    static std::optional<T> first_entry(T c0, T c1, T c2, T len) {
+        auto f = [&](T t) { return c0 + t * (c1 + t * c2); };
+        if (!(c0 > T(0))) return std::nullopt;
+        if (std::abs(c2) * len < T(1e-7) * (std::abs(c1) + std::abs(c0) / std::max(len, T(1e-9)))) {
+            if (!(c1 < T(0))) return std::nullopt;
+            const T t = -c0 / c1;
+            return t <= len ? std::optional<T>(t) : std::nullopt;
+        }
+        const T disc = c1 * c1 - 4 * c2 * c0;
+        if (disc < T(0)) return std::nullopt;
+        const T sq = std::sqrt(disc);
+        const T qq = -T(0.5) * (c1 + (c1 < T(0) ? -sq : sq));
+        T r1 = qq / c2, r2 = c0 / qq;
+        if (r1 > r2) std::swap(r1, r2);
+        for (T t : {r1, r2})
+            if (t >= T(0) && t <= len && !(f(std::min(len, t + len * T(1e-6))) > T(0))) return t;
+        return std::nullopt;
+    }
+};
+
+template <template <class> class Tracer, class T> void trace_pings(benchmark::State& state) {
+    const height_field<T>& hf = scene<T>();
+    const auto& p = all_pings<T>();
+    const Tracer<T> tracer{hf};
+    std::vector<std::optional<sss::hit<T>>> hits(p[0].size());
+    std::size_t k = 0, rays = 0, hit_count = 0;
+    for (auto _ : state) {
+        tracer.trace(p[k], T(1.5 * range_m), hits);
+        for (const auto& h : hits) hit_count += h ? 1 : 0;
+        rays += hits.size();
+        benchmark::ClobberMemory();
+        k = (k + 1) % p.size();
+    }
+    state.SetItemsProcessed(std::int64_t(rays));
+    state.SetLabel(Tracer<T>::name());
+    state.counters["hit_fraction"] = double(hit_count) / double(std::max<std::size_t>(rays, 1));
+    state.counters["accel_bytes_per_height_byte"] = double(hf.acceleration_bytes()) / double(hf.height_bytes());
+}
+
+#define TRACE_BENCHMARKS(tracer)                                                                                                    \
+    BENCHMARK_TEMPLATE(trace_pings, tracer, float)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();                       \
+    BENCHMARK_TEMPLATE(trace_pings, tracer, double)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()
+
+TRACE_BENCHMARKS(reference_tracer);
+TRACE_BENCHMARKS(accelerated_tracer);
+TRACE_BENCHMARKS(fan_tracer);
+TRACE_BENCHMARKS(bilinear_tracer);
+
+// Building the height field: validation, bounds and the maximum pyramid (the heights are given).
+template <class T> void build_height_field(benchmark::State& state) {
+    const std::vector<T> h(scene<T>().heights_m());
+    for (auto _ : state) {
+        height_field<T> hf(grid_n, grid_n, T(cell_m), vec2<T>{T(0), T(0)}, h);
+        benchmark::DoNotOptimize(hf.top_m());
+    }
+    state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(h.size()));
+    state.SetLabel("vertices/s");
+}
+BENCHMARK_TEMPLATE(build_height_field, float)->Unit(benchmark::kMillisecond);
+
+// How far the two surfaces are apart on this terrain: at a cell's centre the triangles give
+// (h00 + h11) / 2 and the bilinear patch (h00 + h10 + h01 + h11) / 4, the largest gap inside the cell.
+std::string surface_gap() {
+    const auto& g = scene<double>().grid();
+    double worst = 0, sum2 = 0;
+    for (std::int32_t iy = 0; iy + 1 < g.ny; ++iy)
+        for (std::int32_t ix = 0; ix + 1 < g.nx; ++ix) {
+            const double d = 0.25 * (g.at(ix, iy) + g.at(ix + 1, iy + 1) - g.at(ix + 1, iy) - g.at(ix, iy + 1));
+            worst = std::max(worst, std::abs(d));
+            sum2 += d * d;
+        }
+    const double rms = std::sqrt(sum2 / (double(g.nx - 1) * double(g.ny - 1)));
+    return "rms " + std::to_string(rms * 1e3) + " mm, max " + std::to_string(worst * 1e3) + " mm";
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    const auto& hf = scene<float>();
+    benchmark::AddCustomContext("scene", "4096 x 4096 vertices at 0.25 m, rough (+-2.5 m), towfish 10 m up, 100 m range, "
+                                         "2 x 8 x 2048 rays per ping, " + std::to_string(pings) + " pings");
+    benchmark::AddCustomContext("memory", "acceleration / heights = " + std::to_string(double(hf.acceleration_bytes()) / double(hf.height_bytes())) +
+                                              " (total " + std::to_string(1 + double(hf.acceleration_bytes()) / double(hf.height_bytes())) + "x the heights)");
+    benchmark::AddCustomContext("triangles vs bilinear", "centre-of-cell height gap " + surface_gap());
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

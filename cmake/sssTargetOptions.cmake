@@ -1,0 +1,31 @@
+# sss_target_options(<target>): the compile settings of sss's own targets (tests, header checks,
+# benchmarks, examples). Consumers of sss::sss never see these flags.
+#   -Wall -Wextra -Wpedantic -Wconversion always; -Werror with SSS_WERROR; -march=native with SSS_NATIVE.
+
+function(sss_target_options target)
+    target_link_libraries(${target} PRIVATE sss::sss)
+    set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
+    if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+        target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wconversion)
+        if(SSS_WERROR)
+            target_compile_options(${target} PRIVATE -Werror)
+        endif()
+        if(SSS_NATIVE)
+            target_compile_options(${target} PRIVATE -march=native)
+        endif()
+    elseif(MSVC)
+        target_compile_options(${target} PRIVATE /W4 /permissive-)
+        if(SSS_WERROR)
+            target_compile_options(${target} PRIVATE /WX)
+        endif()
+    endif()
+endfunction()
+
+# sss_sanitize(<target>): AddressSanitizer + UBSan when SSS_SANITIZE is on (tests only).
+function(sss_sanitize target)
+    if(SSS_SANITIZE)
+        target_compile_options(${target} PRIVATE
+            -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+        target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+    endif()
+endfunction()

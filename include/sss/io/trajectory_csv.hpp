@@ -1,0 +1,236 @@
+#pragma once
+/// \file
+/// Reads a trajectory from a CSV text file into `sss::motion::trajectory_samples`.
+///
+/// Format. Comma-separated; '#' starts a comment that runs to the end of the line; blank lines are skipped;
+/// spaces and tabs around fields are ignored; a UTF-8 byte-order mark and CRLF line ends are accepted. The
+/// first line that is not blank or a comment is the header naming the columns, in any order (names are
+/// case-insensitive; a unit suffix is optional):
+///
+/// | column                       | meaning                                                     | unit        |
+/// |------------------------------|-------------------------------------------------------------|-------------|
+/// | `time`, `time_s`             | sample time                                                 | s           |
+/// | `ping`                       | ping number (when present, the key: one sample per ping)    | -           |
+/// | `x`, `x_m`                   | world east                                                  | m           |
+/// | `y`, `y_m`                   | world north                                                 | m           |
+/// | `z`, `z_m`                   | world up (altitude above a seabed at z = 0)                 | m           |
+/// | `roll`, `roll_deg`, `roll_rad` | starboard down positive                                   | deg (`_rad`: rad) |
+/// | `pitch`, `pitch_deg`, `pitch_rad` | bow up positive                                        | deg (`_rad`: rad) |
+/// | `yaw`, `heading` (+ `_deg`, `_rad`) | clockwise from north                                 | deg (`_rad`: rad) |
+/// | `heave`, `heave_m`           | vertical offset added to z, positive up                     | m           |
+/// | `sway`, `sway_m`             | offset along the horizontal starboard direction             | m           |
+///
+/// x, y, z and at least one of time and ping are required; angles are in degrees unless the name ends in
+/// `_rad`. Unknown or repeated columns are errors (a misspelt column would otherwise be silently dropped).
+/// Every data row holds one finite number per column, and the key (ping if present, else time) and the time
+/// strictly increase. Any fault throws sss::file_error naming the file and the line; nothing is returned
+/// partially loaded.
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <istream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sss/core/constants.hpp"
+#include "sss/core/error.hpp"
+#include "sss/motion/trajectory.hpp"
+
+namespace sss::io {
+
+namespace trajectory_csv_detail {
+
+enum class column : unsigned char { time, ping, x, y, z, roll, pitch, yaw, heave, sway, count };
+
+struct column_spec {
+    column which;
+    bool radians; ///< for angle columns: values in radians
+};
+
+inline std::string_view trim(std::string_view s) noexcept {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+    return s;
+}
+
+inline std::string lower(std::string_view s) {
+    std::string out(s);
+    for (char& c : out)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return out;
+}
+
+inline std::optional<column_spec> parse_column(std::string_view raw) {
+    const std::string n = lower(raw);
+    const auto is = [&](std::initializer_list<std::string_view> names) {
+        for (std::string_view s : names)
+            if (n == s) return true;
+        return false;
+    };
+    if (is({"time", "time_s"})) return column_spec{column::time, false};
+    if (is({"ping"})) return column_spec{column::ping, false};
+    if (is({"x", "x_m"})) return column_spec{column::x, false};
+    if (is({"y", "y_m"})) return column_spec{column::y, false};
+    if (is({"z", "z_m"})) return column_spec{column::z, false};
+    if (is({"heave", "heave_m"})) return column_spec{column::heave, false};
+    if (is({"sway", "sway_m"})) return column_spec{column::sway, false};
+    if (is({"roll", "roll_deg"})) return column_spec{column::roll, false};
+    if (is({"roll_rad"})) return column_spec{column::roll, true};
+    if (is({"pitch", "pitch_deg"})) return column_spec{column::pitch, false};
+    if (is({"pitch_rad"})) return column_spec{column::pitch, true};
+    if (is({"yaw", "yaw_deg", "heading", "heading_deg"})) return column_spec{column::yaw, false};
+    if (is({"yaw_rad", "heading_rad"})) return column_spec{column::yaw, true};
+    return std::nullopt;
+}
+
+/// Splits a line (comment already removed) at commas, trimming each field.
+inline std::vector<std::string_view> split(std::string_view line) {
+    std::vector<std::string_view> fields;
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t comma = line.find(',', start);
+        fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+    }
+    return fields;
+}
+
+/// A finite number filling the whole field, or nothing.
+inline std::optional<double> parse_number(std::string_view field) noexcept {
+    if (!field.empty() && field.front() == '+') field.remove_prefix(1);
+    if (field.empty()) return std::nullopt;
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
+    if (ec != std::errc{} || end != field.data() + field.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
+inline const char* column_name(column c) noexcept {
+    constexpr std::array<const char*, static_cast<std::size_t>(column::count)> names{
+        "time", "ping", "x", "y", "z", "roll", "pitch", "yaw", "heave", "sway"};
+    return names[static_cast<std::size_t>(c)];
+}
+
+} // namespace trajectory_csv_detail
+
+/// Reads trajectory samples from a CSV stream; `name` (a file name or a description) locates errors.
+/// Throws sss::file_error(name, line, why) on any malformed content, and when fewer than 2 samples are found.
+template <Real T>
+[[nodiscard]] motion::trajectory_samples<T> read_trajectory_csv(std::istream& in, std::string_view name) {
+    namespace d = trajectory_csv_detail;
+    constexpr std::size_t ncol = static_cast<std::size_t>(d::column::count);
+    std::vector<d::column_spec> columns;
+    std::array<bool, ncol> present{};
+    std::array<bool, ncol> radians{};
+    std::array<std::vector<double>, ncol> data{};
+    bool header_seen = false;
+    std::string line;
+    std::size_t line_no = 0;
+    std::size_t rows = 0;
+    std::size_t key = 0, time = 0;
+
+    while (std::getline(in, line)) {
+        ++line_no;
+        std::string_view view(line);
+        if (line_no == 1 && view.substr(0, 3) == "\xEF\xBB\xBF") view.remove_prefix(3);
+        if (const std::size_t hash = view.find('#'); hash != std::string_view::npos) view = view.substr(0, hash);
+        view = d::trim(view);
+        if (view.empty()) continue;
+        const std::vector<std::string_view> fields = d::split(view);
+
+        if (!header_seen) {
+            header_seen = true;
+            for (std::string_view f : fields) {
+                const std::optional<d::column_spec> spec = d::parse_column(f);
+                if (!spec)
+                    throw file_error(name, line_no,
+                                     "unknown column '" + std::string(f) +
+                                         "' (known: time, ping, x, y, z, roll, pitch, yaw or heading, heave, sway; "
+                                         "optional unit suffixes _s, _m, _deg, _rad)");
+                const std::size_t c = static_cast<std::size_t>(spec->which);
+                if (present[c])
+                    throw file_error(name, line_no, "column '" + std::string(f) + "' repeats the " +
+                                                        d::column_name(spec->which) + " column");
+                present[c] = true;
+                radians[c] = spec->radians;
+                columns.push_back(*spec);
+            }
+            for (d::column c : {d::column::x, d::column::y, d::column::z})
+                if (!present[static_cast<std::size_t>(c)])
+                    throw file_error(name, line_no, std::string("missing column '") + d::column_name(c) + "'");
+            if (!present[static_cast<std::size_t>(d::column::time)] && !present[static_cast<std::size_t>(d::column::ping)])
+                throw file_error(name, line_no, "missing column: one of 'time' or 'ping' is needed");
+            key = static_cast<std::size_t>(present[static_cast<std::size_t>(d::column::ping)] ? d::column::ping : d::column::time);
+            time = static_cast<std::size_t>(d::column::time);
+            continue;
+        }
+
+        if (fields.size() != columns.size())
+            throw file_error(name, line_no, "expected " + std::to_string(columns.size()) + " fields, found " +
+                                                std::to_string(fields.size()));
+        for (std::size_t i = 0; i < fields.size(); ++i) {
+            const std::optional<double> v = d::parse_number(fields[i]);
+            if (!v)
+                throw file_error(name, line_no, "column '" + std::string(d::column_name(columns[i].which)) +
+                                                    "': '" + std::string(fields[i]) + "' is not a finite number");
+            data[static_cast<std::size_t>(columns[i].which)].push_back(*v);
+        }
+        for (std::size_t c : {key, time}) {
+            const std::vector<double>& v = data[c];
+            if (present[c] && rows > 0 && !(v[rows] > v[rows - 1]))
+                throw file_error(name, line_no, std::string(d::column_name(static_cast<d::column>(c))) +
+                                                    " must strictly increase: " + std::to_string(v[rows]) +
+                                                    " follows " + std::to_string(v[rows - 1]));
+        }
+        ++rows;
+    }
+    if (in.bad()) throw file_error(name, line_no, "read error");
+    if (!header_seen) throw file_error(name, 0, "no header row");
+    if (rows < 2) throw file_error(name, 0, "needs at least 2 samples, found " + std::to_string(rows));
+
+    motion::trajectory_samples<T> s;
+    const auto column_data = [&](d::column c) -> std::vector<double>& { return data[static_cast<std::size_t>(c)]; };
+    s.time_s = std::move(column_data(d::column::time));
+    s.ping = std::move(column_data(d::column::ping));
+    s.position_m.resize(rows);
+    for (std::size_t i = 0; i < rows; ++i)
+        s.position_m[i] = vec3<T>{static_cast<T>(column_data(d::column::x)[i]), static_cast<T>(column_data(d::column::y)[i]),
+                                  static_cast<T>(column_data(d::column::z)[i])};
+    const auto copy = [&](d::column c, std::vector<T>& out) {
+        const std::vector<double>& v = column_data(c);
+        const bool angle = c == d::column::roll || c == d::column::pitch || c == d::column::yaw;
+        const bool deg = angle && !radians[static_cast<std::size_t>(c)];
+        out.reserve(v.size());
+        for (double x : v) out.push_back(static_cast<T>(deg ? deg_to_rad(x) : x));
+    };
+    copy(d::column::roll, s.roll_rad);
+    copy(d::column::pitch, s.pitch_rad);
+    copy(d::column::yaw, s.yaw_rad);
+    copy(d::column::heave, s.heave_m);
+    copy(d::column::sway, s.sway_m);
+    return s;
+}
+
+/// Reads trajectory samples from a CSV file. Throws sss::file_error when it cannot be opened or is malformed.
+template <Real T> [[nodiscard]] motion::trajectory_samples<T> read_trajectory_csv(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw file_error(file.string(), 0, "cannot open for reading");
+    return read_trajectory_csv<T>(in, file.string());
+}
+
+/// A trajectory from a CSV file (see read_trajectory_csv) with the given interpolation parameters.
+template <Real T>
+[[nodiscard]] motion::trajectory<T> load_trajectory_csv(const std::filesystem::path& file,
+                                                        const motion::trajectory_params<T>& params = {}) {
+    return motion::trajectory<T>(read_trajectory_csv<T>(file), params);
+}
+
+} // namespace sss::io

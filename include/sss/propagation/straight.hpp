@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// Isovelocity water: straight rays, spherical spreading and a constant absorption coefficient.
+///
+/// One-way intensity at range r (m) relative to 1 m: spreading 1/r^2 (TL = 20 log10 r dB) times absorption
+/// 10^(-alpha r / 10^4) with alpha in dB/km (Urick, Principles of Underwater Sound, 3rd ed., ch. 5).
+
+#include <cmath>
+#include <optional>
+
+#include "sss/core/error.hpp"
+#include "sss/propagation/concept.hpp"
+#include "sss/scene/concept.hpp"
+
+namespace sss::propagation {
+
+template <Real T> struct straight_params {
+    T sound_speed_mps = T(1500);      ///< speed of sound in the water (m/s)
+    T absorption_db_per_km = T(60);   ///< one-way absorption (dB/km); about 60 dB/km near 300 kHz
+};
+
+template <Real T> class straight {
+public:
+    using value_type = T;
+
+    explicit straight(const straight_params<T>& p = {}) : p_(p) {
+        sss::detail::require_in_range(p.sound_speed_mps, T(1000), T(2500), "straight.sound_speed_mps");
+        sss::detail::require_non_negative(p.absorption_db_per_km, "straight.absorption_db_per_km");
+        loss_per_m_ = std::log(T(10)) * p.absorption_db_per_km / T(10000);
+    }
+
+    [[nodiscard]] const straight_params<T>& params() const noexcept { return p_; }
+    [[nodiscard]] T reference_speed_mps() const noexcept { return p_.sound_speed_mps; }
+
+    template <Scene S>
+    [[nodiscard]] std::optional<path<T>> trace(const ray<T>& r, const S& scene, T t_max_s) const {
+        const auto h = scene.intersect(r, t_max_s * p_.sound_speed_mps);
+        if (!h) return std::nullopt;
+        const T range_m = h->distance_m;
+        return path<T>{*h, range_m / p_.sound_speed_mps, T(1) / (range_m * range_m), std::exp(-loss_per_m_ * range_m),
+                       r.direction};
+    }
+
+private:
+    straight_params<T> p_;
+    T loss_per_m_{};
+};
+
+static_assert(Propagation<straight<float>> && Propagation<straight<double>>);
+
+} // namespace sss::propagation

@@ -1,0 +1,32 @@
+#pragma once
+/// \file
+/// What the receiver records: sample rate, range window, pulse and source level.
+
+#include <cmath>
+#include <cstddef>
+
+#include "sss/core/error.hpp"
+#include "sss/receiver/pulse.hpp"
+
+namespace sss {
+
+struct receiver_params {
+    double sample_rate_hz = 20000.0; ///< samples per second per side (Hz), > 0
+    double max_range_m = 50.0;       ///< slant range covered per side (m), > 0: samples = ceil(2 range / c fs)
+    sss::pulse pulse{};              ///< transmitted pulse envelope
+    double source_level_db = 0.0;    ///< source level (dB re 1 unit at 1 m); outputs are powers on the same reference
+
+    void validate() const {
+        sss::detail::require_positive(sample_rate_hz, "receiver.sample_rate_hz");
+        sss::detail::require_positive(max_range_m, "receiver.max_range_m");
+        sss::detail::require_finite(source_level_db, "receiver.source_level_db");
+        pulse.validate();
+    }
+
+    /// Samples per line for a reference sound speed c (m/s).
+    [[nodiscard]] std::size_t samples(double c_mps) const noexcept {
+        return static_cast<std::size_t>(std::ceil(2.0 * max_range_m / c_mps * sample_rate_hz));
+    }
+};
+
+} // namespace sss

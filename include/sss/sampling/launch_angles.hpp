@@ -1,0 +1,129 @@
+#pragma once
+/// \file
+/// Where to launch rays within one along-track column of a beam.
+///
+/// Depression angles are spaced so that their returns from a flat seabed at the nominal altitude are evenly
+/// spaced in slant range, hence in two-way time: every time sample receives about the same number of rays
+/// however steep or grazing the geometry, and the energy between two adjacent rays is spread over the short
+/// time span between their returns. With the body rotated by R, the downward world component of a direction
+/// in the column is g(e) = A + B cos e + C sin e, and its nominal slant range is H / g(e); the range is
+/// monotone between the extrema of g, and on each monotone piece e(r) has the closed form
+/// e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C), phi = atan2(C, B).
+/// Where no such spacing exists (towfish not above the scene, a column pointing up) the angles are uniform.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "sss/beam/concept.hpp"
+#include "sss/core/constants.hpp"
+
+namespace sss {
+
+/// How densely to sample one column.
+struct column_density {
+    double rays_per_m = 0.0;      ///< rays per metre of nominal slant range (used when `rays` is 0)
+    std::size_t rays = 0;         ///< rays over the reachable part of the column (0: use rays_per_m)
+    std::size_t max_rays = 1u << 16; ///< cap per column
+};
+
+/// Depression angles (rad) for the column at `along_rad` on side `s`, in descending order (near range first).
+/// Quiet NaN entries separate runs that are not adjacent (no energy is shared across them).
+/// \param R              body-to-world rotation
+/// \param altitude_m     height of the towfish above the nominal seabed (m)
+/// \param clearance_m    height of the towfish above the highest geometry in the scene (m)
+/// \param max_range_m    longest slant range the receiver records (m)
+template <Real T>
+void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_min_rad, T depression_max_rad,
+                       const mat3<T>& R, T altitude_m, T clearance_m, T max_range_m, const column_density& density) {
+    out.clear();
+    const double e_lo = depression_min_rad, e_hi = depression_max_rad;
+    if (!(e_hi > e_lo)) return;
+    const double sa = std::sin(double(along_rad)), ca = std::cos(double(along_rad));
+    // World up-components of the body axes are the third row of R (GLM stores columns: R[col][row]).
+    const double A = -double(R[0][2]) * sa;
+    const double B = -double(R[1][2]) * double(side_sign<T>(s)) * ca;
+    const double C = -double(R[2][2]) * ca;
+    const double rho = std::hypot(B, C);
+    const double H = altitude_m, Rmax = max_range_m;
+    constexpr std::size_t refine_levels = 6;
+
+    auto uniform = [&](double lo, double hi, std::size_t n) {
+        n = std::clamp<std::size_t>(n, 2, std::max<std::size_t>(density.max_rays, 2));
+        for (std::size_t i = 0; i < n; ++i)
+            out.push_back(static_cast<T>(hi - (hi - lo) * double(i) / double(n - 1)));
+    };
+    if (!(H > 0.0) || !(clearance_m > 0.0) || !(rho > 1e-12) || !(Rmax > 0.0)) {
+        const double n = density.rays != 0 ? double(density.rays) : density.rays_per_m * Rmax;
+        uniform(e_lo, e_hi, static_cast<std::size_t>(n) + 2);
+        return;
+    }
+    // A ray can reach geometry within Rmax only if g >= clearance / Rmax.
+    const double g_cut = double(clearance_m) / Rmax;
+    auto g = [&](double e) { return A + B * std::cos(e) + C * std::sin(e); };
+    const double phi = std::atan2(C, B);
+    // Split [e_lo, e_hi] at the extrema of g (phi + m pi) into monotone pieces.
+    std::vector<double> cuts{e_lo};
+    for (int m = -3; m <= 3; ++m) {
+        const double x = phi + m * pi_v<double>;
+        if (x > e_lo && x < e_hi) cuts.push_back(x);
+    }
+    cuts.push_back(e_hi);
+    std::sort(cuts.begin(), cuts.end());
+
+    struct piece {
+        double e_near, e_far; // ends: nearest range and farthest reachable range
+        double r_near, r_far; // nominal slant ranges there (m)
+        bool far_is_edge;     // the far end is the piece's edge (not cut by the reach)
+        bool increasing_g;    // g grows with e on the piece
+        double centre;        // the maximum of g this piece climbs towards
+    };
+    std::vector<piece> pieces;
+    double span_total = 0.0;
+    for (std::size_t i = cuts.size() - 1; i-- > 0;) { // from the highest depression down
+        const double a = cuts[i], b = cuts[i + 1];
+        const double mid = 0.5 * (a + b);
+        const double centre = phi + std::round((mid - phi) / two_pi_v<double>) * two_pi_v<double>;
+        const bool inc = mid < centre;
+        const double e_near = inc ? b : a, e_edge_far = inc ? a : b;
+        const double g_near = g(e_near), g_far = g(e_edge_far);
+        if (!(g_near > g_cut)) continue; // nothing on this piece can be reached
+        const bool far_is_edge = g_far >= g_cut;
+        const double r_near = H / g_near, r_far = H / std::max(g_far, g_cut);
+        pieces.push_back({e_near, e_edge_far, r_near, r_far, far_is_edge, inc, centre});
+        span_total += r_far - r_near;
+    }
+    if (pieces.empty() || !(span_total > 0.0)) return;
+    const double n_total = std::min(double(density.max_rays),
+                                    density.rays != 0 ? double(density.rays) : density.rays_per_m * span_total);
+    for (const piece& p : pieces) {
+        const auto n = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(n_total * (p.r_far - p.r_near) / span_total)) + 1);
+        std::vector<double> ranges;
+        ranges.reserve(n + refine_levels);
+        const double step = (p.r_far - p.r_near) / double(n - 1);
+        ranges.push_back(p.r_near);
+        // At the range minimum (e.g. nadir) the return density grows like 1/sqrt(t - t_min): refine towards
+        // it geometrically so that no tube spreads that peak evenly over a whole step.
+        if (std::abs(p.e_near - p.centre) < 1e-9)
+            for (std::size_t l = refine_levels; l >= 1; --l) ranges.push_back(p.r_near + step * std::pow(0.25, double(l)));
+        for (std::size_t i = 1; i < n; ++i) ranges.push_back(p.r_near + step * double(i));
+        std::vector<double> es(ranges.size());
+        for (std::size_t i = 0; i < ranges.size(); ++i) {
+            const double c = std::clamp((H / ranges[i] - A) / rho, -1.0, 1.0);
+            es[i] = p.increasing_g ? p.centre - std::acos(c) : p.centre + std::acos(c);
+        }
+        es.front() = p.e_near; // exactly on the beam or piece edge
+        if (p.far_is_edge) es.back() = p.e_far;
+        if (!p.increasing_g) std::reverse(es.begin(), es.end()); // descending in e
+        // Pieces meeting at a shared, sampled edge form one run; otherwise separate the runs.
+        if (!out.empty()) {
+            if (out.back() == static_cast<T>(es.front())) es.erase(es.begin());
+            else out.push_back(std::numeric_limits<T>::quiet_NaN());
+        }
+        for (double e : es) out.push_back(static_cast<T>(e));
+    }
+}
+
+} // namespace sss

@@ -1,0 +1,238 @@
+#pragma once
+/// \file
+/// The seabed as a height field: heights at the vertices of a regular grid, two triangles per cell
+/// (the surface is defined in height_field_surface.hpp), per-cell material and region ids, and exact,
+/// watertight ray intersection accelerated by a maximum pyramid (height_field_tracer.hpp).
+///
+/// Layout: nx x ny vertices, heights[iy * nx + ix] is vertex (ix, iy) at world
+/// (origin.x + ix cell_m, origin.y + iy cell_m): x east, y north, row 0 the southern edge. The
+/// (nx - 1) x (ny - 1) cells are numbered the same way, cell (ix, iy) at index iy (nx - 1) + ix.
+///
+/// Memory: the heights, the optional id arrays, and the pyramid (about a third of the heights' bytes).
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sss/core/error.hpp"
+#include "sss/core/hit.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/scene/concept.hpp"
+#include "sss/scene/height_field_fan.hpp"
+#include "sss/scene/height_field_pyramid.hpp"
+#include "sss/scene/height_field_surface.hpp"
+#include "sss/scene/height_field_tracer.hpp"
+
+namespace sss::scene {
+
+template <Real T> class height_field {
+public:
+    using value_type = T;
+
+    /// \param nx        vertices along x (east), >= 2
+    /// \param ny        vertices along y (north), >= 2
+    /// \param cell_m    vertex spacing (m), finite and > 0
+    /// \param origin_m  world (x, y) of vertex (0, 0) (m), finite
+    /// \param heights_m nx * ny vertex heights, world z (m), row-major from the south row; all finite
+    /// \param materials per-cell scattering material ids, (nx-1) * (ny-1) of them, or empty for all 0
+    /// \param regions   per-cell region ids (the ground-truth label of hits), same size rule
+    height_field(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, std::vector<T> heights_m,
+                 std::vector<std::uint32_t> materials = {}, std::vector<std::uint32_t> regions = {})
+        : heights_(std::move(heights_m)), materials_(std::move(materials)), regions_(std::move(regions)) {
+        constexpr std::size_t max_n = std::size_t(1) << 30;
+        sss::detail::require(nx >= 2 && nx <= max_n, "height_field.nx",
+                        "must lie in [2, 2^30] (vertices), got " + std::to_string(nx));
+        sss::detail::require(ny >= 2 && ny <= max_n, "height_field.ny",
+                        "must lie in [2, 2^30] (vertices), got " + std::to_string(ny));
+        sss::detail::require_positive(cell_m, "height_field.cell_m");
+        sss::detail::require_finite(origin_m.x, "height_field.origin_m.x");
+        sss::detail::require_finite(origin_m.y, "height_field.origin_m.y");
+        sss::detail::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
+                        "nx * ny overflows");
+        const std::size_t n = nx * ny, cells = (nx - 1) * (ny - 1);
+        sss::detail::require(heights_.size() == n, "height_field.heights_m",
+                        "must hold nx * ny = " + std::to_string(n) + " values, got " + std::to_string(heights_.size()));
+        sss::detail::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
+                        "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                            std::to_string(materials_.size()));
+        sss::detail::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
+                        "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                            std::to_string(regions_.size()));
+        bounds_.bottom_m = std::numeric_limits<T>::infinity();
+        bounds_.top_m = -std::numeric_limits<T>::infinity();
+        for (std::size_t i = 0; i < n; ++i) {
+            const T h = heights_[i];
+            if (!std::isfinite(h))
+                throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
+                                        "must be finite, got " + std::to_string(h) + " at vertex (ix " +
+                                            std::to_string(i % nx) + ", iy " + std::to_string(i / nx) + ")");
+            bounds_.bottom_m = std::min(bounds_.bottom_m, h);
+            bounds_.top_m = std::max(bounds_.top_m, h);
+        }
+        grid_.heights = heights_.data();
+        grid_.nx = static_cast<std::int32_t>(nx);
+        grid_.ny = static_cast<std::int32_t>(ny);
+        grid_.cell_m = cell_m;
+        grid_.inv_cell_m = T(1) / cell_m;
+        grid_.origin_m = origin_m;
+        pyramid_ = max_pyramid<T>(grid_);
+    }
+
+    height_field(const height_field& o)
+        : heights_(o.heights_), materials_(o.materials_), regions_(o.regions_), pyramid_(o.pyramid_), grid_(o.grid_),
+          bounds_(o.bounds_) {
+        grid_.heights = heights_.data();
+    }
+    height_field(height_field&& o) noexcept
+        : heights_(std::move(o.heights_)), materials_(std::move(o.materials_)), regions_(std::move(o.regions_)),
+          pyramid_(std::move(o.pyramid_)), grid_(o.grid_), bounds_(o.bounds_) {
+        grid_.heights = heights_.data();
+    }
+    height_field& operator=(height_field o) noexcept {
+        swap(o);
+        return *this;
+    }
+    ~height_field() = default;
+
+    void swap(height_field& o) noexcept {
+        heights_.swap(o.heights_);
+        materials_.swap(o.materials_);
+        regions_.swap(o.regions_);
+        std::swap(pyramid_, o.pyramid_);
+        std::swap(grid_, o.grid_);
+        std::swap(bounds_, o.bounds_);
+    }
+
+    /// Nearest hit from above with 0 < distance <= t_max_m (accelerated traversal). Normals point up, towards
+    /// the water the ray came from; see height_field_tracer.hpp for the rules on rays from below.
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
+        return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m));
+    }
+    /// The same, by the reference traversal (every cell along the ray): slower, kept to check the other.
+    [[nodiscard]] std::optional<hit<T>> intersect_reference(const ray<T>& r, T t_max_m) const noexcept {
+        return to_hit(r, trace_reference(grid_, bounds_, r, t_max_m));
+    }
+
+    /// Hits for many rays: hits[k] = intersect(rays[k], t_max_m), up to rounding. Runs of at least
+    /// `min_fan_rays` consecutive rays that share their origin and horizontal heading (a sidescan fan at one
+    /// along-track angle, ordered by depression either way) are traced together in one sweep along the
+    /// surface under them (height_field_fan.hpp), at a small cost per ray; other rays go one by one.
+    /// Throws invalid_parameter unless hits.size() == rays.size().
+    void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
+        sss::detail::require(hits.size() == rays.size(), "height_field.intersect_many.hits",
+                             "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
+                                 std::to_string(hits.size()));
+        std::vector<detail::fan_slope<T>> slopes(rays.size());
+        // The sweep only records where each ray hits; the hits are completed afterwards in a plain loop,
+        // where the work of many rays can overlap.
+        std::vector<grid_hit<T>> found(rays.size());
+        std::vector<unsigned char> has(rays.size());
+        std::size_t i = 0;
+        while (i < rays.size()) {
+            const detail::fan_run run = detail::find_fan_run(rays, i, std::span(slopes).subspan(i));
+            if (run.count >= min_fan_rays) {
+                const auto fan = rays.subspan(i, run.count);
+                auto emit = [&](std::size_t k, const grid_hit<T>* g) {
+                    has[i + k] = g != nullptr;
+                    if (g) found[i + k] = *g;
+                };
+                if (trace_fan(grid_, bounds_, fan, std::span<const detail::fan_slope<T>>(slopes).subspan(i, run.count),
+                              run.steep_first, t_max_m, emit)) {
+                    for (std::size_t k = i; k < i + run.count; ++k) {
+                        if (has[k]) hits[k] = to_hit(rays[k], found[k]);
+                        else hits[k].reset();
+                    }
+                    i += run.count;
+                    continue;
+                }
+                for (std::size_t k = 0; k < run.count; ++k, ++i) hits[i] = intersect(rays[i], t_max_m);
+                continue;
+            }
+            hits[i] = intersect(rays[i], t_max_m);
+            ++i;
+        }
+    }
+    /// Shortest run of rays that intersect_many traces as one fan.
+    static constexpr std::size_t min_fan_rays = 16;
+
+    /// Surface height (m) at world (x_m, y_m) by the triangle rule; outside the grid's footprint the point
+    /// is clamped to the nearest point of the footprint (the edge heights continue outwards).
+    [[nodiscard]] T seabed_height_m(T x_m, T y_m) const noexcept {
+        return height_at_grid(grid_, (x_m - grid_.origin_m.x) * grid_.inv_cell_m, (y_m - grid_.origin_m.y) * grid_.inv_cell_m);
+    }
+    /// Highest vertex (m): no geometry above it.
+    [[nodiscard]] T top_m() const noexcept { return bounds_.top_m; }
+    /// Lowest vertex (m).
+    [[nodiscard]] T bottom_m() const noexcept { return bounds_.bottom_m; }
+
+    [[nodiscard]] std::size_t nx() const noexcept { return static_cast<std::size_t>(grid_.nx); }
+    [[nodiscard]] std::size_t ny() const noexcept { return static_cast<std::size_t>(grid_.ny); }
+    [[nodiscard]] T cell_m() const noexcept { return grid_.cell_m; }
+    [[nodiscard]] vec2<T> origin_m() const noexcept { return grid_.origin_m; }
+    /// Height of vertex (ix, iy) (m); no bounds check.
+    [[nodiscard]] T height_m(std::size_t ix, std::size_t iy) const noexcept { return heights_[iy * nx() + ix]; }
+    /// All vertex heights (m), row-major from the south row.
+    [[nodiscard]] const std::vector<T>& heights_m() const noexcept { return heights_; }
+    /// Material id of cell (ix, iy).
+    [[nodiscard]] std::uint32_t material(std::size_t ix, std::size_t iy) const noexcept {
+        return materials_.empty() ? 0u : materials_[iy * (nx() - 1) + ix];
+    }
+    /// Region id of cell (ix, iy).
+    [[nodiscard]] std::uint32_t region(std::size_t ix, std::size_t iy) const noexcept {
+        return regions_.empty() ? 0u : regions_[iy * (nx() - 1) + ix];
+    }
+    /// Per-cell ids as given (empty when all 0).
+    [[nodiscard]] const std::vector<std::uint32_t>& materials() const noexcept { return materials_; }
+    [[nodiscard]] const std::vector<std::uint32_t>& regions() const noexcept { return regions_; }
+
+    /// The grid as a view, for the free functions of height_field_surface.hpp and height_field_tracer.hpp.
+    [[nodiscard]] const height_grid_view<T>& grid() const noexcept { return grid_; }
+    [[nodiscard]] const max_pyramid<T>& pyramid() const noexcept { return pyramid_; }
+
+    /// Bytes of the heights themselves.
+    [[nodiscard]] std::size_t height_bytes() const noexcept { return heights_.size() * sizeof(T); }
+    /// Bytes of the acceleration structure beyond the heights (the pyramid).
+    [[nodiscard]] std::size_t acceleration_bytes() const noexcept { return pyramid_.bytes(); }
+
+private:
+    [[nodiscard]] std::optional<hit<T>> to_hit(const ray<T>& r, const std::optional<grid_hit<T>>& g) const noexcept {
+        if (!g) return std::nullopt;
+        return to_hit(r, *g);
+    }
+    [[nodiscard]] hit<T> to_hit(const ray<T>& r, const grid_hit<T>& g) const noexcept {
+        hit<T> h;
+        h.distance_m = g.distance_m;
+        h.point = r.at(g.distance_m);
+        const T a = (h.point.x - grid_.origin_m.x) * grid_.inv_cell_m - static_cast<T>(g.ix);
+        const T b = (h.point.y - grid_.origin_m.y) * grid_.inv_cell_m - static_cast<T>(g.iy);
+        // Both normals from their gradients, sharing one division: n = (-gx, -gy, 1) / sqrt(1 + |g|^2).
+        const vec2<T> gt = triangle_gradient(grid_, g.ix, g.iy, g.triangle);
+        const vec2<T> gs = smooth_gradient(grid_, g.ix, g.iy, g.triangle, a, b);
+        const T lt = std::sqrt(T(1) + gt.x * gt.x + gt.y * gt.y), ls = std::sqrt(T(1) + gs.x * gs.x + gs.y * gs.y);
+        const T inv = T(1) / (lt * ls), it = inv * ls, is = inv * lt;
+        h.normal = vec3<T>{-gt.x * it, -gt.y * it, it};
+        h.shading_normal = vec3<T>{-gs.x * is, -gs.y * is, is};
+        const std::size_t c = grid_.cell_index(g.ix, g.iy);
+        h.material = materials_.empty() ? 0u : materials_[c];
+        h.object = no_object;
+        h.label = regions_.empty() ? 0u : regions_[c];
+        return h;
+    }
+
+    std::vector<T> heights_;
+    std::vector<std::uint32_t> materials_;
+    std::vector<std::uint32_t> regions_;
+    max_pyramid<T> pyramid_;
+    height_grid_view<T> grid_{};
+    height_bounds<T> bounds_{};
+};
+
+static_assert(Scene<height_field<float>> && Scene<height_field<double>>);
+
+} // namespace sss::scene

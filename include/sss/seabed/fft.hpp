@@ -1,0 +1,192 @@
+#pragma once
+/// \file
+/// Discrete Fourier transforms of any length, in one and two dimensions (complex double).
+///
+/// Conventions (no normalisation in either direction, so backward(forward(x)) = N x):
+///   forward:  X_k = sum_{n=0}^{N-1} x_n exp(-2 pi i n k / N)
+///   backward: x_n = sum_{k=0}^{N-1} X_k exp(+2 pi i n k / N)
+/// Power-of-two lengths use an iterative radix-2 decimation-in-time transform (Cooley & Tukey, 1965,
+/// Math. Comp. 19, 297-301); other lengths use Bluestein's chirp-z algorithm (Bluestein, 1970, IEEE Trans.
+/// Audio Electroacoust. 18(4), 451-455), which rewrites the length-N DFT as a circular convolution of
+/// power-of-two length M >= 2N - 1. Twiddle factors are evaluated directly (not by recurrence), so the
+/// round-off error grows like log N.
+
+#include <algorithm>
+#include <complex>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sss/core/constants.hpp"
+#include "sss/core/error.hpp"
+
+namespace sss::seabed {
+
+/// Sign of the exponent: forward exp(-i...), backward exp(+i...).
+enum class fft_direction : signed char { forward = -1, backward = +1 };
+
+namespace impl {
+/// Complex product written out: std::complex's operator* checks for NaN and infinity (C99 Annex G) and is slow.
+[[nodiscard]] inline std::complex<double> cmul(std::complex<double> a, std::complex<double> b) noexcept {
+    return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+} // namespace impl
+
+/// True for 1, 2, 4, 8, ...
+[[nodiscard]] constexpr bool is_power_of_two(std::size_t n) noexcept { return n != 0 && (n & (n - 1)) == 0; }
+
+/// Smallest power of two >= n (n >= 1).
+[[nodiscard]] constexpr std::size_t next_power_of_two(std::size_t n) noexcept {
+    std::size_t p = 1;
+    while (p < n) p <<= 1;
+    return p;
+}
+
+/// A precomputed plan for transforms of one length: twiddles and bit-reversal table, and for lengths
+/// that are not powers of two the Bluestein chirp and its transform. A plan is immutable after
+/// construction; `execute` takes caller scratch so that one plan can serve several threads.
+class fft_plan {
+public:
+    using complex = std::complex<double>;
+
+    /// \param n transform length (>= 1), any value
+    explicit fft_plan(std::size_t n) : n_(n) {
+        detail::require(n >= 1, "fft_plan.n", "transform length must be >= 1");
+        if (is_power_of_two(n)) {
+            init_radix2(n, twiddle_, bitrev_);
+            return;
+        }
+        // Bluestein: X_k = w_k sum_n (x_n w_n) conj(w_{k-n}), w_j = exp(-i pi j^2 / n).
+        m_ = next_power_of_two(2 * n - 1);
+        init_radix2(m_, twiddle_, bitrev_);
+        chirp_.resize(n);
+        const std::size_t two_n = 2 * n;
+        for (std::size_t j = 0; j < n; ++j) {
+            // w_j is 2n-periodic in j^2: reducing j^2 mod 2n keeps the angle small (exact for n < 2^31).
+            const std::size_t jj = (j * j) % two_n;
+            const double angle = -pi_v<double> * static_cast<double>(jj) / static_cast<double>(n);
+            chirp_[j] = complex(std::cos(angle), std::sin(angle));
+        }
+        kernel_.assign(m_, complex(0.0, 0.0));
+        kernel_[0] = std::conj(chirp_[0]);
+        for (std::size_t j = 1; j < n; ++j) kernel_[j] = kernel_[m_ - j] = std::conj(chirp_[j]);
+        radix2(kernel_.data(), m_, fft_direction::forward);
+    }
+
+    /// Transform length.
+    [[nodiscard]] std::size_t size() const noexcept { return n_; }
+
+    /// Scratch length `execute` needs (0 for powers of two).
+    [[nodiscard]] std::size_t scratch_size() const noexcept { return m_; }
+
+    /// Transforms `data` (length size()) in place. `scratch` must hold scratch_size() elements.
+    void execute(complex* data, fft_direction dir, complex* scratch) const noexcept {
+        if (m_ == 0) {
+            radix2(data, n_, dir);
+            return;
+        }
+        // The backward transform is the conjugate of the forward transform of the conjugate.
+        const bool back = dir == fft_direction::backward;
+        for (std::size_t j = 0; j < n_; ++j) scratch[j] = impl::cmul(back ? std::conj(data[j]) : data[j], chirp_[j]);
+        for (std::size_t j = n_; j < m_; ++j) scratch[j] = complex(0.0, 0.0);
+        radix2(scratch, m_, fft_direction::forward);
+        for (std::size_t j = 0; j < m_; ++j) scratch[j] = impl::cmul(scratch[j], kernel_[j]);
+        radix2(scratch, m_, fft_direction::backward);
+        const double inv_m = 1.0 / static_cast<double>(m_);
+        for (std::size_t k = 0; k < n_; ++k) {
+            const complex v = impl::cmul(scratch[k], chirp_[k]) * inv_m;
+            data[k] = back ? std::conj(v) : v;
+        }
+    }
+
+    /// Transforms `data` in place, allocating scratch when needed.
+    void execute(std::span<complex> data, fft_direction dir) const {
+        detail::require(data.size() == n_, "fft_plan.execute.data",
+                        "length " + std::to_string(data.size()) + " differs from the plan's " + std::to_string(n_));
+        std::vector<complex> scratch(m_);
+        execute(data.data(), dir, scratch.data());
+    }
+
+private:
+    static void init_radix2(std::size_t n, std::vector<complex>& tw, std::vector<std::size_t>& rev) {
+        tw.resize(n / 2);
+        for (std::size_t j = 0; j < n / 2; ++j) {
+            const double angle = -two_pi_v<double> * static_cast<double>(j) / static_cast<double>(n);
+            tw[j] = complex(std::cos(angle), std::sin(angle));
+        }
+        rev.resize(n);
+        std::size_t bits = 0;
+        while ((std::size_t{1} << bits) < n) ++bits;
+        for (std::size_t j = 0; j < n; ++j) {
+            std::size_t r = 0;
+            for (std::size_t b = 0; b < bits; ++b) r |= ((j >> b) & 1U) << (bits - 1 - b);
+            rev[j] = r;
+        }
+    }
+
+    /// Radix-2 transform of length n (the plan's power-of-two length) using the plan's tables.
+    void radix2(complex* a, std::size_t n, fft_direction dir) const noexcept {
+        for (std::size_t j = 0; j < n; ++j)
+            if (j < bitrev_[j]) std::swap(a[j], a[bitrev_[j]]);
+        const bool back = dir == fft_direction::backward;
+        for (std::size_t len = 2; len <= n; len <<= 1) {
+            const std::size_t half = len / 2;
+            const std::size_t stride = n / len;
+            for (std::size_t start = 0; start < n; start += len) {
+                complex* lo = a + start;
+                complex* hi = lo + half;
+                for (std::size_t j = 0; j < half; ++j) {
+                    const complex w = back ? std::conj(twiddle_[j * stride]) : twiddle_[j * stride];
+                    const complex t = impl::cmul(hi[j], w);
+                    hi[j] = lo[j] - t;
+                    lo[j] += t;
+                }
+            }
+        }
+    }
+
+    std::size_t n_;
+    std::size_t m_ = 0; // Bluestein convolution length, 0 for powers of two
+    std::vector<complex> twiddle_;
+    std::vector<std::size_t> bitrev_;
+    std::vector<complex> chirp_;
+    std::vector<complex> kernel_;
+};
+
+/// One-dimensional transform of `data` in place (any length >= 1).
+inline void fft(std::span<std::complex<double>> data, fft_direction dir) { fft_plan(data.size()).execute(data, dir); }
+
+/// Two-dimensional transform in place of a row-major array, `data[iy * nx + ix]`:
+/// X(kx, ky) = sum_{ix, iy} x(ix, iy) exp(-+2 pi i (ix kx / nx + iy ky / ny)), unnormalised.
+/// Rows are transformed first, then columns in blocks of adjacent columns for cache locality.
+inline void fft_2d(std::span<std::complex<double>> data, std::size_t nx, std::size_t ny, fft_direction dir) {
+    detail::require(nx >= 1, "fft_2d.nx", "must be >= 1");
+    detail::require(ny >= 1, "fft_2d.ny", "must be >= 1");
+    detail::require(data.size() == nx * ny, "fft_2d.data",
+                    "length " + std::to_string(data.size()) + " differs from nx * ny = " + std::to_string(nx * ny));
+    using complex = std::complex<double>;
+    const fft_plan row_plan(nx);
+    std::vector<complex> scratch(std::max(row_plan.scratch_size(), std::size_t{1}));
+    for (std::size_t iy = 0; iy < ny; ++iy) row_plan.execute(data.data() + iy * nx, dir, scratch.data());
+
+    const fft_plan col_plan(ny);
+    constexpr std::size_t block = 16;
+    std::vector<complex> cols(block * ny);
+    scratch.assign(std::max(col_plan.scratch_size(), std::size_t{1}), complex(0.0, 0.0));
+    for (std::size_t x0 = 0; x0 < nx; x0 += block) {
+        const std::size_t w = std::min(block, nx - x0);
+        for (std::size_t iy = 0; iy < ny; ++iy) {
+            const complex* row = data.data() + iy * nx + x0;
+            for (std::size_t c = 0; c < w; ++c) cols[c * ny + iy] = row[c];
+        }
+        for (std::size_t c = 0; c < w; ++c) col_plan.execute(cols.data() + c * ny, dir, scratch.data());
+        for (std::size_t iy = 0; iy < ny; ++iy) {
+            complex* row = data.data() + iy * nx + x0;
+            for (std::size_t c = 0; c < w; ++c) row[c] = cols[c * ny + iy];
+        }
+    }
+}
+
+} // namespace sss::seabed

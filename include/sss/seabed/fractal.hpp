@@ -1,0 +1,221 @@
+#pragma once
+/// \file
+/// Fractional Brownian seabed surfaces by spectral synthesis, isotropic or directional.
+///
+/// Method: random Fourier coefficients c_mn on the N_x x N_y grid of wave vectors
+/// K_mn = (m dKx, n dKy), dKx = 2 pi / (N_x dx), dKy = 2 pi / (N_y dx) (indices above N/2 wrap to negative),
+/// with E|c_mn|^2 = W(K_mn) dKx dKy and c_{-m,-n} = conj(c_mn), then h(x) = sum_mn c_mn exp(i K_mn . x)
+/// by one inverse 2D FFT (physics.md section 5; e.g. Thorsos, 1988, JASA 83(1) 78-92, for this
+/// normalisation). Hence <h^2> = sum_{mn != 0} W(K_mn) dKx dKy: the integral of W over the grid's band
+/// (`band_variance_m2`), and h is Gaussian with the requested spectrum at every grid wave vector.
+/// The K = 0 coefficient is 0: the periodic surface has zero mean.
+///
+/// Directional surfaces. With u the unit vector at `direction_rad` (counter-clockwise from +x, east) and
+/// v perpendicular to it, the spectrum is evaluated at the effective wavenumber
+///   K_eff^2 = a K_u^2 + K_v^2 / a,   a = `anisotropy`,
+/// i.e. h(u, v) = g(u / sqrt(a), v sqrt(a)) for an isotropic surface g of the same spectrum: the surface is
+/// stretched by sqrt(a) along u and compressed by sqrt(a) across, the area (and so the variance of the
+/// unbounded surface) unchanged. Meaning of the anisotropy ratio a: the ratio of horizontal length scales
+/// along and across u. Equivalent measurable forms: the spectrum's level contours are ellipses whose
+/// semi-axes along K_v and K_u are in the ratio a, so W(K v) / W(K u) = a^gamma at equal |K|; and the
+/// structure function reaches the same value at lag r along u and at lag r / a across (exactly for the
+/// unbounded surface; the grid's band cuts the two directions at different K_eff, which biases such
+/// space-domain measures by a few percent). a = 1 is isotropic; a > 1 gives ridges elongated along
+/// `direction_rad`; a and 1/a at direction + 90 degrees give the same surface.
+///
+/// Periodicity: the synthesised surface is periodic over the grid (it tiles seamlessly). With
+/// `oversample` = m > 1 it is synthesised on an (m nx) x (m ny) grid and the first nx x ny samples are
+/// kept: no periodicity is visible, the band then starts at 2 pi / (m nx dx), and the variance of the
+/// (larger) band is that of the stationary field; the cropped piece no longer has exactly zero mean.
+///
+/// Reproducibility: the coefficients are drawn from `rng(seed)` (random.hpp) in a fixed order, so one
+/// seed gives the same surface on every run; across platforms the surfaces agree to rounding (the
+/// random draws are bit-identical, the FFT's twiddles come from the platform's cos and sin).
+
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sss/core/constants.hpp"
+#include "sss/core/error.hpp"
+#include "sss/seabed/fft.hpp"
+#include "sss/seabed/power_law_spectrum.hpp"
+#include "sss/seabed/random.hpp"
+#include "sss/seabed/raster.hpp"
+
+namespace sss::seabed {
+
+/// How the moduli of the Fourier coefficients are drawn.
+enum class spectral_amplitudes : unsigned char {
+    gaussian, ///< complex Gaussian coefficients: a Gaussian random field (the physical model)
+    fixed     ///< |c_mn|^2 = W dKx dKy exactly, random phases only: every realisation has exactly the
+              ///< requested periodogram and exactly the band variance (handy for calibration)
+};
+
+/// Parameters of a fractal (power-law) surface.
+template <Real T> struct fractal_params {
+    power_law_spectrum<T> spectrum{}; ///< W(K) (SI; see jackson_spectrum for the cm^4 tables)
+    T anisotropy = T(1);              ///< a > 0: length-scale ratio along / across direction_rad (1 = isotropic)
+    T direction_rad = T(0);           ///< direction of the long axis, counter-clockwise from +x (rad)
+    spectral_amplitudes amplitudes = spectral_amplitudes::gaussian;
+    std::size_t oversample = 1; ///< synthesise on a grid this many times larger per axis and crop (>= 1)
+};
+
+/// Throws invalid_parameter naming the offending field (prefixed by `who`).
+template <Real T> void validate(const fractal_params<T>& p, const std::string& who) {
+    validate(p.spectrum, who + ".spectrum");
+    detail::require_positive(p.anisotropy, who + ".anisotropy");
+    detail::require_finite(p.direction_rad, who + ".direction_rad");
+    detail::require(p.oversample >= 1 && p.oversample <= 64, who + ".oversample", "must lie in [1, 64]");
+}
+
+namespace impl {
+
+/// W(K_eff) with the direction's cosine and sine and the outer scale evaluated once.
+struct directional_density {
+    double c, s, a, k0sq, w2, half_gamma;
+    [[nodiscard]] double operator()(double kx, double ky) const noexcept {
+        const double ku = kx * c + ky * s;
+        const double kv = -kx * s + ky * c;
+        return w2 * std::pow(a * ku * ku + kv * kv / a + k0sq, -half_gamma);
+    }
+};
+
+template <Real T> [[nodiscard]] directional_density make_density(const fractal_params<T>& p) noexcept {
+    const double l0 = static_cast<double>(p.spectrum.outer_scale_m);
+    const double k0 = l0 > 0.0 ? two_pi_v<double> / l0 : 0.0;
+    return {std::cos(static_cast<double>(p.direction_rad)),
+            std::sin(static_cast<double>(p.direction_rad)),
+            static_cast<double>(p.anisotropy),
+            k0 * k0,
+            static_cast<double>(p.spectrum.w2_si),
+            0.5 * static_cast<double>(p.spectrum.gamma)};
+}
+
+/// Signed wavenumber (rad/m) of FFT index i on an n-point axis of spacing dk.
+[[nodiscard]] inline double wavenumber(std::size_t i, std::size_t n, double dk) noexcept {
+    return i <= n / 2 ? static_cast<double>(i) * dk : -static_cast<double>(n - i) * dk;
+}
+
+/// W dKx dKy for grid mode (i, j) of an nx x ny grid. Modes on a Nyquist line (index n/2 of an even
+/// axis) alias +K and -K; they take the mean of W at both, which makes the value symmetric under
+/// (i, j) -> (-i, -j) as Hermitian symmetry needs. 0 at K = 0.
+[[nodiscard]] inline double mode_variance(const directional_density& w, std::size_t i, std::size_t j, std::size_t nx,
+                                          std::size_t ny, double dkx, double dky) noexcept {
+    if (i == 0 && j == 0) return 0.0;
+    const double kx = wavenumber(i, nx, dkx);
+    const double ky = wavenumber(j, ny, dky);
+    const bool nyq_x = nx % 2 == 0 && i == nx / 2;
+    const bool nyq_y = ny % 2 == 0 && j == ny / 2;
+    double d = 0.0;
+    if (nyq_x && nyq_y)
+        d = w(kx, ky); // self-conjugate: any alias will do
+    else if (nyq_x)
+        d = 0.5 * (w(kx, ky) + w(-kx, ky));
+    else if (nyq_y)
+        d = 0.5 * (w(kx, ky) + w(kx, -ky));
+    else
+        d = w(kx, ky);
+    return d * dkx * dky;
+}
+
+/// Fills `c` (nx * ny, row-major) with Hermitian-symmetric random coefficients of the spectrum.
+template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, std::size_t nx, std::size_t ny,
+                                         double cell_m, const fractal_params<T>& p, rng& g) {
+    const double dkx = two_pi_v<double> / (static_cast<double>(nx) * cell_m);
+    const double dky = two_pi_v<double> / (static_cast<double>(ny) * cell_m);
+    const directional_density w = make_density(p);
+    c.assign(nx * ny, std::complex<double>(0.0, 0.0));
+    for (std::size_t j = 0; j < ny; ++j) {
+        const std::size_t pj = (ny - j) % ny;
+        for (std::size_t i = 0; i < nx; ++i) {
+            const std::size_t pi_ = (nx - i) % nx;
+            const std::size_t own = j * nx + i;
+            const std::size_t partner = pj * nx + pi_;
+            if (partner < own) continue; // set together with its partner
+            const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
+            if (partner == own) { // self-conjugate: real coefficient
+                const double x =
+                    p.amplitudes == spectral_amplitudes::gaussian ? g.normal() : (g.uniform() < 0.5 ? -1.0 : 1.0);
+                c[own] = std::complex<double>(std::sqrt(var) * x, 0.0);
+                continue;
+            }
+            std::complex<double> v;
+            if (p.amplitudes == spectral_amplitudes::gaussian) {
+                const double sd = std::sqrt(0.5 * var);
+                const double re = g.normal();
+                const double im = g.normal();
+                v = std::complex<double>(sd * re, sd * im);
+            } else {
+                const double phase = two_pi_v<double> * g.uniform();
+                v = std::polar(std::sqrt(var), phase);
+            }
+            c[own] = v;
+            c[partner] = std::conj(v);
+        }
+    }
+}
+
+} // namespace impl
+
+/// Directional spectral density W(K_eff) (m^4) at wave vector (kx, ky) (rad/m); see the file comment.
+template <Real T>
+[[nodiscard]] inline double directional_density_m4(const fractal_params<T>& p, double kx, double ky) noexcept {
+    return impl::make_density(p)(kx, ky);
+}
+
+/// The integral of W over the band of an nx x ny grid of spacing cell_m, as the discrete sum
+/// sum_{mn != 0} W(K_mn) dKx dKy (m^2): the expected mean-square height of `fractal_surface` (with
+/// oversample m the band is that of the (m nx) x (m ny) synthesis grid, which this accounts for).
+template <Real T>
+[[nodiscard]] double band_variance_m2(const fractal_params<T>& p, std::size_t nx, std::size_t ny, T cell_m) {
+    require_grid(nx, ny, cell_m, "band_variance_m2");
+    validate(p, "band_variance_m2.params");
+    const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
+    const double dx = static_cast<double>(cell_m);
+    const double dkx = two_pi_v<double> / (static_cast<double>(sx) * dx);
+    const double dky = two_pi_v<double> / (static_cast<double>(sy) * dx);
+    const impl::directional_density w = impl::make_density(p);
+    double sum = 0.0;
+    for (std::size_t j = 0; j < sy; ++j)
+        for (std::size_t i = 0; i < sx; ++i) sum += impl::mode_variance(w, i, j, sx, sy, dkx, dky);
+    return sum;
+}
+
+/// A fractal surface of nx x ny samples of spacing cell_m (m), heights in m (see the file comment).
+/// Any nx, ny >= 1 (powers of two are fastest). Same (arguments, seed), same surface.
+template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::size_t ny, T cell_m,
+                                                          const fractal_params<T>& p, std::uint64_t seed) {
+    require_grid(nx, ny, cell_m, "fractal_surface");
+    validate(p, "fractal_surface.params");
+    const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
+    rng g(seed);
+    std::vector<std::complex<double>> c;
+    impl::fill_coefficients(c, sx, sy, static_cast<double>(cell_m), p, g);
+    fft_2d(c, sx, sy, fft_direction::backward);
+    raster<T> out{nx, ny, cell_m, std::vector<T>(nx * ny)};
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix) out.values[iy * nx + ix] = static_cast<T>(c[iy * sx + ix].real());
+    return out;
+}
+
+namespace impl {
+
+/// A fractal field of unit expected RMS (power law of exponent gamma, outer scale l0_m; w2 scaled so
+/// that the band variance is 1), in double: the shape of perturbation, warp and partition fields.
+template <Real T> [[nodiscard]] raster<double> unit_fractal_field(std::size_t nx, std::size_t ny, T cell_m, T gamma,
+                                                                  T l0_m, std::uint64_t seed) {
+    fractal_params<double> f;
+    f.spectrum = power_law_spectrum<double>{1.0, static_cast<double>(gamma), static_cast<double>(l0_m)};
+    raster<double> g = fractal_surface<double>(nx, ny, static_cast<double>(cell_m), f, seed);
+    const double scale = 1.0 / std::sqrt(band_variance_m2(f, nx, ny, static_cast<double>(cell_m)));
+    for (double& v : g.values) v *= scale;
+    return g;
+}
+
+} // namespace impl
+
+} // namespace sss::seabed

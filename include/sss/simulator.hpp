@@ -1,0 +1,236 @@
+#pragma once
+/// \file
+/// The simulator: composes scattering, propagation, beam and motion policies into sidescan pings.
+///
+/// Per ping and side: motion gives the pose; the beam's volume is cut into along-track columns and each
+/// column into depression angles spaced evenly in nominal return time (sampling/launch_angles.hpp); each ray
+/// is propagated to the scene; its return power per unit depression angle is
+///
+///     I = SL b(along, e) sigma(theta) S A_1^2 dOmega_col / (S_tube sin theta_g),  with S_tube = S,
+///
+/// i.e. source level x two-way beam weight x two-way loss (spreading S squared, absorption A_1 squared) x
+/// scattering cross section x footprint area (the ray tube's cross-section 1/S per steradian, spread over the
+/// seabed by 1/sin of the angle between ray and facet). Adjacent rays on the same surface form a tube whose
+/// energy, integrated by the trapezoid rule over depression, is spread evenly over the two-way times between
+/// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
+/// (receiver/time_sampler.hpp).
+/// The result is the mean received power in each time sample, relative to the source level reference.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+#include "sss/beam/concept.hpp"
+#include "sss/beam/ideal_fan.hpp"
+#include "sss/core/decibel.hpp"
+#include "sss/core/error.hpp"
+#include "sss/motion/concept.hpp"
+#include "sss/motion/straight_line.hpp"
+#include "sss/propagation/concept.hpp"
+#include "sss/propagation/straight.hpp"
+#include "sss/receiver/image.hpp"
+#include "sss/receiver/receiver.hpp"
+#include "sss/receiver/time_sampler.hpp"
+#include "sss/sampling/launch_angles.hpp"
+#include "sss/scattering/concept.hpp"
+#include "sss/scattering/lambertian.hpp"
+#include "sss/scene/concept.hpp"
+
+namespace sss {
+
+/// How many rays a ping launches.
+struct ray_density {
+    std::size_t along = 8;         ///< along-track columns per side
+    std::size_t across = 0;        ///< rays per column; 0: `per_sample` rays per time sample of the column's span
+    double per_sample = 1.0;       ///< rays per time sample when `across` is 0
+};
+
+/// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
+/// ray's half of a tube whose other end is missing or on another surface) spread evenly over two-way times
+/// [t0_s, t1_s] (t0_s == t1_s for a point).
+template <Real T> struct tube_echo {
+    double t0_s{};       ///< two-way time at one end (s)
+    double t1_s{};       ///< two-way time at the other end (s)
+    double power{};      ///< echo power (relative to the source level reference)
+    hit<T> surface{};    ///< what the (first) end of the tube met: material, object, label
+};
+
+template <Scattering S = scattering::lambertian<double>, Propagation P = propagation::straight<double>,
+          Beam B = beam::ideal_fan<double>, Motion M = motion::straight_line<double>>
+class simulator {
+public:
+    using value_type = typename S::value_type;
+    using T = value_type;
+    static_assert(std::is_same_v<T, typename P::value_type> && std::is_same_v<T, typename B::value_type> &&
+                      std::is_same_v<T, typename M::value_type>,
+                  "sss::simulator: all policies must share one scalar type");
+
+    explicit simulator(S scattering = S{}, P propagation = P{}, B beam = B{}, M motion = M{},
+                       receiver_params receiver = {}, ray_density density = {})
+        : scattering_(std::move(scattering)), propagation_(std::move(propagation)), beam_(std::move(beam)),
+          motion_(std::move(motion)), receiver_(receiver), density_(density) {
+        receiver_.validate();
+        sss::detail::require(density_.along >= 1, "ray_density.along", "must be >= 1");
+        sss::detail::require(density_.along <= 4096, "ray_density.along", "must be <= 4096");
+        sss::detail::require(density_.across == 0 || density_.across >= 2, "ray_density.across", "must be 0 (automatic) or >= 2");
+        if (density_.across == 0) sss::detail::require_positive(density_.per_sample, "ray_density.per_sample");
+        c_ref_ = double(propagation_.reference_speed_mps());
+        samples_ = receiver_.samples(c_ref_);
+        sss::detail::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
+                        "gives " + std::to_string(samples_) + " samples per line; must be between 1 and 2^26");
+        dt_ = 1.0 / receiver_.sample_rate_hz;
+        source_level_ = db_to_power(receiver_.source_level_db);
+    }
+
+    [[nodiscard]] const S& scattering() const noexcept { return scattering_; }
+    [[nodiscard]] const P& propagation() const noexcept { return propagation_; }
+    [[nodiscard]] const B& beam() const noexcept { return beam_; }
+    [[nodiscard]] const M& motion() const noexcept { return motion_; }
+    [[nodiscard]] const receiver_params& receiver() const noexcept { return receiver_; }
+    [[nodiscard]] const ray_density& density() const noexcept { return density_; }
+    [[nodiscard]] std::size_t samples_per_line() const noexcept { return samples_; }
+    [[nodiscard]] double dt_s() const noexcept { return dt_; }
+
+    /// Renders ping `index`: one port and one starboard line.
+    template <Scene Sc> [[nodiscard]] ping_lines<T> ping(const Sc& scene, std::size_t index) const {
+        static_assert(std::is_same_v<typename Sc::value_type, T>, "sss::simulator: scene scalar type differs");
+        return ping_at(scene, motion_.pose_at(index));
+    }
+
+    /// Renders one ping from an explicit pose.
+    template <Scene Sc> [[nodiscard]] ping_lines<T> ping_at(const Sc& scene, const pose<T>& p) const {
+        time_sampler sampler(samples_, dt_, receiver_.pulse);
+        ping_lines<T> lines;
+        lines.dt_s = dt_;
+        for (side sd : {side::port, side::starboard}) {
+            sampler.clear();
+            accumulate(scene, p, sd, sampler);
+            sampler.render(sd == side::port ? lines.port : lines.starboard);
+        }
+        return lines;
+    }
+
+    /// Renders pings [first, first + count) into a waterfall, on `threads` threads (0: hardware concurrency).
+    /// The result does not depend on the number of threads.
+    template <Scene Sc>
+    [[nodiscard]] waterfall<T> render(const Sc& scene, std::size_t first, std::size_t count, unsigned threads = 0) const {
+        waterfall<T> w;
+        w.pings = count;
+        w.samples = samples_;
+        w.dt_s = dt_;
+        w.values.assign(count * w.width(), T(0));
+        if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+        threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+        auto work = [&](unsigned worker) {
+            for (std::size_t i = worker; i < count; i += threads) w.set_row(i, ping(scene, first + i));
+        };
+        if (threads <= 1) {
+            work(0);
+        } else {
+            std::vector<std::thread> pool;
+            pool.reserve(threads);
+            std::exception_ptr failure;
+            for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&, t] {
+                try { work(t); } catch (...) { failure = std::current_exception(); }
+            });
+            for (auto& th : pool) th.join();
+            if (failure) std::rethrow_exception(failure);
+        }
+        return w;
+    }
+
+    /// Traces every ray of one side of one ping and calls `visit(const tube_echo<T>&)` for each piece of echo.
+    template <Scene Sc, class Visitor>
+    void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
+        const beam_extent<T> ext = beam_.extent(sd);
+        const double t_max_s = double(samples_) * dt_;
+        // Trace slightly past the line's end so the ray placed exactly at the last range is not lost to rounding;
+        // the sampler drops whatever falls beyond the line.
+        const T t_max_one_way = static_cast<T>(0.5 * t_max_s * (1.0 + 1e-5));
+        const T max_range_m = static_cast<T>(0.5 * t_max_s * c_ref_);
+        const T altitude = p.position.z - scene.seabed_height_m(p.position.x, p.position.y);
+        const T clearance = p.position.z - scene.top_m();
+        column_density cd;
+        if (density_.across != 0) cd.rays = density_.across;
+        else cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
+        const std::size_t n_along = density_.along;
+        const double a0 = ext.along_min_rad, a1 = ext.along_max_rad;
+        std::vector<T> angles;
+        for (std::size_t j = 0; j < n_along; ++j) {
+            const double lo = a0 + (a1 - a0) * double(j) / double(n_along);
+            const double hi = a0 + (a1 - a0) * double(j + 1) / double(n_along);
+            const T along = static_cast<T>(0.5 * (lo + hi));
+            // Solid angle per unit depression of the column: int cos(a) da over the column.
+            const double column_sr = std::sin(hi) - std::sin(lo);
+            depression_angles<T>(angles, sd, along, ext.depression_min_rad, ext.depression_max_rad, p.body_to_world,
+                                 altitude, clearance, max_range_m, cd);
+            ray_end prev;
+            bool in_run = false;
+            for (const T e : angles) {
+                if (std::isnan(e)) { in_run = false; continue; }
+                ray_end cur = shoot(scene, p, sd, along, e, t_max_one_way, column_sr);
+                if (in_run) {
+                    const double de = std::abs(cur.e - prev.e);
+                    if (prev.valid && cur.valid && same_surface(prev.surface, cur.surface)) {
+                        visit(tube_echo<T>{prev.t, cur.t, 0.5 * (prev.power_per_rad + cur.power_per_rad) * de, prev.surface});
+                    } else {
+                        if (prev.valid) visit(tube_echo<T>{prev.t, prev.t, 0.5 * prev.power_per_rad * de, prev.surface});
+                        if (cur.valid) visit(tube_echo<T>{cur.t, cur.t, 0.5 * cur.power_per_rad * de, cur.surface});
+                    }
+                }
+                prev = cur;
+                in_run = true;
+            }
+        }
+    }
+
+private:
+    struct ray_end {
+        bool valid = false;
+        double e = 0.0, t = 0.0, power_per_rad = 0.0;
+        hit<T> surface{};
+    };
+
+    /// One ray: its two-way time and return power per radian of depression, or invalid if it meets nothing.
+    template <Scene Sc>
+    [[nodiscard]] ray_end shoot(const Sc& scene, const pose<T>& p, side sd, T along, T e, T t_max_one_way,
+                             double column_sr) const {
+        ray_end r;
+        r.e = double(e);
+        const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
+        const auto path = propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way);
+        if (!path) return r;
+        const hit<T>& h = path->surface;
+        const T sin_facet = -glm::dot(path->arrival, h.normal);
+        const T sin_graze = std::min(T(1), -glm::dot(path->arrival, h.shading_normal));
+        if (!(sin_facet > T(0)) || !(sin_graze > T(0))) return r;
+        const T w = beam_.weight(sd, along, e);
+        const T sigma = scattering_.backscatter(std::asin(sin_graze), h.material);
+        const double loss = double(path->spreading) * double(path->absorption) * double(path->absorption);
+        r.valid = true;
+        r.t = 2.0 * double(path->time_s);
+        r.power_per_rad = source_level_ * double(w) * double(sigma) * loss * column_sr / double(sin_facet);
+        r.surface = h;
+        return r;
+    }
+
+    template <Scene Sc> void accumulate(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler) const {
+        trace(scene, p, sd, [&](const tube_echo<T>& t) { sampler.add_span(t.t0_s, t.t1_s, t.power); });
+    }
+
+    S scattering_;
+    P propagation_;
+    B beam_;
+    M motion_;
+    receiver_params receiver_;
+    ray_density density_;
+    double c_ref_ = 1500.0;
+    std::size_t samples_ = 0;
+    double dt_ = 0.0;
+    double source_level_ = 1.0;
+};
+
+} // namespace sss

@@ -1,0 +1,48 @@
+#pragma once
+/// \file
+/// sss: sidescan sonar simulation by ray tracing. The umbrella header: everything public.
+
+#include "sss/version.hpp"
+
+#include "sss/core/constants.hpp"
+#include "sss/core/decibel.hpp"
+#include "sss/core/error.hpp"
+#include "sss/core/hit.hpp"
+#include "sss/core/pose.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/core/types.hpp"
+
+#include "sss/scene/concept.hpp"
+#include "sss/scene/flat_seabed.hpp"
+
+#include "sss/scattering/concept.hpp"
+#include "sss/scattering/jackson.hpp"
+#include "sss/scattering/lambertian.hpp"
+#include "sss/scattering/reflection.hpp"
+#include "sss/scattering/sediments.hpp"
+
+#include "sss/propagation/concept.hpp"
+#include "sss/propagation/absorption.hpp"
+#include "sss/propagation/profile.hpp"
+#include "sss/propagation/ray_arc.hpp"
+#include "sss/propagation/sound_speed.hpp"
+#include "sss/propagation/straight.hpp"
+
+#include "sss/beam/concept.hpp"
+#include "sss/beam/directivity.hpp"
+#include "sss/beam/ideal_fan.hpp"
+#include "sss/beam/planar_array.hpp"
+
+#include "sss/motion/concept.hpp"
+#include "sss/motion/perturbed.hpp"
+#include "sss/motion/straight_line.hpp"
+#include "sss/motion/trajectory.hpp"
+
+#include "sss/receiver/image.hpp"
+#include "sss/receiver/pulse.hpp"
+#include "sss/receiver/receiver.hpp"
+#include "sss/receiver/time_sampler.hpp"
+
+#include "sss/sampling/launch_angles.hpp"
+
+#include "sss/simulator.hpp"

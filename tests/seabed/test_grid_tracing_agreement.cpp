@@ -1,0 +1,188 @@
+// Agreement of the accelerated traversal and of the fan sweep (intersect_many) with the reference
+// traversal, on a rough surface with plateaus (exact ties), a trench and white noise.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "sss/scene/height_field.hpp"
+
+using sss::ray;
+using sss::vec2;
+using sss::vec3;
+using sss::scene::height_field;
+
+namespace {
+
+struct rng {
+    std::uint64_t s;
+    std::uint64_t next() {
+        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
+    double uniform(double a, double b) { return a + (b - a) * uniform(); }
+    vec3<double> direction() { // uniform on the sphere
+        const double z = uniform(-1, 1), phi = uniform(0, 6.283185307179586), r = std::sqrt(1 - z * z);
+        return {r * std::cos(phi), r * std::sin(phi), z};
+    }
+};
+
+constexpr double deg = 3.141592653589793 / 180;
+
+template <class T> ray<T> make_ray(vec3<double> o, vec3<double> d) {
+    return ray<T>{vec3<T>(o), vec3<T>(glm::normalize(d))};
+}
+
+// A rough surface with steep slopes, white noise, a flat plateau (exact ties) and a 1.5 m cliff; every
+// cell gets its own region id, so a hit's label names its cell.
+template <class T> height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o) {
+    std::vector<T> h(nx * ny);
+    rng noise{42};
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix) {
+            const double x = double(ix) * cell, y = double(iy) * cell;
+            double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
+                       0.12 * std::sin(2.1 * y + 0.4 * x) + 0.1 * (noise.uniform() - 0.5);
+            z = std::min(z, 1.1);                        // plateau: many vertices at exactly 1.1
+            if (x + 0.5 * y > 60 && x + 0.5 * y < 75) z -= 1.5; // a trench with vertical-ish walls
+            h[iy * nx + ix] = T(z);
+        }
+    std::vector<std::uint32_t> regions((nx - 1) * (ny - 1));
+    for (std::size_t c = 0; c < regions.size(); ++c) regions[c] = std::uint32_t(c);
+    return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h), {}, std::move(regions));
+}
+
+
+} // namespace
+
+TEST_CASE_TEMPLATE("The accelerated and the reference traversal find the same cell and distance for a million rays", T, float,
+                   double) {
+    // A 601 x 411 rough field (600 x 410 cells: partial pyramid blocks), random rays of every kind and
+    // sidescan fans. The region id of a hit is its cell index, so equal labels mean equal cells.
+    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10});
+    rng gen{17};
+    const long n = std::is_same_v<T, double> ? 600000 : 150000;
+    long hits = 0, compared = 0;
+    auto compare = [&](const ray<T>& r, T t_max) {
+        const auto a = hf.intersect(r, t_max);
+        const auto b = hf.intersect_reference(r, t_max);
+        ++compared;
+        REQUIRE(bool(a) == bool(b));
+        if (!a) return;
+        ++hits;
+        REQUIRE(a->label == b->label);
+        REQUIRE(std::abs(double(a->distance_m) - double(b->distance_m)) <= 1e-6 * double(b->distance_m));
+    };
+    // Random rays: origins over and around the footprint, some under the surface; all directions.
+    for (long k = 0; k < n; ++k) {
+        const vec3<double> o{gen.uniform(-40, 150), gen.uniform(-10, 130), gen.uniform(-2, 15)};
+        compare(make_ray<T>(o, gen.direction()), T(gen.uniform() < 0.2 ? gen.uniform(0.5, 20) : 300));
+    }
+    // Sidescan fans: towfish 2..15 m above the top, 8 along-track angles, 2 x 256 depressions per ping.
+    const long pings = n / 4096;
+    for (long p = 0; p < pings; ++p) {
+        const vec3<double> fish{gen.uniform(-10, 140), gen.uniform(0, 120), double(hf.top_m()) + gen.uniform(2, 15)};
+        const double heading = gen.uniform(0, 6.283185307179586);
+        for (int side = -1; side <= 1; side += 2)
+            for (int a = 0; a < 8; ++a) {
+                const double along = (-0.5 + a / 7.0) * deg;
+                for (int i = 0; i < 256; ++i) {
+                    const double dep = (1 + 59 * i / 255.0) * deg;
+                    const double az = heading + side * (90 * deg - along);
+                    compare(make_ray<T>(fish, {std::cos(dep) * std::cos(az), std::cos(dep) * std::sin(az), -std::sin(dep)}), T(150));
+                }
+            }
+    }
+    CHECK(compared >= (std::is_same_v<T, double> ? 1000000 : 250000) * 9 / 10);
+    CHECK(hits > compared / 3);
+    MESSAGE(compared << " rays compared, " << hits << " hits");
+}
+
+TEST_CASE("Fans traced together give the one-by-one hits, to rounding") {
+    using T = double;
+    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10});
+    rng gen{23};
+    long compared = 0, boundary = 0;
+    for (int p = 0; p < 40; ++p) {
+        const vec3<double> fish{gen.uniform(-10, 140), gen.uniform(0, 120), double(hf.top_m()) + gen.uniform(-0.5, 15)};
+        const double heading = gen.uniform(0, 6.283185307179586);
+        std::vector<ray<T>> rays;
+        for (int side = -1; side <= 1; side += 2)
+            for (int a = 0; a < 4; ++a) {
+                const double along = (-0.5 + a / 3.0) * deg;
+                const bool reverse = gen.next() % 2;
+                for (int i = 0; i < 400; ++i) {
+                    const int ii = reverse ? 399 - i : i;
+                    const double dep = (-5 + 65 * ii / 399.0) * deg; // a few rays point up
+                    const double az = heading + side * (90 * deg - along);
+                    rays.push_back(make_ray<T>(fish, {std::cos(dep) * std::cos(az), std::cos(dep) * std::sin(az), -std::sin(dep)}));
+                }
+            }
+        // A few odd rays between fans: vertical, and one that breaks the order.
+        rays.push_back(make_ray<T>(fish, {0, 0, -1}));
+        std::vector<std::optional<sss::hit<T>>> got(rays.size());
+        const T t_max = T(gen.uniform() < 0.3 ? 40 : 200);
+        hf.intersect_many(rays, t_max, got);
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            const auto want = hf.intersect_reference(rays[k], t_max);
+            ++compared;
+            REQUIRE(bool(got[k]) == bool(want));
+            if (!want) continue;
+            CHECK(std::abs(got[k]->distance_m - want->distance_m) <= 1e-9 * want->distance_m);
+            if (got[k]->label != want->label) {
+                // Allowed only for a hit on a cell boundary, where either cell is right.
+                const double u = (want->point.x + 20) / 0.25, v = (want->point.y - 10) / 0.25;
+                const bool on_edge = std::abs(u - std::round(u)) < 1e-7 || std::abs(v - std::round(v)) < 1e-7;
+                CHECK(on_edge);
+                ++boundary;
+            }
+        }
+    }
+    std::vector<std::optional<sss::hit<T>>> two(2);
+    CHECK_THROWS_AS(hf.intersect_many(std::vector<ray<T>>(3), T(1), two), sss::invalid_parameter);
+    MESSAGE(compared << " rays compared, " << boundary << " on cell boundaries");
+}
+
+TEST_CASE("In float, fans and single rays differ only where a ray grazes the surface within float rounding") {
+    // Float rounding decides near-tangent touches differently in the two formulations; any difference
+    // must be such a touch, as judged in double on the same heights.
+    const auto hf = rough_field<float>(601, 411, 0.25, {-20, 10});
+    const height_field<double> hd(601, 411, 0.25, {-20, 10}, std::vector<double>(hf.heights_m().begin(), hf.heights_m().end()));
+    rng gen{29};
+    long compared = 0, differ = 0;
+    for (int p = 0; p < 20; ++p) {
+        const vec3<double> fish{gen.uniform(-10, 140), gen.uniform(0, 120), double(hf.top_m()) + gen.uniform(1, 12)};
+        const double heading = gen.uniform(0, 6.283185307179586);
+        std::vector<ray<float>> rays;
+        for (int side = -1; side <= 1; side += 2)
+            for (int i = 0; i < 2048; ++i) {
+                const double dep = (1 + 59 * i / 2047.0) * deg, az = heading + side * 90 * deg;
+                rays.push_back(make_ray<float>(fish, {std::cos(dep) * std::cos(az), std::cos(dep) * std::sin(az), -std::sin(dep)}));
+            }
+        std::vector<std::optional<sss::hit<float>>> got(rays.size());
+        hf.intersect_many(rays, 200.f, got);
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            const auto one = hf.intersect(rays[k], 200.f);
+            ++compared;
+            const bool same = bool(one) == bool(got[k]) &&
+                              (!one || std::abs(double(one->distance_m - got[k]->distance_m)) <= 1e-4 * double(one->distance_m));
+            if (same) continue;
+            ++differ;
+            // Height of the ray above the double surface at both candidate hits: the earlier one must be
+            // a touch within float rounding (|f| below 1e-4 m here), the later one a real crossing.
+            const ray<double> rd{vec3<double>(rays[k].origin), vec3<double>(rays[k].direction)};
+            auto f_at = [&](double s) { const auto q = rd.at(s); return q.z - hd.seabed_height_m(q.x, q.y); };
+            const double s1 = one ? double(one->distance_m) : 1e9, s2 = got[k] ? double(got[k]->distance_m) : 1e9;
+            CHECK(std::abs(f_at(std::min(s1, s2))) < 1e-4);
+        }
+    }
+    CHECK(differ < compared / 1000);
+    MESSAGE(compared << " rays compared, " << differ << " differ");
+}

@@ -1,0 +1,179 @@
+// No leaks: ten million rays aimed exactly at vertices, at grid edges and at cell diagonals, on a tilted
+// plane (every ray that descends relative to the plane must hit it exactly at its target) and on a rough
+// surface (every ray that starts over the footprint above everything and is clearly under the surface
+// just past its target must hit, by the intermediate value theorem, at or before that point). A few percent of the rays also
+// go through the reference traversal.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "sss/scene/height_field.hpp"
+
+using sss::ray;
+using sss::vec2;
+using sss::vec3;
+using sss::scene::height_field;
+
+namespace {
+
+struct rng {
+    std::uint64_t s;
+    std::uint64_t next() {
+        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
+    double uniform(double a, double b) { return a + (b - a) * uniform(); }
+};
+
+constexpr double deg = 3.141592653589793 / 180;
+constexpr std::size_t n_side = 513; // vertices per side: 512 x 512 cells of 0.25 m (128 m)
+constexpr double cell = 0.25;
+
+// A target on the grid, in grid units: a vertex, a point of an edge along x or y, or of a diagonal.
+// Half the edge points are midpoints, the others anywhere along the edge.
+struct target {
+    double u, v;
+};
+target pick_target(rng& g) {
+    const double i = double(128 + g.next() % (n_side - 257)), j = double(128 + g.next() % (n_side - 257));
+    const double t = g.next() % 2 ? 0.5 : g.uniform();
+    switch (g.next() % 4) {
+    case 0: return {i, j};
+    case 1: return {i + t, j};
+    case 2: return {i, j + t};
+    default: return {i + t, j + t};
+    }
+}
+
+// Surface height by the triangle rule, evaluated here independently of the library, in double.
+template <class T> double height(const std::vector<T>& h, double u, double v) {
+    const int ix = std::clamp(int(u), 0, int(n_side) - 2), iy = std::clamp(int(v), 0, int(n_side) - 2);
+    const double a = u - ix, b = v - iy;
+    auto at = [&](int x, int y) { return double(h[std::size_t(y) * n_side + std::size_t(x)]); };
+    const double h00 = at(ix, iy), h10 = at(ix + 1, iy), h01 = at(ix, iy + 1), h11 = at(ix + 1, iy + 1);
+    return a >= b ? h00 + a * (h10 - h00) + b * (h11 - h10) : h00 + b * (h01 - h00) + a * (h11 - h01);
+}
+
+// A random direction: grazing, sidescan-like or steep.
+vec3<double> pick_direction(rng& g) {
+    const double az = g.uniform(0, 6.283185307179586);
+    const double r = g.uniform();
+    const double dep = r < 0.2 ? g.uniform(0.01, 1) * deg : r < 0.8 ? g.uniform(1, 60) * deg : g.uniform(60, 90) * deg;
+    return {std::cos(dep) * std::cos(az), std::cos(dep) * std::sin(az), -std::sin(dep)};
+}
+
+struct tally {
+    long rays = 0, leaks = 0, reference_rays = 0, skipped = 0;
+};
+
+template <class T> tally plane_rays(long n, std::uint64_t seed) {
+    // z = -1 + 0.2 x - 0.35 y: every ray descending relative to it (rate > 0) crosses it exactly once.
+    const double a = -1, bx = 0.2, by = -0.35;
+    std::vector<T> h(n_side * n_side);
+    for (std::size_t iy = 0; iy < n_side; ++iy)
+        for (std::size_t ix = 0; ix < n_side; ++ix) h[iy * n_side + ix] = T(a + bx * double(ix) * cell + by * double(iy) * cell);
+    const height_field<T> hf(n_side, n_side, T(cell), vec2<T>{T(0), T(0)}, h);
+    const double eps = std::numeric_limits<T>::epsilon();
+    rng g{seed};
+    tally t;
+    while (t.rays < n) {
+        const target p = pick_target(g);
+        const vec3<double> tp{p.u * cell, p.v * cell, height(h, p.u, p.v)};
+        // Directions measured from the plane: tilt a horizontal pick down by the plane's slope along it.
+        vec3<double> d = pick_direction(g);
+        d.z += bx * d.x + by * d.y;
+        d = glm::normalize(d);
+        const double len = g.uniform(1, 40);
+        const ray<T> r{vec3<T>(tp - d * len), vec3<T>(d)};
+        const vec3<double> o(r.origin), dd(r.direction);
+        const double rate = bx * dd.x + by * dd.y - dd.z;
+        if (!(rate > 0)) {
+            ++t.skipped;
+            continue;
+        }
+        const double s = (o.z - (a + bx * o.x + by * o.y)) / rate;
+        const double tol = 64 * eps * (1 + std::abs(o.z) + 0.2 * std::abs(o.x) + 0.35 * std::abs(o.y) + s) / rate;
+        ++t.rays;
+        const auto hit = hf.intersect(r, T(1000));
+        if (!hit || std::abs(double(hit->distance_m) - s) > tol) ++t.leaks;
+        if (t.rays % 32 == 0) {
+            ++t.reference_rays;
+            const auto ref = hf.intersect_reference(r, T(1000));
+            if (!ref || std::abs(double(ref->distance_m) - s) > tol) ++t.leaks;
+        }
+    }
+    return t;
+}
+
+template <class T> tally rough_rays(long n, std::uint64_t seed) {
+    std::vector<T> h(n_side * n_side);
+    rng noise{seed + 1};
+    for (std::size_t iy = 0; iy < n_side; ++iy)
+        for (std::size_t ix = 0; ix < n_side; ++ix) {
+            const double x = double(ix) * cell, y = double(iy) * cell;
+            double z = 1.0 * std::sin(0.2 * x + 0.1 * y) + 0.3 * std::sin(1.1 * x - 0.7 * y) + 0.15 * (noise.uniform() - 0.5);
+            z = std::min(z, 0.9); // flat plateaus: exact ties
+            h[iy * n_side + ix] = T(z);
+        }
+    const height_field<T> hf(n_side, n_side, T(cell), vec2<T>{T(0), T(0)}, h);
+    const double top = double(hf.top_m());
+    const double margin = std::is_same_v<T, float> ? 1e-4 : 1e-9;
+    rng g{seed};
+    tally t;
+    while (t.rays < n) {
+        const target p = pick_target(g);
+        const vec3<double> tp{p.u * cell, p.v * cell, height(h, p.u, p.v)};
+        const vec3<double> d = pick_direction(g);
+        // Start above everything (so above the surface), over the footprint, at most 60 m away.
+        const double len = (top + g.uniform(1e-6, 1) - tp.z) / -d.z;
+        const ray<T> r{vec3<T>(tp - d * len), vec3<T>(d)};
+        const vec3<double> o(r.origin), dd(r.direction);
+        const double extent = double(n_side - 1) * cell;
+        if (!(len < 60) || !(o.x > 0 && o.y > 0 && o.x < extent && o.y < extent)) {
+            ++t.skipped;
+            continue;
+        }
+        // Half a cell past the target the ray must be clearly under the surface.
+        const double past = len + 0.5 * cell;
+        const vec3<double> q = o + dd * past;
+        if (!(q.z < height(h, q.x / cell, q.y / cell) - margin) || !(o.z > top)) {
+            ++t.skipped;
+            continue;
+        }
+        ++t.rays;
+        auto valid = [&](const auto& hit) {
+            if (!hit || !(double(hit->distance_m) <= past)) return false;
+            // The hit lies on the surface (to rounding): the ray's height there is the surface's.
+            const vec3<double> at = o + dd * double(hit->distance_m);
+            return std::abs(at.z - height(h, at.x / cell, at.y / cell)) < 1e3 * std::numeric_limits<T>::epsilon() * (1 + top);
+        };
+        if (!valid(hf.intersect(r, T(1000)))) ++t.leaks;
+        if (t.rays % 32 == 0) {
+            ++t.reference_rays;
+            if (!valid(hf.intersect_reference(r, T(1000)))) ++t.leaks;
+        }
+    }
+    return t;
+}
+
+} // namespace
+
+TEST_CASE("Ten million rays aimed exactly at vertices, edges and diagonals all hit") {
+    const tally a = plane_rays<double>(3000000, 1);
+    const tally b = plane_rays<float>(2000000, 2);
+    const tally c = rough_rays<double>(3000000, 3);
+    const tally d = rough_rays<float>(2000000, 4);
+    for (const tally& t : {a, b, c, d}) CHECK(t.leaks == 0);
+    const long rays = a.rays + b.rays + c.rays + d.rays;
+    CHECK(rays >= 10000000);
+    MESSAGE(rays << " rays (plus " << a.reference_rays + b.reference_rays + c.reference_rays + d.reference_rays
+                 << " through the reference traversal); leaks: " << a.leaks << " " << b.leaks << " " << c.leaks << " " << d.leaks
+                 << "; rays not clearly entering, skipped: " << c.skipped + d.skipped);
+}

@@ -1,0 +1,196 @@
+// The height field as a surface: construction checks, the triangle rule of interpolation, clamping
+// outside the footprint, extreme heights, per-cell ids, normals, and the maximum pyramid.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sss/scene/concept.hpp"
+#include "sss/scene/height_field.hpp"
+
+using sss::vec2;
+using sss::vec3;
+using sss::scene::height_field;
+
+namespace {
+
+// Heights of a function sampled at the vertices of an nx x ny grid.
+template <class T, class F> std::vector<T> sample(std::size_t nx, std::size_t ny, double cell, vec2<double> o, F f) {
+    std::vector<T> h(nx * ny);
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix)
+            h[iy * nx + ix] = static_cast<T>(f(o.x + double(ix) * cell, o.y + double(iy) * cell));
+    return h;
+}
+
+template <class T> bool throws_naming(auto&& f, const std::string& what) {
+    try {
+        f();
+    } catch (const sss::invalid_parameter& e) {
+        return std::string(e.what()).find(what) != std::string::npos;
+    }
+    return false;
+}
+
+} // namespace
+
+static_assert(sss::Scene<height_field<float>> && sss::Scene<height_field<double>>);
+
+TEST_CASE_TEMPLATE("A height field rejects bad sizes, spacing and origins, and non-finite heights by vertex", T, float, double) {
+    const std::vector<T> four(4, T(1));
+    CHECK(throws_naming<T>([&] { height_field<T>(1, 4, T(1), {}, four); }, "height_field.nx"));
+    CHECK(throws_naming<T>([&] { height_field<T>(4, 1, T(1), {}, four); }, "height_field.ny"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(0), {}, four); }, "height_field.cell_m"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(-1), {}, four); }, "height_field.cell_m"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, std::numeric_limits<T>::infinity(), {}, four); }, "height_field.cell_m"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(1), vec2<T>{std::numeric_limits<T>::quiet_NaN(), T(0)}, four); },
+                           "height_field.origin_m.x"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 3, T(1), {}, four); }, "height_field.heights_m"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(1), {}, four, std::vector<std::uint32_t>(2)); }, "height_field.materials"));
+    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(1), {}, four, {}, std::vector<std::uint32_t>(3)); }, "height_field.regions"));
+
+    std::vector<T> h(12, T(0));
+    h[7] = std::numeric_limits<T>::quiet_NaN(); // vertex (ix 3, iy 1) of a 4 x 3 grid
+    CHECK(throws_naming<T>([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
+    CHECK(throws_naming<T>([&] { height_field<T>(4, 3, T(1), {}, h); }, "(ix 3, iy 1)"));
+    h[7] = -std::numeric_limits<T>::infinity();
+    CHECK(throws_naming<T>([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
+}
+
+TEST_CASE_TEMPLATE("Inside a cell the surface is the two triangles split by the south-west to north-east diagonal", T, float,
+                   double) {
+    // One cell with corners h00 = 0, h10 = 1, h01 = 2, h11 = 0.5, 2 m cells, origin (10, 20).
+    const height_field<T> hf(2, 2, T(2), vec2<T>{T(10), T(20)}, {T(0), T(1), T(2), T(0.5)});
+    const double tol = 4 * std::numeric_limits<T>::epsilon() * 4;
+    // Corners.
+    CHECK(hf.seabed_height_m(T(10), T(20)) == doctest::Approx(0.0).epsilon(tol));
+    CHECK(hf.seabed_height_m(T(12), T(20)) == doctest::Approx(1.0).epsilon(tol));
+    CHECK(hf.seabed_height_m(T(10), T(22)) == doctest::Approx(2.0).epsilon(tol));
+    CHECK(hf.seabed_height_m(T(12), T(22)) == doctest::Approx(0.5).epsilon(tol));
+    // Lower triangle (a >= b): h = h00 + a (h10 - h00) + b (h11 - h10); at a = 0.75, b = 0.25: 0.75 - 0.125.
+    CHECK(double(hf.seabed_height_m(T(11.5), T(20.5))) == doctest::Approx(0.625).epsilon(tol));
+    // Upper triangle (a < b): h = h00 + b (h01 - h00) + a (h11 - h01); at a = 0.25, b = 0.75: 1.5 - 0.375.
+    CHECK(double(hf.seabed_height_m(T(10.5), T(21.5))) == doctest::Approx(1.125).epsilon(tol));
+    // On the diagonal both give h00 + a (h11 - h00): 0.25 at a = b = 0.5. Bilinear would give 0.875.
+    CHECK(double(hf.seabed_height_m(T(11), T(21))) == doctest::Approx(0.25).epsilon(tol));
+}
+
+TEST_CASE_TEMPLATE("Outside its footprint the surface continues at the height of the nearest boundary point", T, float, double) {
+    const auto h = sample<T>(5, 4, 0.5, {-1.0, 2.0}, [](double x, double y) { return 0.3 * x - 0.2 * y + 1.0; });
+    const height_field<T> hf(5, 4, T(0.5), vec2<T>{T(-1), T(2)}, h);
+    // Footprint: x in [-1, 1], y in [2, 3.5].
+    CHECK(double(hf.seabed_height_m(T(-5), T(3))) == doctest::Approx(0.3 * -1 - 0.2 * 3 + 1).epsilon(1e-5));
+    CHECK(double(hf.seabed_height_m(T(7), T(-9))) == doctest::Approx(0.3 * 1 - 0.2 * 2 + 1).epsilon(1e-5));
+    CHECK(double(hf.seabed_height_m(T(0.25), T(100))) == doctest::Approx(0.3 * 0.25 - 0.2 * 3.5 + 1).epsilon(1e-5));
+}
+
+TEST_CASE_TEMPLATE("top_m and bottom_m are the highest and lowest vertices", T, float, double) {
+    std::vector<T> h(30, T(0.5));
+    h[17] = T(3.25);
+    h[4] = T(-7.5);
+    const height_field<T> hf(6, 5, T(1), {}, h);
+    CHECK(hf.top_m() == T(3.25));
+    CHECK(hf.bottom_m() == T(-7.5));
+}
+
+TEST_CASE_TEMPLATE("A hit carries the material and region of the cell it lands in", T, float, double) {
+    // 3 x 2 cells, flat at z = 0; cell (ix, iy) gets material 10 + index and region 100 + index.
+    std::vector<std::uint32_t> mat(6), reg(6);
+    for (std::uint32_t c = 0; c < 6; ++c) {
+        mat[c] = 10 + c;
+        reg[c] = 100 + c;
+    }
+    const height_field<T> hf(4, 3, T(1), {}, std::vector<T>(12, T(0)), mat, reg);
+    for (std::uint32_t iy = 0; iy < 2; ++iy)
+        for (std::uint32_t ix = 0; ix < 3; ++ix) {
+            const sss::ray<T> r{vec3<T>{T(ix) + T(0.3), T(iy) + T(0.6), T(5)}, vec3<T>{T(0), T(0), T(-1)}};
+            const auto hit = hf.intersect(r, T(10));
+            REQUIRE(hit);
+            CHECK(hit->material == 10 + iy * 3 + ix);
+            CHECK(hit->label == 100 + iy * 3 + ix);
+            CHECK(hit->object == sss::no_object);
+            CHECK(hf.material(ix, iy) == 10 + iy * 3 + ix);
+            CHECK(hf.region(ix, iy) == 100 + iy * 3 + ix);
+        }
+    const height_field<T> plain(4, 3, T(1), {}, std::vector<T>(12, T(0)));
+    const auto hit = plain.intersect(sss::ray<T>{vec3<T>{T(1.5), T(1.5), T(1)}, vec3<T>{T(0), T(0), T(-1)}}, T(10));
+    REQUIRE(hit);
+    CHECK(hit->material == 0);
+    CHECK(hit->label == 0);
+}
+
+TEST_CASE_TEMPLATE("Geometric normals are per triangle; smooth normals are continuous across shared edges", T, float, double) {
+    // A paraboloid z = 0.05 (x^2 + 2 y^2) on 0.5 m cells.
+    const double c = 0.5;
+    const auto f = [](double x, double y) { return 0.05 * (x * x + 2 * y * y); };
+    const auto h = sample<T>(21, 17, c, {-5.0, -4.0}, f);
+    const height_field<T> hf(21, 17, T(c), vec2<T>{T(-5), T(-4)}, h);
+    const auto& g = hf.grid();
+    const double tol = std::is_same_v<T, float> ? 2e-5 : 1e-12;
+    for (std::int32_t iy = 0; iy + 1 < g.ny; ++iy)
+        for (std::int32_t ix = 0; ix + 1 < g.nx; ++ix) {
+            // The lower triangle's plane through its three vertices, by cross product in double.
+            const auto vtx = [&](int dx, int dy) {
+                return vec3<double>{-5.0 + (ix + dx) * c, -4.0 + (iy + dy) * c, double(g.at(ix + dx, iy + dy))};
+            };
+            const vec3<double> n = glm::normalize(glm::cross(vtx(1, 0) - vtx(0, 0), vtx(1, 1) - vtx(0, 0)));
+            const vec3<T> got = sss::scene::triangle_normal(g, ix, iy, sss::scene::cell_triangle::lower);
+            CHECK(glm::length(vec3<double>(got) - n) < tol);
+            const vec3<double> nu = glm::normalize(glm::cross(vtx(1, 1) - vtx(0, 0), vtx(0, 1) - vtx(0, 0)));
+            const vec3<T> gotu = sss::scene::triangle_normal(g, ix, iy, sss::scene::cell_triangle::upper);
+            CHECK(glm::length(vec3<double>(gotu) - nu) < tol);
+            // Continuity: across the diagonal, and across the east edge into the next cell.
+            const T a = T(0.37);
+            const auto lo = sss::scene::smooth_normal(g, ix, iy, sss::scene::cell_triangle::lower, a, a);
+            const auto up = sss::scene::smooth_normal(g, ix, iy, sss::scene::cell_triangle::upper, a, a);
+            CHECK(glm::length(vec3<double>(lo) - vec3<double>(up)) < tol);
+            if (ix + 2 < g.nx) {
+                const auto west = sss::scene::smooth_normal(g, ix, iy, sss::scene::cell_triangle::lower, T(1), a);
+                const auto east = sss::scene::smooth_normal(g, ix + 1, iy, sss::scene::cell_triangle::upper, T(0), a);
+                CHECK(glm::length(vec3<double>(west) - vec3<double>(east)) < tol);
+            }
+        }
+    // At an interior vertex the smooth normal is the central-difference normal, here exact for the
+    // paraboloid: gradient (0.1 x, 0.2 y) at (1, -1.5) = vertex (12, 5).
+    const vec3<T> nv = sss::scene::smooth_normal(g, 12, 5, sss::scene::cell_triangle::lower, T(0), T(0));
+    const vec3<double> expect = glm::normalize(vec3<double>{-0.1 * 1.0, -0.2 * -1.5, 1.0});
+    CHECK(glm::length(vec3<double>(nv) - expect) < 10 * tol);
+}
+
+TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a third of the heights plus edge blocks", T, float,
+                   double) {
+    // 37 x 23 vertices: partial blocks at the edges of every level.
+    const auto h = sample<T>(37, 23, 1.0, {0.0, 0.0}, [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.7 * y) + 0.01 * x * y; });
+    const height_field<T> hf(37, 23, T(1), {}, h);
+    const auto& p = hf.pyramid();
+    const auto& g = hf.grid();
+    REQUIRE(p.levels() == 6); // 36 cells -> 18, 9, 5, 3, 2, 1
+    for (std::int32_t level = 1; level <= p.levels(); ++level)
+        for (std::int32_t by = 0; by < p.height(level); ++by)
+            for (std::int32_t bx = 0; bx < p.width(level); ++bx) {
+                T m = -std::numeric_limits<T>::infinity();
+                const std::int32_t x0 = bx << level, y0 = by << level;
+                for (std::int32_t y = y0; y <= std::min(y0 + (1 << level), g.ny - 1); ++y)
+                    for (std::int32_t x = x0; x <= std::min(x0 + (1 << level), g.nx - 1); ++x) m = std::max(m, g.at(x, y));
+                CHECK(p.max_m(level, bx, by) == m);
+            }
+    CHECK(hf.acceleration_bytes() < hf.height_bytes() / 2);
+    CHECK(p.max_m(p.levels(), 0, 0) == hf.top_m());
+}
+
+TEST_CASE_TEMPLATE("A copied or moved height field traces its own heights", T, float, double) {
+    height_field<T> a(3, 3, T(1), {}, std::vector<T>(9, T(2)));
+    const height_field<T> b = a;
+    height_field<T> c(std::move(a));
+    a = height_field<T>(2, 2, T(1), {}, std::vector<T>(4, T(-1)));
+    const sss::ray<T> down{vec3<T>{T(0.5), T(0.5), T(10)}, vec3<T>{T(0), T(0), T(-1)}};
+    REQUIRE(b.intersect(down, T(100)));
+    REQUIRE(c.intersect(down, T(100)));
+    REQUIRE(a.intersect(down, T(100)));
+    CHECK(b.intersect(down, T(100))->distance_m == doctest::Approx(8));
+    CHECK(c.intersect(down, T(100))->distance_m == doctest::Approx(8));
+    CHECK(a.intersect(down, T(100))->distance_m == doctest::Approx(11));
+}

@@ -1,0 +1,134 @@
+#pragma once
+// The shipped policies, as type lists per family, and their product: the policy matrix.
+// Every policy the library ships joins its family's list here, so that every combination is compared with the
+// flat-seabed oracle. Each family also says how to build the policy for the matrix scene and how the oracle
+// sees it (the water model the oracle integrates for a propagation policy, the pose for a motion policy).
+
+#include <tuple>
+#include <type_traits>
+
+#include <sss/sss.hpp>
+
+#include "flat_seabed_oracle.hpp"
+
+namespace sss_test {
+
+template <class... Ts> struct type_list {};
+
+template <class A, class B> struct concat;
+template <class... As, class... Bs> struct concat<type_list<As...>, type_list<Bs...>> { using type = type_list<As..., Bs...>; };
+
+template <class L> struct flatten;
+template <> struct flatten<type_list<>> { using type = type_list<>; };
+template <class H, class... Rest> struct flatten<type_list<H, Rest...>> {
+    using type = typename concat<H, typename flatten<type_list<Rest...>>::type>::type;
+};
+
+template <class S, class P, class B, class M> struct matrix_of;
+template <class... Ss, class... Ps, class... Bs, class... Ms>
+struct matrix_of<type_list<Ss...>, type_list<Ps...>, type_list<Bs...>, type_list<Ms...>> {
+    template <class S1, class P1, class B1> using row = type_list<std::tuple<S1, P1, B1, Ms>...>;
+    template <class S1, class P1> using plane = typename flatten<type_list<row<S1, P1, Bs>...>>::type;
+    template <class S1> using cube = typename flatten<type_list<plane<S1, Ps>...>>::type;
+    using type = typename flatten<type_list<cube<Ss>...>>::type;
+};
+
+// The same policy over another scalar type: policy<float> -> policy<double>.
+template <class Policy, class U> struct rebind;
+template <template <class> class Policy, class T, class U> struct rebind<Policy<T>, U> { using type = Policy<U>; };
+template <class Policy, class U> using rebind_t = typename rebind<Policy, U>::type;
+
+template <class L> struct as_tuple;
+template <class... Ts> struct as_tuple<type_list<Ts...>> { using type = std::tuple<Ts...>; };
+
+template <class T> using scattering_policies = type_list<sss::scattering::lambertian<T>, sss::scattering::jackson<T>>;
+template <class T> using propagation_policies = type_list<sss::propagation::straight<T>>;
+template <class T> using beam_policies = type_list<sss::beam::ideal_fan<T>, sss::beam::planar_array<T>>;
+template <class T>
+using motion_policies = type_list<sss::motion::straight_line<T>, sss::motion::perturbed<T>, sss::motion::trajectory<T>>;
+
+template <class T>
+using policy_matrix = typename as_tuple<typename matrix_of<scattering_policies<T>, propagation_policies<T>, beam_policies<T>,
+                                                           motion_policies<T>>::type>::type;
+
+} // namespace sss_test
+
+namespace sss_test {
+
+// How the matrix builds each policy, and what the oracle must know of it. A new policy adds a specialisation.
+template <class Policy> struct matrix_policy;
+
+template <class T> struct matrix_policy<sss::scattering::lambertian<T>> {
+    static sss::scattering::lambertian<T> make() { return sss::scattering::lambertian<T>{T(-27)}; }
+    static void describe(oracle_setup&, const sss::scattering::lambertian<T>&) {}
+};
+template <class T> struct matrix_policy<sss::propagation::straight<T>> {
+    static sss::propagation::straight<T> make() { return sss::propagation::straight<T>{{T(1500), T(60)}}; }
+    static void describe(oracle_setup& o, const sss::propagation::straight<T>& p) {
+        o.c_mps = double(p.params().sound_speed_mps);
+        o.absorption_db_per_km = double(p.params().absorption_db_per_km);
+    }
+};
+template <class T> struct matrix_policy<sss::beam::ideal_fan<T>> {
+    static sss::beam::ideal_fan<T> make() { return sss::beam::ideal_fan<T>{{T(1), T(50), T(20)}}; }
+    static void describe(oracle_setup&, const sss::beam::ideal_fan<T>&) {}
+};
+template <class T> struct matrix_policy<sss::motion::straight_line<T>> {
+    static sss::motion::straight_line<T> make() {
+        return sss::motion::straight_line<T>{{{T(0), T(0)}, T(30), T(2), T(10), T(0.1)}};
+    }
+    static void describe(oracle_setup&, const sss::motion::straight_line<T>&) {}
+};
+
+template <class T> struct matrix_policy<sss::scattering::jackson<T>> {
+    // Medium sand at 100 kHz: the Kirchhoff peak, the composite-roughness and volume terms all contribute.
+    static sss::scattering::jackson<T> make() {
+        return sss::scattering::jackson<T>{T(100000), T(1500), sss::scattering::sediment_preset<T>("medium sand")};
+    }
+    static void describe(oracle_setup&, const sss::scattering::jackson<T>&) {}
+};
+template <class T> struct matrix_policy<sss::beam::planar_array<T>> {
+    // A 300 kHz array of 32 x 2 elements (0.5 m by 4 cm), shaded along track, tilted 15 degrees down.
+    static sss::beam::planar_array<T> make() {
+        sss::beam::planar_array_params<T> p;
+        p.frequency_hz = T(300000);
+        p.depression_deg = T(15);
+        p.transmit.along = {32, T(0.0150), T(0.0156), {}};
+        p.transmit.vertical = {2, T(0.0190), T(0.0200), {}};
+        p.threshold_db = T(-30);
+        return sss::beam::planar_array<T>{p};
+    }
+    static void describe(oracle_setup&, const sss::beam::planar_array<T>&) {}
+};
+template <class T> struct matrix_policy<sss::motion::perturbed<T>> {
+    // Roll, pitch, yaw, heave and sway all at once, sampled at a ping where none of them is zero.
+    static sss::motion::perturbed<T> make() {
+        sss::motion::perturbed_params<T> p;
+        p.heading_deg = T(75);
+        p.altitude_m = T(9);
+        p.roll_deg = {T(4), T(7), T(30)};
+        p.pitch_deg = {T(3), T(5), T(60)};
+        p.yaw_deg = {T(2), T(11), T(10)};
+        p.heave_m = {T(0.4), T(6), T(20)};
+        p.sway_m = {T(0.5), T(9), T(45)};
+        return sss::motion::perturbed<T>{p};
+    }
+    static void describe(oracle_setup&, const sss::motion::perturbed<T>&) {}
+};
+template <class T> struct matrix_policy<sss::motion::trajectory<T>> {
+    // A gently curving, climbing track with its own roll and pitch channels.
+    static sss::motion::trajectory<T> make() {
+        sss::motion::trajectory_samples<T> s;
+        for (int i = 0; i <= 20; ++i) {
+            const double t = 0.5 * i;
+            s.time_s.push_back(t);
+            s.position_m.push_back({T(3.0 * t), T(0.05 * t * t), T(11.0 + 0.02 * t)});
+            s.roll_rad.push_back(T(0.05 * std::sin(0.7 * t)));
+            s.pitch_rad.push_back(T(-0.03 * std::cos(0.4 * t)));
+        }
+        return sss::motion::trajectory<T>{s};
+    }
+    static void describe(oracle_setup&, const sss::motion::trajectory<T>&) {}
+};
+
+} // namespace sss_test

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Builds and runs tests/consumers/one_ping.cpp in a CMake project that uses sss as a user would.
+#   consumer_cmake.sh install      <sss source dir> [cmake]: cmake --install sss into a temporary
+#                                  prefix, then find_package(sss) with CMAKE_PREFIX_PATH there.
+#   consumer_cmake.sh subdirectory <sss source dir> [cmake]: add_subdirectory(<sss source dir>).
+# Honours CXX (the compiler). Everything happens in a temporary directory, removed on exit.
+set -euo pipefail
+
+mode=${1:?usage: consumer_cmake.sh install|subdirectory <sss source dir> [cmake]}
+src=$(cd "${2:?missing sss source dir}" && pwd)
+cmake=${3:-cmake}
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/sss-consumer-cmake.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+generator=()
+if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+compiler=()
+if [[ -n "${CXX:-}" ]]; then compiler=(-DCMAKE_CXX_COMPILER="$CXX"); fi
+
+mkdir -p "$work/consumer"
+cp "$src/tests/consumers/cmake/CMakeLists.txt" "$src/tests/consumers/one_ping.cpp" "$work/consumer/"
+
+case "$mode" in
+install)
+    "$cmake" -S "$src" -B "$work/sss-build" "${generator[@]}" "${compiler[@]}" \
+        -DCMAKE_BUILD_TYPE=Release -DSSS_BUILD_TESTS=OFF -DSSS_BUILD_BENCH=OFF -DSSS_BUILD_EXAMPLES=OFF
+    "$cmake" --build "$work/sss-build"
+    "$cmake" --install "$work/sss-build" --prefix "$work/prefix"
+    "$cmake" -S "$work/consumer" -B "$work/consumer-build" "${generator[@]}" "${compiler[@]}" \
+        -DCMAKE_BUILD_TYPE=Release -DSSS_CONSUMER_MODE=install -DCMAKE_PREFIX_PATH="$work/prefix" \
+        -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON
+    ;;
+subdirectory)
+    "$cmake" -S "$work/consumer" -B "$work/consumer-build" "${generator[@]}" "${compiler[@]}" \
+        -DCMAKE_BUILD_TYPE=Release -DSSS_CONSUMER_MODE=subdirectory -DSSS_SOURCE_DIR="$src"
+    ;;
+*)
+    echo "consumer_cmake.sh: unknown mode '$mode' (install or subdirectory)" >&2
+    exit 2
+    ;;
+esac
+
+"$cmake" --build "$work/consumer-build"
+"$work/consumer-build/one_ping"
+echo "consumer ($mode): one_ping ran and returned 0"
