@@ -51,14 +51,16 @@ template <class T> std::vector<T> rough_heights() {
     for (const wave& w : waves) {
         const double k = 2 * pi / w.wavelength_m, dir = w.direction_deg * pi / 180;
         for (std::size_t i = 0; i < grid_n; ++i) {
-            const double a = k * std::cos(dir) * double(i) * cell_m, b = k * std::sin(dir) * double(i) * cell_m + w.phase;
+            const double a = k * std::cos(dir) * double(i) * cell_m,
+                         b = k * std::sin(dir) * double(i) * cell_m + w.phase;
             sx[i] = std::sin(a);
             cx[i] = std::cos(a);
             sy[i] = std::sin(b);
             cy[i] = std::cos(b);
         }
         for (std::size_t iy = 0; iy < grid_n; ++iy)
-            for (std::size_t ix = 0; ix < grid_n; ++ix) z[iy * grid_n + ix] += w.amplitude_m * (sx[ix] * cy[iy] + cx[ix] * sy[iy]);
+            for (std::size_t ix = 0; ix < grid_n; ++ix)
+                z[iy * grid_n + ix] += w.amplitude_m * (sx[ix] * cy[iy] + cx[ix] * sy[iy]);
     }
     std::vector<T> h(grid_n * grid_n);
     for (std::size_t i = 0; i < h.size(); ++i) {
@@ -88,7 +90,8 @@ template <class T> std::vector<ray<T>> ping_rays(double x, double y) {
             for (int i = 0; i < rays_per_fan; ++i) {
                 const double slant = r_min + (double(i) + 0.5) / rays_per_fan * (range_m - r_min);
                 const double dep = std::asin(altitude_m / slant);
-                const vec3<double> d{std::cos(dep) * std::sin(along), side * std::cos(dep) * std::cos(along), -std::sin(dep)};
+                const vec3<double> d{std::cos(dep) * std::sin(along), side * std::cos(dep) * std::cos(along),
+                                     -std::sin(dep)};
                 rays.push_back(ray<T>{vec3<T>{T(x), T(y), T(altitude_m)}, vec3<T>(d)});
             }
         }
@@ -210,8 +213,8 @@ template <template <class> class Tracer, class T> void trace_pings(benchmark::St
     state.counters["accel_bytes_per_height_byte"] = double(hf.acceleration_bytes()) / double(hf.height_bytes());
 }
 
-#define TRACE_BENCHMARKS(tracer)                                                                                                    \
-    BENCHMARK_TEMPLATE(trace_pings, tracer, float)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();                       \
+#define TRACE_BENCHMARKS(tracer)                                                                                       \
+    BENCHMARK_TEMPLATE(trace_pings, tracer, float)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();            \
     BENCHMARK_TEMPLATE(trace_pings, tracer, double)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()
 
 TRACE_BENCHMARKS(reference_tracer);
@@ -252,10 +255,15 @@ int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     const auto& hf = scene<float>();
-    benchmark::AddCustomContext("scene", "4096 x 4096 vertices at 0.25 m, rough (+-2.5 m), towfish 10 m up, 100 m range, "
-                                         "2 x 8 x 2048 rays per ping, " + std::to_string(pings) + " pings");
-    benchmark::AddCustomContext("memory", "acceleration / heights = " + std::to_string(double(hf.acceleration_bytes()) / double(hf.height_bytes())) +
-                                              " (total " + std::to_string(1 + double(hf.acceleration_bytes()) / double(hf.height_bytes())) + "x the heights)");
+    benchmark::AddCustomContext("scene",
+                                "4096 x 4096 vertices at 0.25 m, rough (+-2.5 m), towfish 10 m up, 100 m range, "
+                                "2 x 8 x 2048 rays per ping, " +
+                                    std::to_string(pings) + " pings");
+    benchmark::AddCustomContext(
+        "memory",
+        "acceleration / heights = " + std::to_string(double(hf.acceleration_bytes()) / double(hf.height_bytes())) +
+            " (total " + std::to_string(1 + double(hf.acceleration_bytes()) / double(hf.height_bytes())) +
+            "x the heights)");
     benchmark::AddCustomContext("triangles vs bilinear", "centre-of-cell height gap " + surface_gap());
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

@@ -83,6 +83,7 @@ public:
                         "gives " + std::to_string(samples_) + " samples per line; must be between 1 and 2^26");
         dt_ = 1.0 / receiver_.sample_rate_hz;
         source_level_ = db_to_power(receiver_.source_level_db);
+        sampler_ = time_sampler(samples_, dt_, receiver_.pulse);
     }
 
     [[nodiscard]] const S& scattering() const noexcept { return scattering_; }
@@ -102,7 +103,7 @@ public:
 
     /// Renders one ping from an explicit pose.
     template <Scene Sc> [[nodiscard]] ping_lines<T> ping_at(const Sc& scene, const pose<T>& p) const {
-        time_sampler sampler(samples_, dt_, receiver_.pulse);
+        time_sampler sampler = sampler_; // the pulse kernels are built once, in the constructor
         ping_lines<T> lines;
         lines.dt_s = dt_;
         for (side sd : {side::port, side::starboard}) {
@@ -231,6 +232,7 @@ private:
     std::size_t samples_ = 0;
     double dt_ = 0.0;
     double source_level_ = 1.0;
+    time_sampler sampler_{1, 1.0, pulse{}};
 };
 
 } // namespace sss

@@ -35,9 +35,7 @@ struct scratch_dir {
     std::string file(const std::string& name) const { return (dir / name).string(); }
 };
 
-void write_text(const std::string& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 std::string read_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -47,7 +45,8 @@ std::string read_bytes(const std::string& path) {
 template <class T> height_field<T> sample_field() {
     // 7 x 4 vertices with values that need all their digits.
     std::vector<T> h(28);
-    for (std::size_t i = 0; i < h.size(); ++i) h[i] = T(std::sin(double(i) * 1.7) * 12.3456789 - 3.0 + 1e-3 * double(i));
+    for (std::size_t i = 0; i < h.size(); ++i)
+        h[i] = T(std::sin(double(i) * 1.7) * 12.3456789 - 3.0 + 1e-3 * double(i));
     return height_field<T>(7, 4, T(0.3), vec2<T>{T(500123.25), T(-42.125)}, std::move(h));
 }
 
@@ -75,7 +74,8 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 
 } // namespace
 
-TEST_CASE_TEMPLATE("An ESRI ASCII grid written and read back gives the same heights, spacing and origin", T, float, double) {
+TEST_CASE_TEMPLATE("An ESRI ASCII grid written and read back gives the same heights, spacing and origin", T, float,
+                   double) {
     scratch_dir d;
     const auto hf = sample_field<T>();
     const std::string path = d.file("grid.asc");
@@ -257,8 +257,9 @@ TEST_CASE_TEMPLATE("A 16-bit PGM round-trips to within half a vertical step, fir
     CHECK(contains(bytes, "\n7 4\n65535\n"));
     CHECK_FALSE(fs::exists(path + ".tmp"));
     // A height outside the 16-bit range is refused, naming the vertex; the old file stays.
-    CHECK_THROWS_AS(sss::io::write_pgm16(path, hf, sss::io::pgm_vertical<T>{vertical.scale_m, vertical.offset_m + T(1)}),
-                    sss::invalid_parameter);
+    CHECK_THROWS_AS(
+        sss::io::write_pgm16(path, hf, sss::io::pgm_vertical<T>{vertical.scale_m, vertical.offset_m + T(1)}),
+        sss::invalid_parameter);
     CHECK(read_bytes(path) == bytes);
 }
 
@@ -266,7 +267,8 @@ TEST_CASE("A hand-made 8-bit and 16-bit PGM read with scale and offset, rows fro
     scratch_dir d;
     const std::string path = d.file("hand.pgm");
     // 2 x 2, maxval 1000 (two bytes per sample), a comment in the header.
-    write_text(path, std::string("P5\n# made by hand\n2 2\n1000\n") + std::string("\x00\x01\x00\x02\x03\xE8\x00\x00", 8));
+    write_text(path,
+               std::string("P5\n# made by hand\n2 2\n1000\n") + std::string("\x00\x01\x00\x02\x03\xE8\x00\x00", 8));
     const auto hf = sss::io::read_pgm16<double>(path, 2.0, {5, 6}, {0.01, -3.0});
     CHECK(hf.height_m(0, 1) == doctest::Approx(-2.99)); // first row: north
     CHECK(hf.height_m(1, 1) == doctest::Approx(-2.98));

@@ -54,7 +54,8 @@ struct plane {
 template <class T> height_field<T> plane_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o, plane p) {
     std::vector<T> h(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix) h[iy * nx + ix] = T(p.at(o.x + double(ix) * cell, o.y + double(iy) * cell));
+        for (std::size_t ix = 0; ix < nx; ++ix)
+            h[iy * nx + ix] = T(p.at(o.x + double(ix) * cell, o.y + double(iy) * cell));
     return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h));
 }
 
@@ -68,7 +69,7 @@ template <class T> height_field<T> rough_field(std::size_t nx, std::size_t ny, d
             const double x = double(ix) * cell, y = double(iy) * cell;
             double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
                        0.12 * std::sin(2.1 * y + 0.4 * x) + 0.1 * (noise.uniform() - 0.5);
-            z = std::min(z, 1.1);                        // plateau: many vertices at exactly 1.1
+            z = std::min(z, 1.1);                               // plateau: many vertices at exactly 1.1
             if (x + 0.5 * y > 60 && x + 0.5 * y < 75) z -= 1.5; // a trench with vertical-ish walls
             h[iy * nx + ix] = T(z);
         }
@@ -100,14 +101,17 @@ TEST_CASE_TEMPLATE("A tilted plane is hit at the exact distance with the plane's
         const double s = f0 / rate;
         const vec3<double> at = oo + dd * s;
         const bool inside = at.x > -7 && at.x < 13 && at.y > 3 && at.y < 14;
-        const bool near_edge = std::abs(at.x + 7) < 1e-3 || std::abs(at.x - 13) < 1e-3 || std::abs(at.y - 3) < 1e-3 || std::abs(at.y - 14) < 1e-3;
+        const bool near_edge = std::abs(at.x + 7) < 1e-3 || std::abs(at.x - 13) < 1e-3 || std::abs(at.y - 3) < 1e-3 ||
+                               std::abs(at.y - 14) < 1e-3;
         if (near_edge) continue;
         const bool expect = rate > 0 && inside && s <= 100;
         for (const auto& got : {hf.intersect(r, T(100)), hf.intersect_reference(r, T(100))}) {
             REQUIRE(bool(got) == expect);
             if (!got) continue;
             // f is known to a few ulps of the magnitudes involved; the distance to that over the rate.
-            const double tol = 64 * eps<T>() * (1 + std::abs(oo.z) + std::abs(p.a) + 0.3 * std::abs(oo.x) + 0.2 * std::abs(oo.y) + s) / rate;
+            const double tol = 64 * eps<T>() *
+                               (1 + std::abs(oo.z) + std::abs(p.a) + 0.3 * std::abs(oo.x) + 0.2 * std::abs(oo.y) + s) /
+                               rate;
             CHECK(std::abs(double(got->distance_m) - s) <= tol);
             worst = std::max(worst, std::abs(double(got->distance_m) - s) / tol);
             CHECK(glm::length(vec3<double>(got->normal) - p.normal()) < 64 * eps<T>() * 10);
@@ -120,13 +124,15 @@ TEST_CASE_TEMPLATE("A tilted plane is hit at the exact distance with the plane's
     MESSAGE("worst distance error / tolerance: " << worst);
 }
 
-TEST_CASE_TEMPLATE("Grazing rays at 0.01 degrees hit a tilted plane and a flat bottom at the exact distance", T, float, double) {
+TEST_CASE_TEMPLATE("Grazing rays at 0.01 degrees hit a tilted plane and a flat bottom at the exact distance", T, float,
+                   double) {
     const double graze = 0.01 * deg;
     {
         // Flat bottom at z = 0, rays from 0.01 m up at 0.01 deg below horizontal: s = 0.01 / sin(0.01 deg) = 57.3 m.
         const auto hf = plane_field<T>(321, 321, 0.25, {0, 0}, plane{0, 0, 0}); // 80 m x 80 m
         for (double azimuth : {0.0, 0.3, -0.2, 0.05, 0.785}) {
-            const vec3<double> d{std::cos(graze) * std::cos(azimuth), std::cos(graze) * std::sin(azimuth), -std::sin(graze)};
+            const vec3<double> d{std::cos(graze) * std::cos(azimuth), std::cos(graze) * std::sin(azimuth),
+                                 -std::sin(graze)};
             const ray<T> r = make_ray<T>({0.5, 30.0, 0.01}, d);
             const double s = 0.01 / -double(r.direction.z);
             for (const auto& got : {hf.intersect(r, T(200)), hf.intersect_reference(r, T(200))}) {
@@ -190,8 +196,8 @@ TEST_CASE_TEMPLATE("Rays from outside the footprint enter it and hit; rays passi
     }
 }
 
-TEST_CASE_TEMPLATE("A ray from below the surface is not stopped on its way out, and hits where it comes down again", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("A ray from below the surface is not stopped on its way out, and hits where it comes down again", T,
+                   float, double) {
     // V-shaped valley h = |x - 5| on 0.5 m cells, x in [0, 10], y in [0, 2].
     std::vector<T> h(21 * 5);
     for (std::size_t iy = 0; iy < 5; ++iy)
@@ -205,7 +211,8 @@ TEST_CASE_TEMPLATE("A ray from below the surface is not stopped on its way out, 
     for (const auto& got : {hf.intersect(r, T(100)), hf.intersect_reference(r, T(100))}) {
         REQUIRE(got);
         CHECK(double(got->distance_m) == doctest::Approx(s).epsilon(1e-5));
-        CHECK(double(got->normal.x) == doctest::Approx(-std::sqrt(0.5)).epsilon(1e-5)); // east slope, facing west and up
+        CHECK(double(got->normal.x) ==
+              doctest::Approx(-std::sqrt(0.5)).epsilon(1e-5)); // east slope, facing west and up
     }
     // Straight up from under the surface: nothing.
     const ray<T> up = make_ray<T>({3, 1, 1}, {0.1, 0.05, 1});
@@ -216,7 +223,8 @@ TEST_CASE_TEMPLATE("A ray from below the surface is not stopped on its way out, 
     CHECK_FALSE(hf.intersect(on, T(100)));
 }
 
-TEST_CASE_TEMPLATE("A vertical ray hits at the surface's height, on vertices, edges and inside triangles", T, float, double) {
+TEST_CASE_TEMPLATE("A vertical ray hits at the surface's height, on vertices, edges and inside triangles", T, float,
+                   double) {
     const auto hf = rough_field<T>(130, 97, 0.25, {-3, 4});
     const auto& g = hf.grid();
     rng gen{5};
@@ -230,8 +238,10 @@ TEST_CASE_TEMPLATE("A vertical ray hits at the surface's height, on vertices, ed
         // The height by the triangle rule, in long double, from the vertex heights.
         const int ix = std::min(int(u), 128), iy = std::min(int(v), 95);
         const long double a = u - ix, b = v - iy;
-        const long double h00 = g.at(ix, iy), h10 = g.at(ix + 1, iy), h01 = g.at(ix, iy + 1), h11 = g.at(ix + 1, iy + 1);
-        const long double hz = a >= b ? h00 + a * (h10 - h00) + b * (h11 - h10) : h00 + b * (h01 - h00) + a * (h11 - h01);
+        const long double h00 = g.at(ix, iy), h10 = g.at(ix + 1, iy), h01 = g.at(ix, iy + 1),
+                          h11 = g.at(ix + 1, iy + 1);
+        const long double hz =
+            a >= b ? h00 + a * (h10 - h00) + b * (h11 - h10) : h00 + b * (h01 - h00) + a * (h11 - h01);
         const double x = -3 + u * 0.25, y = 4 + v * 0.25;
         const ray<T> down{vec3<T>{T(x), T(y), T(10)}, vec3<T>{T(0), T(0), T(-1)}};
         for (const auto& got : {hf.intersect(down, T(100)), hf.intersect_reference(down, T(100))}) {
@@ -248,8 +258,8 @@ TEST_CASE_TEMPLATE("A vertical ray hits at the surface's height, on vertices, ed
     CHECK_FALSE(hf.intersect(ray<T>{vec3<T>{T(0), T(3.99), T(10)}, vec3<T>{T(0), T(0), T(-1)}}, T(100)));
 }
 
-TEST_CASE_TEMPLATE("Rays along grid lines and diagonals find the first crossing of the edge profile under them", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("Rays along grid lines and diagonals find the first crossing of the edge profile under them", T,
+                   float, double) {
     // Along a grid line or a diagonal the surface is linear between consecutive vertices; the expected
     // hit comes from walking those vertices in long double.
     const auto hf = rough_field<T>(161, 121, 0.25, {0, 0});
@@ -283,15 +293,17 @@ TEST_CASE_TEMPLATE("Rays along grid lines and diagonals find the first crossing 
         }
         for (const auto& got : {hf.intersect(r, T(1000)), hf.intersect_reference(r, T(1000))}) {
             REQUIRE(bool(got) == bool(expect));
-            if (got) CHECK(std::abs(double(got->distance_m - T(0)) - double(*expect)) <= 1e3 * eps<T>() * (1 + double(*expect)));
+            if (got)
+                CHECK(std::abs(double(got->distance_m - T(0)) - double(*expect)) <=
+                      1e3 * eps<T>() * (1 + double(*expect)));
         }
         checked += expect ? 1 : 0;
     }
     CHECK(checked > 3000);
 }
 
-TEST_CASE_TEMPLATE("On grids of 1 x 1, 2 x 2 and 5 x 3 cells the tracer agrees with brute force over all triangles", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("On grids of 1 x 1, 2 x 2 and 5 x 3 cells the tracer agrees with brute force over all triangles", T,
+                   float, double) {
     rng gen{13};
     for (const auto& dims : {std::pair<std::size_t, std::size_t>{2, 2}, {3, 3}, {6, 4}}) {
         const std::size_t nx = dims.first, ny = dims.second;
@@ -302,7 +314,8 @@ TEST_CASE_TEMPLATE("On grids of 1 x 1, 2 x 2 and 5 x 3 cells the tracer agrees w
         // All triangles in world coordinates.
         std::vector<std::array<lvec3, 3>> tris;
         auto V = [&](std::size_t ix, std::size_t iy) {
-            return lvec3{1 + (long double)ix * (long double)T(cell), -2 + (long double)iy * (long double)T(cell), (long double)h[iy * nx + ix]};
+            return lvec3{1 + (long double)ix * (long double)T(cell), -2 + (long double)iy * (long double)T(cell),
+                         (long double)h[iy * nx + ix]};
         };
         for (std::size_t iy = 0; iy + 1 < ny; ++iy)
             for (std::size_t ix = 0; ix + 1 < nx; ++ix) {
@@ -346,7 +359,8 @@ TEST_CASE_TEMPLATE("On grids of 1 x 1, 2 x 2 and 5 x 3 cells the tracer agrees w
             ++compared;
             for (const auto& got : {hf.intersect(r, T(50)), hf.intersect_reference(r, T(50))}) {
                 REQUIRE(bool(got) == bool(best));
-                if (got) CHECK(std::abs(double(got->distance_m) - double(*best)) <= 64 * eps<T>() * 20 / double(best_cos));
+                if (got)
+                    CHECK(std::abs(double(got->distance_m) - double(*best)) <= 64 * eps<T>() * 20 / double(best_cos));
             }
         }
         CHECK(compared > 15000);

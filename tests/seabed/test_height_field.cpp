@@ -26,7 +26,7 @@ template <class T, class F> std::vector<T> sample(std::size_t nx, std::size_t ny
     return h;
 }
 
-template <class T> bool throws_naming(auto&& f, const std::string& what) {
+bool throws_naming(auto&& f, const std::string& what) {
     try {
         f();
     } catch (const sss::invalid_parameter& e) {
@@ -39,29 +39,36 @@ template <class T> bool throws_naming(auto&& f, const std::string& what) {
 
 static_assert(sss::Scene<height_field<float>> && sss::Scene<height_field<double>>);
 
-TEST_CASE_TEMPLATE("A height field rejects bad sizes, spacing and origins, and non-finite heights by vertex", T, float, double) {
+TEST_CASE_TEMPLATE("A height field rejects bad sizes, spacing and origins, and non-finite heights by vertex", T, float,
+                   double) {
     const std::vector<T> four(4, T(1));
-    CHECK(throws_naming<T>([&] { height_field<T>(1, 4, T(1), {}, four); }, "height_field.nx"));
-    CHECK(throws_naming<T>([&] { height_field<T>(4, 1, T(1), {}, four); }, "height_field.ny"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(0), {}, four); }, "height_field.cell_m"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(-1), {}, four); }, "height_field.cell_m"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, std::numeric_limits<T>::infinity(), {}, four); }, "height_field.cell_m"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(1), vec2<T>{std::numeric_limits<T>::quiet_NaN(), T(0)}, four); },
-                           "height_field.origin_m.x"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 3, T(1), {}, four); }, "height_field.heights_m"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(1), {}, four, std::vector<std::uint32_t>(2)); }, "height_field.materials"));
-    CHECK(throws_naming<T>([&] { height_field<T>(2, 2, T(1), {}, four, {}, std::vector<std::uint32_t>(3)); }, "height_field.regions"));
+    CHECK(throws_naming([&] { height_field<T>(1, 4, T(1), {}, four); }, "height_field.nx"));
+    CHECK(throws_naming([&] { height_field<T>(4, 1, T(1), {}, four); }, "height_field.ny"));
+    CHECK(throws_naming([&] { height_field<T>(2, 2, T(0), {}, four); }, "height_field.cell_m"));
+    CHECK(throws_naming([&] { height_field<T>(2, 2, T(-1), {}, four); }, "height_field.cell_m"));
+    CHECK(throws_naming([&] { height_field<T>(2, 2, std::numeric_limits<T>::infinity(), {}, four); },
+                           "height_field.cell_m"));
+    CHECK(throws_naming(
+        [&] {
+            height_field<T>(2, 2, T(1), vec2<T>{std::numeric_limits<T>::quiet_NaN(), T(0)}, four);
+        },
+        "height_field.origin_m.x"));
+    CHECK(throws_naming([&] { height_field<T>(2, 3, T(1), {}, four); }, "height_field.heights_m"));
+    CHECK(throws_naming([&] { height_field<T>(2, 2, T(1), {}, four, std::vector<std::uint32_t>(2)); },
+                           "height_field.materials"));
+    CHECK(throws_naming([&] { height_field<T>(2, 2, T(1), {}, four, {}, std::vector<std::uint32_t>(3)); },
+                           "height_field.regions"));
 
     std::vector<T> h(12, T(0));
     h[7] = std::numeric_limits<T>::quiet_NaN(); // vertex (ix 3, iy 1) of a 4 x 3 grid
-    CHECK(throws_naming<T>([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
-    CHECK(throws_naming<T>([&] { height_field<T>(4, 3, T(1), {}, h); }, "(ix 3, iy 1)"));
+    CHECK(throws_naming([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
+    CHECK(throws_naming([&] { height_field<T>(4, 3, T(1), {}, h); }, "(ix 3, iy 1)"));
     h[7] = -std::numeric_limits<T>::infinity();
-    CHECK(throws_naming<T>([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
+    CHECK(throws_naming([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
 }
 
-TEST_CASE_TEMPLATE("Inside a cell the surface is the two triangles split by the south-west to north-east diagonal", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("Inside a cell the surface is the two triangles split by the south-west to north-east diagonal", T,
+                   float, double) {
     // One cell with corners h00 = 0, h10 = 1, h01 = 2, h11 = 0.5, 2 m cells, origin (10, 20).
     const height_field<T> hf(2, 2, T(2), vec2<T>{T(10), T(20)}, {T(0), T(1), T(2), T(0.5)});
     const double tol = 4 * std::numeric_limits<T>::epsilon() * 4;
@@ -78,7 +85,8 @@ TEST_CASE_TEMPLATE("Inside a cell the surface is the two triangles split by the 
     CHECK(double(hf.seabed_height_m(T(11), T(21))) == doctest::Approx(0.25).epsilon(tol));
 }
 
-TEST_CASE_TEMPLATE("Outside its footprint the surface continues at the height of the nearest boundary point", T, float, double) {
+TEST_CASE_TEMPLATE("Outside its footprint the surface continues at the height of the nearest boundary point", T, float,
+                   double) {
     const auto h = sample<T>(5, 4, 0.5, {-1.0, 2.0}, [](double x, double y) { return 0.3 * x - 0.2 * y + 1.0; });
     const height_field<T> hf(5, 4, T(0.5), vec2<T>{T(-1), T(2)}, h);
     // Footprint: x in [-1, 1], y in [2, 3.5].
@@ -122,7 +130,8 @@ TEST_CASE_TEMPLATE("A hit carries the material and region of the cell it lands i
     CHECK(hit->label == 0);
 }
 
-TEST_CASE_TEMPLATE("Geometric normals are per triangle; smooth normals are continuous across shared edges", T, float, double) {
+TEST_CASE_TEMPLATE("Geometric normals are per triangle; smooth normals are continuous across shared edges", T, float,
+                   double) {
     // A paraboloid z = 0.05 (x^2 + 2 y^2) on 0.5 m cells.
     const double c = 0.5;
     const auto f = [](double x, double y) { return 0.05 * (x * x + 2 * y * y); };
@@ -160,10 +169,11 @@ TEST_CASE_TEMPLATE("Geometric normals are per triangle; smooth normals are conti
     CHECK(glm::length(vec3<double>(nv) - expect) < 10 * tol);
 }
 
-TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a third of the heights plus edge blocks", T, float,
-                   double) {
+TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a third of the heights plus edge blocks",
+                   T, float, double) {
     // 37 x 23 vertices: partial blocks at the edges of every level.
-    const auto h = sample<T>(37, 23, 1.0, {0.0, 0.0}, [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.7 * y) + 0.01 * x * y; });
+    const auto h = sample<T>(37, 23, 1.0, {0.0, 0.0},
+                             [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.7 * y) + 0.01 * x * y; });
     const height_field<T> hf(37, 23, T(1), {}, h);
     const auto& p = hf.pyramid();
     const auto& g = hf.grid();
@@ -174,7 +184,8 @@ TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a t
                 T m = -std::numeric_limits<T>::infinity();
                 const std::int32_t x0 = bx << level, y0 = by << level;
                 for (std::int32_t y = y0; y <= std::min(y0 + (1 << level), g.ny - 1); ++y)
-                    for (std::int32_t x = x0; x <= std::min(x0 + (1 << level), g.nx - 1); ++x) m = std::max(m, g.at(x, y));
+                    for (std::int32_t x = x0; x <= std::min(x0 + (1 << level), g.nx - 1); ++x)
+                        m = std::max(m, g.at(x, y));
                 CHECK(p.max_m(level, bx, by) == m);
             }
     CHECK(hf.acceleration_bytes() < hf.height_bytes() / 2);

@@ -22,7 +22,10 @@ public:
     using value_type = T;
 
     /// Parts of the fan beyond the vertical (depression above 90 deg) belong to the other side and are dropped.
-    explicit ideal_fan(const ideal_fan_params<T>& p = {}) : p_(p) {
+    /// Default parameters (non-explicit, so `{}` builds one).
+    ideal_fan() : ideal_fan(ideal_fan_params<T>{}) {}
+
+    explicit ideal_fan(const ideal_fan_params<T>& p) : p_(p) {
         sss::detail::require_finite(p.along_width_deg, "ideal_fan.along_width_deg");
         sss::detail::require(p.along_width_deg > T(0) && p.along_width_deg < T(180), "ideal_fan.along_width_deg",
                         "must lie in (0, 180) degrees");

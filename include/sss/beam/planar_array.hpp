@@ -70,7 +70,10 @@ template <Real T> class planar_array {
 public:
     using value_type = T;
 
-    explicit planar_array(const planar_array_params<T>& p = {}) : p_(p) {
+    /// Default parameters (non-explicit, so `{}` builds one).
+    planar_array() : planar_array(planar_array_params<T>{}) {}
+
+    explicit planar_array(const planar_array_params<T>& p) : p_(p) {
         sss::detail::require_positive(p.frequency_hz, "planar_array.frequency_hz");
         sss::detail::require_positive(p.sound_speed_mps, "planar_array.sound_speed_mps");
         sss::detail::require_in_range(p.depression_deg, T(-90), T(90), "planar_array.depression_deg");

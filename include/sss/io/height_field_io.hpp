@@ -157,7 +157,9 @@ public:
     }
 
 private:
-    static bool is_space(char c) noexcept { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+    static bool is_space(char c) noexcept {
+        return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+    }
     void skip_space() {
         while (pos_ < text_.size()) {
             const char c = text_[pos_];
@@ -222,8 +224,8 @@ template <Real T> struct esri_ascii_options {
 };
 
 /// Reads an ESRI ASCII grid (.asc) as a height field; see the file comment for the conventions.
-template <Real T>
-[[nodiscard]] scene::height_field<T> read_esri_ascii(const std::string& path, const esri_ascii_options<T>& options = {}) {
+template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std::string& path,
+                                                                       const esri_ascii_options<T>& options = {}) {
     const std::string text = detail::read_all(path);
     detail::tokenizer tok(text, false);
     auto fail = [&](std::size_t line, const std::string& why) -> file_error { return file_error(path, line, why); };
@@ -241,27 +243,34 @@ template <Real T>
         const bool known = k == "ncols" || k == "nrows" || k == "xllcorner" || k == "xllcenter" || k == "yllcorner" ||
                            k == "yllcenter" || k == "cellsize" || k == "nodata_value";
         if (!known) {
-            if (k == "dx" || k == "dy") throw fail(key.line, "'" + std::string(key.text) + "': only square cells (cellsize) are supported");
-            if (!detail::parse_double(key.text)) throw fail(key.line, "unknown header keyword '" + std::string(key.text) + "'");
+            if (k == "dx" || k == "dy")
+                throw fail(key.line, "'" + std::string(key.text) + "': only square cells (cellsize) are supported");
+            if (!detail::parse_double(key.text))
+                throw fail(key.line, "unknown header keyword '" + std::string(key.text) + "'");
             tok.rewind(pos, line);
             first_data_line = key.line;
             break;
         }
         const detail::token val = tok.next();
-        if (val.text.empty() || val.line != key.line) throw fail(key.line, "header keyword '" + std::string(key.text) + "' has no value");
+        if (val.text.empty() || val.line != key.line)
+            throw fail(key.line, "header keyword '" + std::string(key.text) + "' has no value");
         auto dup = [&](bool seen) {
             if (seen) throw fail(key.line, "header keyword '" + std::string(key.text) + "' given twice");
         };
         if (k == "ncols" || k == "nrows") {
             const auto v = detail::parse_size(val.text);
-            if (!v || *v < 2) throw fail(val.line, "'" + std::string(key.text) + "' must be an integer >= 2, got '" + std::string(val.text) + "'");
+            if (!v || *v < 2)
+                throw fail(val.line, "'" + std::string(key.text) + "' must be an integer >= 2, got '" +
+                                         std::string(val.text) + "'");
             std::optional<std::size_t>& slot = k == "ncols" ? ncols : nrows;
             dup(slot.has_value());
             slot = v;
             continue;
         }
         const auto v = detail::parse_double(val.text);
-        if (!v || !std::isfinite(*v)) throw fail(val.line, "'" + std::string(key.text) + "' must be a finite number, got '" + std::string(val.text) + "'");
+        if (!v || !std::isfinite(*v))
+            throw fail(val.line,
+                       "'" + std::string(key.text) + "' must be a finite number, got '" + std::string(val.text) + "'");
         if (k == "xllcorner" || k == "xllcenter") {
             dup(x_ll.has_value());
             x_ll = v;
@@ -294,27 +303,35 @@ template <Real T>
         for (std::size_t ix = 0; ix < nx; ++ix) {
             const detail::token t = tok.next();
             if (t.text.empty())
-                throw fail(t.line, "file ends after " + std::to_string(row * nx + ix) + " of " + std::to_string(nx * ny) + " values");
+                throw fail(t.line, "file ends after " + std::to_string(row * nx + ix) + " of " +
+                                       std::to_string(nx * ny) + " values");
             const auto v = detail::parse_double(t.text);
-            if (!v) throw fail(t.line, "'" + std::string(t.text) + "' is not a number (row " + std::to_string(row) + ", column " + std::to_string(ix) + ")");
+            if (!v)
+                throw fail(t.line, "'" + std::string(t.text) + "' is not a number (row " + std::to_string(row) +
+                                       ", column " + std::to_string(ix) + ")");
             std::optional<T> h;
             if (nodata && *v == *nodata) {
-                if (!options.nodata_fill_m) throw fail(t.line, "NODATA at row " + std::to_string(row) + ", column " + std::to_string(ix) + " (a height field needs every vertex)");
+                if (!options.nodata_fill_m)
+                    throw fail(t.line, "NODATA at row " + std::to_string(row) + ", column " + std::to_string(ix) +
+                                           " (a height field needs every vertex)");
                 h = *options.nodata_fill_m;
             } else {
                 h = detail::finite_height<T>(*v);
             }
             if (!h || !std::isfinite(*h))
-                throw fail(t.line, "height '" + std::string(t.text) + "' at row " + std::to_string(row) + ", column " + std::to_string(ix) + " is not finite");
+                throw fail(t.line, "height '" + std::string(t.text) + "' at row " + std::to_string(row) + ", column " +
+                                       std::to_string(ix) + " is not finite");
             heights[iy * nx + ix] = *h;
         }
     }
     if (!tok.at_end()) {
         const detail::token extra = tok.next();
-        throw fail(extra.line, "more values than ncols x nrows = " + std::to_string(nx * ny) + " ('" + std::string(extra.text) + "')");
+        throw fail(extra.line, "more values than ncols x nrows = " + std::to_string(nx * ny) + " ('" +
+                                   std::string(extra.text) + "')");
     }
     const double half = 0.5 * *cellsize;
-    const vec2<T> origin{static_cast<T>(x_center ? *x_ll : *x_ll + half), static_cast<T>(y_center ? *y_ll : *y_ll + half)};
+    const vec2<T> origin{static_cast<T>(x_center ? *x_ll : *x_ll + half),
+                         static_cast<T>(y_center ? *y_ll : *y_ll + half)};
     try {
         return scene::height_field<T>(nx, ny, static_cast<T>(*cellsize), origin, std::move(heights));
     } catch (const invalid_parameter& e) {
@@ -382,18 +399,24 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
         if (k == "format") {
             const detail::token ver = tok.next();
             if (val.text != "sss-height-raw-f32le" || ver.text != "1")
-                throw file_error(side_path, line_no, "unknown format '" + std::string(val.text) + " " + std::string(ver.text) + "' (expected 'sss-height-raw-f32le 1')");
+                throw file_error(side_path, line_no,
+                                 "unknown format '" + std::string(val.text) + " " + std::string(ver.text) +
+                                     "' (expected 'sss-height-raw-f32le 1')");
             dup(format_seen);
             format_seen = true;
         } else if (k == "nx" || k == "ny") {
             const auto v = detail::parse_size(val.text);
-            if (!v || *v < 2) throw file_error(side_path, line_no, "'" + k + "' must be an integer >= 2, got '" + std::string(val.text) + "'");
+            if (!v || *v < 2)
+                throw file_error(side_path, line_no,
+                                 "'" + k + "' must be an integer >= 2, got '" + std::string(val.text) + "'");
             std::optional<std::size_t>& slot = k == "nx" ? nx : ny;
             dup(slot.has_value());
             slot = v;
         } else if (k == "cell_m" || k == "origin_x_m" || k == "origin_y_m") {
             const auto v = detail::parse_double(val.text);
-            if (!v || !std::isfinite(*v)) throw file_error(side_path, line_no, "'" + k + "' must be a finite number, got '" + std::string(val.text) + "'");
+            if (!v || !std::isfinite(*v))
+                throw file_error(side_path, line_no,
+                                 "'" + k + "' must be a finite number, got '" + std::string(val.text) + "'");
             if (k == "cell_m" && !(*v > 0)) throw file_error(side_path, line_no, "'cell_m' must be > 0");
             std::optional<double>& slot = k == "cell_m" ? cell : (k == "origin_x_m" ? ox : oy);
             dup(slot.has_value());
@@ -403,7 +426,13 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
         }
         if (!tok.next().text.empty()) throw file_error(side_path, line_no, "too many values for '" + k + "'");
     }
-    const char* missing = !format_seen ? "format" : !nx ? "nx" : !ny ? "ny" : !cell ? "cell_m" : !ox ? "origin_x_m" : !oy ? "origin_y_m" : nullptr;
+    const char* missing = !format_seen ? "format"
+                          : !nx        ? "nx"
+                          : !ny        ? "ny"
+                          : !cell      ? "cell_m"
+                          : !ox        ? "origin_x_m"
+                          : !oy        ? "origin_y_m"
+                                       : nullptr;
     if (missing) throw file_error(side_path, 0, std::string("lacks the key '") + missing + "'");
     if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30) || *nx * *ny > (std::size_t(1) << 40))
         throw file_error(side_path, 0, "grid too large");
@@ -411,8 +440,10 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
     const std::string data = detail::read_all(path);
     const std::size_t n = *nx * *ny;
     if (data.size() != 4 * n)
-        throw file_error(path, 0, "holds " + std::to_string(data.size()) + " bytes, the sidecar's " + std::to_string(*nx) + " x " +
-                                      std::to_string(*ny) + " grid needs " + std::to_string(4 * n), std::min(data.size(), 4 * n));
+        throw file_error(path, 0,
+                         "holds " + std::to_string(data.size()) + " bytes, the sidecar's " + std::to_string(*nx) +
+                             " x " + std::to_string(*ny) + " grid needs " + std::to_string(4 * n),
+                         std::min(data.size(), 4 * n));
     std::vector<T> heights(n);
     for (std::size_t i = 0; i < n; ++i) {
         const auto* b = reinterpret_cast<const unsigned char*>(data.data() + 4 * i);
@@ -420,12 +451,15 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
                                    (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
         const float h = std::bit_cast<float>(bits);
         if (!std::isfinite(h))
-            throw file_error(path, 0, "height of vertex " + std::to_string(i) + " (ix " + std::to_string(i % *nx) + ", iy " +
-                                          std::to_string(i / *nx) + ") is not finite", 4 * i);
+            throw file_error(path, 0,
+                             "height of vertex " + std::to_string(i) + " (ix " + std::to_string(i % *nx) + ", iy " +
+                                 std::to_string(i / *nx) + ") is not finite",
+                             4 * i);
         heights[i] = static_cast<T>(h);
     }
     try {
-        return scene::height_field<T>(*nx, *ny, static_cast<T>(*cell), vec2<T>{static_cast<T>(*ox), static_cast<T>(*oy)}, std::move(heights));
+        return scene::height_field<T>(*nx, *ny, static_cast<T>(*cell),
+                                      vec2<T>{static_cast<T>(*ox), static_cast<T>(*oy)}, std::move(heights));
     } catch (const invalid_parameter& e) {
         throw file_error(side_path, 0, e.what());
     }
@@ -454,7 +488,8 @@ template <Real T> void write_raw_f32(const std::string& path, const scene::heigh
     }
     detail::atomic_file side(raw_sidecar_path(path));
     std::string s = "# sss height field: float32 little-endian, row-major, row 0 = south (min y), heights in metres\n"
-                    "format sss-height-raw-f32le 1\nnx " + std::to_string(hf.nx()) + "\nny " + std::to_string(hf.ny()) + "\ncell_m ";
+                    "format sss-height-raw-f32le 1\nnx " +
+                    std::to_string(hf.nx()) + "\nny " + std::to_string(hf.ny()) + "\ncell_m ";
     detail::append_number(s, hf.cell_m());
     s += "\norigin_x_m ";
     detail::append_number(s, hf.origin_m().x);
@@ -482,8 +517,8 @@ template <Real T> [[nodiscard]] pgm_vertical<T> pgm16_fit(const scene::height_fi
 
 /// Reads a binary PGM (P5) as heights h = vertical.offset_m + vertical.scale_m * sample, with vertex
 /// spacing cell_m and vertex (0, 0) (the first sample of the last row: south-west) at origin_m.
-template <Real T>
-[[nodiscard]] scene::height_field<T> read_pgm16(const std::string& path, T cell_m, vec2<T> origin_m, pgm_vertical<T> vertical) {
+template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::string& path, T cell_m, vec2<T> origin_m,
+                                                                  pgm_vertical<T> vertical) {
     sss::detail::require_positive(cell_m, "read_pgm16.cell_m");
     sss::detail::require_finite(origin_m.x, "read_pgm16.origin_m.x");
     sss::detail::require_finite(origin_m.y, "read_pgm16.origin_m.y");
@@ -516,7 +551,9 @@ template <Real T>
     const std::size_t width = header_number("width");
     const std::size_t height = header_number("height");
     const std::size_t maxval = header_number("maxval");
-    if (width < 2 || height < 2) throw fail(2, "image of " + std::to_string(width) + " x " + std::to_string(height) + " pixels: a height field needs at least 2 x 2");
+    if (width < 2 || height < 2)
+        throw fail(2, "image of " + std::to_string(width) + " x " + std::to_string(height) +
+                          " pixels: a height field needs at least 2 x 2");
     if (width > (std::size_t(1) << 30) || height > (std::size_t(1) << 30)) throw fail(2, "image too large");
     if (maxval < 1 || maxval > 65535) throw fail(pos, "maxval must lie in [1, 65535], got " + std::to_string(maxval));
     if (pos >= data.size() || !is_space(data[pos])) throw fail(pos, "expected one whitespace byte after maxval");
@@ -524,7 +561,8 @@ template <Real T>
     const std::size_t bytes = maxval < 256 ? 1 : 2;
     const std::size_t need = width * height * bytes;
     if (data.size() - pos < need)
-        throw fail(data.size(), "file ends after " + std::to_string(data.size() - pos) + " of " + std::to_string(need) + " sample bytes");
+        throw fail(data.size(), "file ends after " + std::to_string(data.size() - pos) + " of " + std::to_string(need) +
+                                    " sample bytes");
     if (data.size() - pos > need) throw fail(pos + need, "trailing bytes after the image");
     std::vector<T> heights(width * height);
     const auto* p = reinterpret_cast<const unsigned char*>(data.data());
@@ -533,7 +571,8 @@ template <Real T>
         for (std::size_t ix = 0; ix < width; ++ix) {
             const std::size_t at = pos + (row * width + ix) * bytes;
             const std::uint32_t sample = bytes == 1 ? p[at] : ((static_cast<std::uint32_t>(p[at]) << 8) | p[at + 1]);
-            if (sample > maxval) throw fail(at, "sample " + std::to_string(sample) + " exceeds maxval " + std::to_string(maxval));
+            if (sample > maxval)
+                throw fail(at, "sample " + std::to_string(sample) + " exceeds maxval " + std::to_string(maxval));
             const T h = vertical.offset_m + vertical.scale_m * static_cast<T>(sample);
             if (!std::isfinite(h)) throw fail(at, "height of sample " + std::to_string(sample) + " is not finite");
             heights[iy * width + ix] = h;
@@ -544,7 +583,8 @@ template <Real T>
 
 /// Writes `hf` as a 16-bit binary PGM with sample = round((h - offset_m) / scale_m); throws
 /// invalid_parameter naming the vertex when a height maps outside [0, 65535].
-template <Real T> void write_pgm16(const std::string& path, const scene::height_field<T>& hf, pgm_vertical<T> vertical) {
+template <Real T>
+void write_pgm16(const std::string& path, const scene::height_field<T>& hf, pgm_vertical<T> vertical) {
     sss::detail::require_finite(vertical.scale_m, "write_pgm16.vertical.scale_m");
     sss::detail::require(vertical.scale_m != T(0), "write_pgm16.vertical.scale_m", "must not be 0");
     sss::detail::require_finite(vertical.offset_m, "write_pgm16.vertical.offset_m");
@@ -565,11 +605,13 @@ template <Real T> void write_pgm16(const std::string& path, const scene::height_
     for (std::size_t row = 0; row < ny; ++row) {
         const std::size_t iy = ny - 1 - row;
         for (std::size_t ix = 0; ix < nx; ++ix) {
-            const double s = std::round((static_cast<double>(hf.height_m(ix, iy)) - static_cast<double>(vertical.offset_m)) /
-                                        static_cast<double>(vertical.scale_m));
+            const double s =
+                std::round((static_cast<double>(hf.height_m(ix, iy)) - static_cast<double>(vertical.offset_m)) /
+                           static_cast<double>(vertical.scale_m));
             if (!(s >= 0.0 && s <= 65535.0))
-                throw invalid_parameter("write_pgm16.vertical", "height of vertex (ix " + std::to_string(ix) + ", iy " + std::to_string(iy) +
-                                                                     ") maps to sample " + std::to_string(s) + ", outside [0, 65535]");
+                throw invalid_parameter("write_pgm16.vertical", "height of vertex (ix " + std::to_string(ix) + ", iy " +
+                                                                    std::to_string(iy) + ") maps to sample " +
+                                                                    std::to_string(s) + ", outside [0, 65535]");
             const auto v = static_cast<std::uint32_t>(s);
             buf[header + 2 * (row * nx + ix)] = static_cast<char>(v >> 8);
             buf[header + 2 * (row * nx + ix) + 1] = static_cast<char>(v & 0xffu);

@@ -77,7 +77,10 @@ template <Real T> class perturbed {
 public:
     using value_type = T;
 
-    explicit perturbed(const perturbed_params<T>& p = {}) : p_(p) {
+    /// Default parameters (non-explicit, so `{}` builds one).
+    perturbed() : perturbed(perturbed_params<T>{}) {}
+
+    explicit perturbed(const perturbed_params<T>& p) : p_(p) {
         sss::detail::require_finite(p.start_m.x, "perturbed.start_m.x");
         sss::detail::require_finite(p.start_m.y, "perturbed.start_m.y");
         sss::detail::require_finite(p.heading_deg, "perturbed.heading_deg");

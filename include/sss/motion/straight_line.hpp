@@ -23,7 +23,10 @@ template <Real T> class straight_line {
 public:
     using value_type = T;
 
-    explicit straight_line(const straight_line_params<T>& p = {}) : p_(p) {
+    /// Default parameters (non-explicit, so `{}` builds one).
+    straight_line() : straight_line(straight_line_params<T>{}) {}
+
+    explicit straight_line(const straight_line_params<T>& p) : p_(p) {
         sss::detail::require_finite(p.start_m.x, "straight_line.start_m.x");
         sss::detail::require_finite(p.start_m.y, "straight_line.start_m.y");
         sss::detail::require_finite(p.heading_deg, "straight_line.heading_deg");

@@ -23,7 +23,10 @@ template <Real T> class straight {
 public:
     using value_type = T;
 
-    explicit straight(const straight_params<T>& p = {}) : p_(p) {
+    /// Default parameters (non-explicit, so `{}` builds one).
+    straight() : straight(straight_params<T>{}) {}
+
+    explicit straight(const straight_params<T>& p) : p_(p) {
         sss::detail::require_in_range(p.sound_speed_mps, T(1000), T(2500), "straight.sound_speed_mps");
         sss::detail::require_non_negative(p.absorption_db_per_km, "straight.absorption_db_per_km");
         loss_per_m_ = std::log(T(10)) * p.absorption_db_per_km / T(10000);

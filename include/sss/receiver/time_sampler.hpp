@@ -3,19 +3,21 @@
 /// Resampling echoes into uniform time samples without distorting the signal.
 ///
 /// Echo energy arrives as spans (a ray tube's power spread evenly over the delays between two adjacent rays)
-/// and points (an isolated ray). The sampler keeps, per sample bin j of width dt, the exact zeroth and first
-/// moments of the echo-power density over the bin, M0_j = int rho ds and M1_j = int rho u ds (u in [0, 1) the
-/// position within the bin). Within each bin the density is taken as the linear function with those moments,
-/// and its convolution with the pulse's power envelope p, averaged over each output bin, is applied exactly
-/// through two precomputed kernels:
+/// and points (an isolated ray). The sampler keeps, per sub-bin j of width h = dt/q (q sub-bins per sample),
+/// the exact zeroth and first moments of the echo-power density, M0_j = int rho ds and M1_j = int rho u ds
+/// (u in [0, 1) the position within the sub-bin). Within each sub-bin the density is taken as the linear
+/// function with those moments (its slope limited so that it never goes negative), and its convolution with the
+/// pulse's power envelope p, averaged over each output sample, is applied exactly through precomputed kernels:
 ///
-///     y_k = sum_d  M0_{k-d} K0_d + (M1_{k-d} - M0_{k-d}/2) K1_d,
-///     K0_d = int_0^1 v_d(u) du,  K1_d = 12 int_0^1 v_d(u) (u - 1/2) du,  v_d(u) = int_d^{d+1} p((x - u) dt) dx.
+///     y_k = sum_{D, r}  M0_{q(k-D)+r} K0[D][r] + (M1 - M0/2)_{q(k-D)+r} K1[D][r],
+///     K0[D][r] = int_0^1 v(x) du,  K1[D][r] = 12 int_0^1 v(x) (u - 1/2) du,  x = (r + u)/q,
+///     v(x) = (1/dt) int_D^{D+1} p((y - x) dt) dt dy   (the share of an echo at delay (k - D + x) dt in sample k).
 ///
-/// y_k is the mean received power over sample k. The result is exact for any density whenever the pulse
-/// lasts a whole number of samples (the overlap is then linear in u), and for densities linear within each bin
-/// otherwise; energy is conserved exactly: sum_k y_k dt = (sum of deposits) x (pulse energy), up to echoes whose
-/// pulse runs past the last sample. Accumulation is in double for every scalar type.
+/// y_k is the mean received power over sample k. The result is exact for any density when the pulse lasts a
+/// whole number of samples (the share is then linear within each sub-bin, and no slope is limited), and for
+/// densities linear within each sub-bin otherwise. Energy is conserved exactly (the slope terms carry none):
+/// sum_k y_k dt = (sum of deposits) x (pulse energy), up to echoes whose pulse runs past the last sample.
+/// Accumulation is in double for every scalar type.
 
 #include <algorithm>
 #include <array>
@@ -30,11 +32,14 @@ namespace sss {
 
 class time_sampler {
 public:
+    /// Sub-bins per output sample.
+    static constexpr std::size_t sub_bins = 8;
+
     /// \param samples   number of output samples (the line covers [0, samples dt))
     /// \param dt_s      sample interval (s)
     /// \param p         transmitted pulse
     time_sampler(std::size_t samples, double dt_s, const pulse& p)
-        : n_(samples), dt_(dt_s), inv_dt_(1.0 / dt_s), m0_(samples, 0.0), m1_(samples, 0.0) {
+        : n_(samples), dt_(dt_s), inv_h_(double(sub_bins) / dt_s), m0_(samples * sub_bins, 0.0), m1_(samples * sub_bins, 0.0) {
         sss::detail::require_positive(dt_s, "time_sampler.dt_s");
         p.validate();
         build_kernels(p);
@@ -42,6 +47,7 @@ public:
 
     [[nodiscard]] std::size_t size() const noexcept { return n_; }
     [[nodiscard]] double dt_s() const noexcept { return dt_; }
+    /// Kernel taps, [D * sub_bins + r].
     [[nodiscard]] const std::vector<double>& kernel0() const noexcept { return k0_; }
     [[nodiscard]] const std::vector<double>& kernel1() const noexcept { return k1_; }
 
@@ -54,8 +60,8 @@ public:
     /// Echo power `power` arriving at a single delay t_s (s).
     void add_point(double t_s, double power) noexcept {
         if (!(t_s >= 0.0)) return;
-        const double x = t_s * inv_dt_;
-        if (!(x < static_cast<double>(n_))) return;
+        const double x = t_s * inv_h_;
+        if (!(x < static_cast<double>(m0_.size()))) return;
         const auto j = static_cast<std::size_t>(x);
         m0_[j] += power;
         m1_[j] += power * (x - static_cast<double>(j));
@@ -63,19 +69,20 @@ public:
 
     /// Echo power `power` spread evenly over the delays between t0_s and t1_s (either order).
     void add_span(double t0_s, double t1_s, double power) noexcept {
-        double a = std::min(t0_s, t1_s) * inv_dt_;
-        double b = std::max(t0_s, t1_s) * inv_dt_;
+        double a = std::min(t0_s, t1_s) * inv_h_;
+        const double b = std::max(t0_s, t1_s) * inv_h_;
         const double width = b - a;
         if (!(width > 1e-9)) {
             add_point(0.5 * (t0_s + t1_s), power);
             return;
         }
-        if (!(a < static_cast<double>(n_)) || !(b > 0.0)) return;
-        const double density = power / width; // power per bin-width of delay
+        const auto bins = static_cast<double>(m0_.size());
+        if (!(a < bins) || !(b > 0.0)) return;
+        const double density = power / width; // power per sub-bin of delay
         a = std::max(a, 0.0);
-        const double end = std::min(b, static_cast<double>(n_));
+        const double end = std::min(b, bins);
         auto j = static_cast<std::size_t>(a);
-        while (a < end && j < n_) {
+        while (a < end && j < m0_.size()) {
             const double bin_end = std::min(static_cast<double>(j + 1), end);
             const double share = density * (bin_end - a);
             m0_[j] += share;
@@ -88,24 +95,31 @@ public:
     /// Writes the mean received power of each sample into `out` (resized to size()).
     template <class T> void render(std::vector<T>& out) const {
         out.assign(n_, T(0));
-        const std::size_t taps = k0_.size();
+        const std::size_t taps = k0_.size() / sub_bins;
         for (std::size_t k = 0; k < n_; ++k) {
             double y = 0.0;
             const std::size_t dmax = std::min(taps - 1, k);
             for (std::size_t d = 0; d <= dmax; ++d) {
-                const std::size_t j = k - d;
-                y += m0_[j] * k0_[d] + (m1_[j] - 0.5 * m0_[j]) * k1_[d];
+                const std::size_t base = (k - d) * sub_bins;
+                for (std::size_t r = 0; r < sub_bins; ++r) {
+                    const double m0 = m0_[base + r];
+                    double slope = m1_[base + r] - 0.5 * m0;
+                    // Keep the linear density non-negative (mean position within [1/3, 2/3] of the sub-bin).
+                    if (!exact_) slope = std::clamp(slope, -m0 / 6.0, m0 / 6.0);
+                    y += m0 * k0_[d * sub_bins + r] + slope * k1_[d * sub_bins + r];
+                }
             }
-            out[k] = static_cast<T>(std::max(y, 0.0));
+            out[k] = static_cast<T>(std::max(y, 0.0)); // only rounding can make y negative
         }
     }
 
 private:
     void build_kernels(const pulse& p) {
-        const double tau = p.length_s * inv_dt_; // pulse length in samples
+        const double tau = p.length_s / dt_; // pulse length in samples
+        exact_ = std::abs(tau * double(sub_bins) - std::round(tau * double(sub_bins))) < 1e-9;
         const auto taps = static_cast<std::size_t>(std::ceil(tau)) + 2;
-        k0_.assign(taps, 0.0);
-        k1_.assign(taps, 0.0);
+        k0_.assign(taps * sub_bins, 0.0);
+        k1_.assign(taps * sub_bins, 0.0);
         // 8-point Gauss-Legendre on [0, 1].
         static constexpr std::array<double, 8> gx{0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
                                                    0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
@@ -113,34 +127,42 @@ private:
         static constexpr std::array<double, 8> gw{0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
                                                    0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
                                                    0.1111905172266872, 0.0506142681451881};
+        const double q = double(sub_bins);
         for (std::size_t d = 0; d < taps; ++d) {
-            const double dd = static_cast<double>(d);
-            // v_d(u) = [C((d + 1 - u) dt) - C((d - u) dt)] / dt with C the envelope's cumulative energy.
-            auto v = [&](double u) { return (p.cumulative((dd + 1.0 - u) * dt_) - p.cumulative((dd - u) * dt_)) * inv_dt_; };
-            // v_d has kinks where its arguments reach 0 or the pulse end: integrate piecewise between them.
-            std::array<double, 6> cuts{0.0, 1.0, dd, dd + 1.0, dd - tau, dd + 1.0 - tau};
-            std::sort(cuts.begin(), cuts.end());
-            double s0 = 0.0, s1 = 0.0;
-            double lo = 0.0;
-            for (double c : cuts) {
-                const double hi = std::clamp(c, 0.0, 1.0);
-                if (hi <= lo) continue;
-                for (std::size_t q = 0; q < gx.size(); ++q) {
-                    const double u = lo + (hi - lo) * gx[q];
-                    const double w = (hi - lo) * gw[q] * v(u);
-                    s0 += w;
-                    s1 += w * (u - 0.5);
+            for (std::size_t r = 0; r < sub_bins; ++r) {
+                const double dd = static_cast<double>(d), rr = static_cast<double>(r);
+                // v(x) = [C((d + 1 - x) dt) - C((d - x) dt)] / dt, C the envelope's cumulative energy, x = (r + u)/q.
+                auto v = [&](double u) {
+                    const double x = (rr + u) / q;
+                    return (p.cumulative((dd + 1.0 - x) * dt_) - p.cumulative((dd - x) * dt_)) / dt_;
+                };
+                // v has kinks where its arguments reach 0 or the pulse end: integrate piecewise between them.
+                std::array<double, 6> cuts{0.0, 1.0, q * dd - rr, q * (dd + 1.0) - rr, q * (dd - tau) - rr,
+                                           q * (dd + 1.0 - tau) - rr};
+                std::sort(cuts.begin(), cuts.end());
+                double s0 = 0.0, s1 = 0.0;
+                double lo = 0.0;
+                for (double c : cuts) {
+                    const double hi = std::clamp(c, 0.0, 1.0);
+                    if (hi <= lo) continue;
+                    for (std::size_t g = 0; g < gx.size(); ++g) {
+                        const double u = lo + (hi - lo) * gx[g];
+                        const double w = (hi - lo) * gw[g] * v(u);
+                        s0 += w;
+                        s1 += w * (u - 0.5);
+                    }
+                    lo = hi;
                 }
-                lo = hi;
+                k0_[d * sub_bins + r] = s0;
+                k1_[d * sub_bins + r] = 12.0 * s1;
             }
-            k0_[d] = s0;
-            k1_[d] = 12.0 * s1;
         }
     }
 
     std::size_t n_;
     double dt_;
-    double inv_dt_;
+    double inv_h_;
+    bool exact_ = true;
     std::vector<double> m0_, m1_;
     std::vector<double> k0_, k1_;
 };

@@ -31,8 +31,11 @@ template <Real T> class lambertian {
 public:
     using value_type = T;
 
-    /// One Lambert parameter for every material, given in dB (10 log10 mu). Default: Mackenzie's -27 dB.
-    explicit lambertian(T mu_db = T(-27)) : lambertian({mu_db}) {}
+    /// Mackenzie's -27 dB for every material (non-explicit, so `{}` builds one).
+    lambertian() : lambertian(T(-27)) {}
+
+    /// One Lambert parameter for every material, given in dB (10 log10 mu).
+    explicit lambertian(T mu_db) : lambertian({mu_db}) {}
 
     /// One Lambert parameter per material id, in dB; ids beyond the list use the last entry.
     lambertian(std::initializer_list<T> mu_db_by_material) {

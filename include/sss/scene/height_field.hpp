@@ -47,23 +47,24 @@ public:
         : heights_(std::move(heights_m)), materials_(std::move(materials)), regions_(std::move(regions)) {
         constexpr std::size_t max_n = std::size_t(1) << 30;
         sss::detail::require(nx >= 2 && nx <= max_n, "height_field.nx",
-                        "must lie in [2, 2^30] (vertices), got " + std::to_string(nx));
+                             "must lie in [2, 2^30] (vertices), got " + std::to_string(nx));
         sss::detail::require(ny >= 2 && ny <= max_n, "height_field.ny",
-                        "must lie in [2, 2^30] (vertices), got " + std::to_string(ny));
+                             "must lie in [2, 2^30] (vertices), got " + std::to_string(ny));
         sss::detail::require_positive(cell_m, "height_field.cell_m");
         sss::detail::require_finite(origin_m.x, "height_field.origin_m.x");
         sss::detail::require_finite(origin_m.y, "height_field.origin_m.y");
         sss::detail::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
-                        "nx * ny overflows");
+                             "nx * ny overflows");
         const std::size_t n = nx * ny, cells = (nx - 1) * (ny - 1);
         sss::detail::require(heights_.size() == n, "height_field.heights_m",
-                        "must hold nx * ny = " + std::to_string(n) + " values, got " + std::to_string(heights_.size()));
+                             "must hold nx * ny = " + std::to_string(n) + " values, got " +
+                                 std::to_string(heights_.size()));
         sss::detail::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
-                        "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                            std::to_string(materials_.size()));
+                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                                 std::to_string(materials_.size()));
         sss::detail::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
-                        "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                            std::to_string(regions_.size()));
+                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                                 std::to_string(regions_.size()));
         bounds_.bottom_m = std::numeric_limits<T>::infinity();
         bounds_.top_m = -std::numeric_limits<T>::infinity();
         for (std::size_t i = 0; i < n; ++i) {
@@ -129,25 +130,19 @@ public:
                              "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
                                  std::to_string(hits.size()));
         std::vector<detail::fan_slope<T>> slopes(rays.size());
-        // The sweep only records where each ray hits; the hits are completed afterwards in a plain loop,
-        // where the work of many rays can overlap.
-        std::vector<grid_hit<T>> found(rays.size());
-        std::vector<unsigned char> has(rays.size());
         std::size_t i = 0;
         while (i < rays.size()) {
             const detail::fan_run run = detail::find_fan_run(rays, i, std::span(slopes).subspan(i));
             if (run.count >= min_fan_rays) {
                 const auto fan = rays.subspan(i, run.count);
                 auto emit = [&](std::size_t k, const grid_hit<T>* g) {
-                    has[i + k] = g != nullptr;
-                    if (g) found[i + k] = *g;
+                    if (g)
+                        hits[i + k] = to_hit(fan[k], *g);
+                    else
+                        hits[i + k].reset();
                 };
                 if (trace_fan(grid_, bounds_, fan, std::span<const detail::fan_slope<T>>(slopes).subspan(i, run.count),
                               run.steep_first, t_max_m, emit)) {
-                    for (std::size_t k = i; k < i + run.count; ++k) {
-                        if (has[k]) hits[k] = to_hit(rays[k], found[k]);
-                        else hits[k].reset();
-                    }
                     i += run.count;
                     continue;
                 }
@@ -164,7 +159,8 @@ public:
     /// Surface height (m) at world (x_m, y_m) by the triangle rule; outside the grid's footprint the point
     /// is clamped to the nearest point of the footprint (the edge heights continue outwards).
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const noexcept {
-        return height_at_grid(grid_, (x_m - grid_.origin_m.x) * grid_.inv_cell_m, (y_m - grid_.origin_m.y) * grid_.inv_cell_m);
+        return height_at_grid(grid_, (x_m - grid_.origin_m.x) * grid_.inv_cell_m,
+                              (y_m - grid_.origin_m.y) * grid_.inv_cell_m);
     }
     /// Highest vertex (m): no geometry above it.
     [[nodiscard]] T top_m() const noexcept { return bounds_.top_m; }

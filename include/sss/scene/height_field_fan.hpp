@@ -47,8 +47,8 @@ struct fan_run {
 /// The longest run of rays from rays[first] on that share the origin (exactly) and the horizontal heading
 /// (to 8 ulps), are not within 0.06 deg of vertical, and are ordered by tau one way or the other; the
 /// slopes of its rays go to slopes[0 ... count - 1] (slopes.size() >= rays.size() - first).
-template <Real T>
-[[nodiscard]] inline fan_run find_fan_run(std::span<const ray<T>> rays, std::size_t first, std::span<fan_slope<T>> slopes) noexcept {
+template <Real T> [[nodiscard]] inline fan_run find_fan_run(std::span<const ray<T>> rays, std::size_t first,
+                                                            std::span<fan_slope<T>> slopes) noexcept {
     fan_run run;
     const ray<T>& r0 = rays[first];
     const T inv_h0 = T(1) / std::sqrt(r0.direction.x * r0.direction.x + r0.direction.y * r0.direction.y);
@@ -71,8 +71,10 @@ template <Real T>
         if (!std::isfinite(tau)) break;
         const int step = tau < tau_prev ? 1 : (tau > tau_prev ? -1 : 0);
         if (step != 0) {
-            if (order == 0) order = step;
-            else if (step != order) break;
+            if (order == 0)
+                order = step;
+            else if (step != order)
+                break;
         }
         tau_prev = tau;
         slopes[run.count] = fan_slope<T>{tau, inv_h};
@@ -85,8 +87,8 @@ template <Real T>
 } // namespace detail
 
 /// Traces the vertical fan `rays` with slopes `slopes` (as found by detail::find_fan_run; `steep_first`
-/// says whether tau does not increase along the span) limited to distance t_max_m, calling emit(k, const grid_hit<T>* h) once for
-/// every ray k (h null for a miss). Returns false, having emitted nothing, when the sweep does not apply
+/// says whether tau does not increase along the span) limited to distance t_max_m, calling
+/// emit(k, const grid_hit<T>* h) once for every ray k (h null for a miss). Returns false, having emitted nothing, when the sweep does not apply
 /// (the origin is not above the surface where the sweep starts, or the fan is too sparse for its length to
 /// pay off): the caller then traces the rays one by one.
 template <Real T, class Emit>
@@ -109,8 +111,10 @@ template <Real T, class Emit>
     const T z_top = hb.top_m + q.z_margin;
     if (any && q.z0 > z_top) {
         // Nothing lies above top_m: no ray hits before the steepest one comes down to it.
-        if (tau_max > T(0)) rho_start = std::max(rho_start, (q.z0 - z_top) / tau_max);
-        else any = false;
+        if (tau_max > T(0))
+            rho_start = std::max(rho_start, (q.z0 - z_top) / tau_max);
+        else
+            any = false;
     }
     if (!any || !(rho_start <= rho_end)) {
         for (std::size_t i = 0; i < n; ++i) emit(index(i), static_cast<const grid_hit<T>*>(nullptr));

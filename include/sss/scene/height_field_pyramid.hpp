@@ -50,9 +50,13 @@ public:
     /// Number of stored levels: blocks of 2^1 ... 2^levels() cells (0 for a grid of one cell).
     [[nodiscard]] std::int32_t levels() const noexcept { return levels_; }
     /// Blocks along x at `level` (1 <= level <= levels()).
-    [[nodiscard]] std::int32_t width(std::int32_t level) const noexcept { return width_[static_cast<std::size_t>(level)]; }
+    [[nodiscard]] std::int32_t width(std::int32_t level) const noexcept {
+        return width_[static_cast<std::size_t>(level)];
+    }
     /// Blocks along y at `level`.
-    [[nodiscard]] std::int32_t height(std::int32_t level) const noexcept { return height_[static_cast<std::size_t>(level)]; }
+    [[nodiscard]] std::int32_t height(std::int32_t level) const noexcept {
+        return height_[static_cast<std::size_t>(level)];
+    }
 
     /// Highest vertex (m) of block (bx, by) at `level`, covering cells [bx 2^level, (bx+1) 2^level) along x.
     [[nodiscard]] T max_m(std::int32_t level, std::int32_t bx, std::int32_t by) const noexcept {
@@ -82,7 +86,8 @@ private:
 
     void build_from_children(std::int32_t level) {
         const std::int32_t w = width_[static_cast<std::size_t>(level)], h = height_[static_cast<std::size_t>(level)];
-        const std::int32_t cw = width_[static_cast<std::size_t>(level - 1)], ch = height_[static_cast<std::size_t>(level - 1)];
+        const std::int32_t cw = width_[static_cast<std::size_t>(level - 1)],
+                           ch = height_[static_cast<std::size_t>(level - 1)];
         T* out = data_.data() + offset_[static_cast<std::size_t>(level)];
         for (std::int32_t by = 0; by < h; ++by) {
             for (std::int32_t bx = 0; bx < w; ++bx) {

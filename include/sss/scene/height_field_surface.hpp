@@ -77,8 +77,8 @@ template <Real T> [[nodiscard]] constexpr cell_triangle triangle_of(T a, T b) no
 }
 
 /// Height (m) of the surface at local coordinates (a, b) of cell (ix, iy), by the triangle rule above.
-template <Real T>
-[[nodiscard]] inline T height_in_cell(const height_grid_view<T>& g, std::int32_t ix, std::int32_t iy, T a, T b) noexcept {
+template <Real T> [[nodiscard]] inline T height_in_cell(const height_grid_view<T>& g, std::int32_t ix, std::int32_t iy,
+                                                        T a, T b) noexcept {
     const T h00 = g.at(ix, iy);
     const T h11 = g.at(ix + 1, iy + 1);
     if (a >= b) {
@@ -100,9 +100,8 @@ template <Real T> [[nodiscard]] inline T height_at_grid(const height_grid_view<T
 }
 
 /// Height gradient (dh/dx, dh/dy) of one triangle (dimensionless: m per m).
-template <Real T>
-[[nodiscard]] inline vec2<T> triangle_gradient(const height_grid_view<T>& g, std::int32_t ix, std::int32_t iy,
-                                               cell_triangle tri) noexcept {
+template <Real T> [[nodiscard]] inline vec2<T> triangle_gradient(const height_grid_view<T>& g, std::int32_t ix,
+                                                                 std::int32_t iy, cell_triangle tri) noexcept {
     const T inv_c = g.inv_cell_m;
     const T h00 = g.at(ix, iy);
     const T h11 = g.at(ix + 1, iy + 1);
@@ -121,9 +120,8 @@ template <Real T> [[nodiscard]] inline vec3<T> normal_from_gradient(vec2<T> grad
 }
 
 /// Upward unit geometric normal of one triangle.
-template <Real T>
-[[nodiscard]] inline vec3<T> triangle_normal(const height_grid_view<T>& g, std::int32_t ix, std::int32_t iy,
-                                             cell_triangle tri) noexcept {
+template <Real T> [[nodiscard]] inline vec3<T> triangle_normal(const height_grid_view<T>& g, std::int32_t ix,
+                                                               std::int32_t iy, cell_triangle tri) noexcept {
     return normal_from_gradient(triangle_gradient(g, ix, iy, tri));
 }
 
@@ -138,9 +136,8 @@ template <Real T>
 
 /// The smooth gradient at local coordinates (a, b) of cell (ix, iy) in triangle `tri`: the vertex
 /// gradients interpolated barycentrically. (a, b) are clamped into the triangle.
-template <Real T>
-[[nodiscard]] inline vec2<T> smooth_gradient(const height_grid_view<T>& g, std::int32_t ix, std::int32_t iy,
-                                             cell_triangle tri, T a, T b) noexcept {
+template <Real T> [[nodiscard]] inline vec2<T> smooth_gradient(const height_grid_view<T>& g, std::int32_t ix,
+                                                               std::int32_t iy, cell_triangle tri, T a, T b) noexcept {
     a = std::clamp(a, T(0), T(1));
     b = std::clamp(b, T(0), T(1));
     // Weights of the corner (0,0), the triangle's own corner (1,0) or (0,1), and (1,1).
@@ -159,7 +156,8 @@ template <Real T>
         auto diff = [&](std::int32_t x, std::int32_t y) {
             return vec2<T>{g.at(x + 1, y) - g.at(x - 1, y), g.at(x, y + 1) - g.at(x, y - 1)};
         };
-        grad = (diff(ix, iy) * w00 + diff(ix + sx, iy + sy) * w_side + diff(ix + 1, iy + 1) * w11) * (T(0.5) * g.inv_cell_m);
+        grad = (diff(ix, iy) * w00 + diff(ix + sx, iy + sy) * w_side + diff(ix + 1, iy + 1) * w11) *
+               (T(0.5) * g.inv_cell_m);
     } else {
         grad = vertex_gradient(g, ix, iy) * w00 + vertex_gradient(g, ix + sx, iy + sy) * w_side +
                vertex_gradient(g, ix + 1, iy + 1) * w11;
@@ -169,9 +167,8 @@ template <Real T>
 
 /// Upward unit smooth normal at local coordinates (a, b) of cell (ix, iy) in triangle `tri`:
 /// normal_from_gradient(smooth_gradient(...)).
-template <Real T>
-[[nodiscard]] inline vec3<T> smooth_normal(const height_grid_view<T>& g, std::int32_t ix, std::int32_t iy,
-                                           cell_triangle tri, T a, T b) noexcept {
+template <Real T> [[nodiscard]] inline vec3<T> smooth_normal(const height_grid_view<T>& g, std::int32_t ix,
+                                                             std::int32_t iy, cell_triangle tri, T a, T b) noexcept {
     return normal_from_gradient(smooth_gradient(g, ix, iy, tri, a, b));
 }
 

@@ -45,10 +45,10 @@ namespace sss::scene {
 
 /// What a grid tracer found: the distance along the ray and the cell and triangle that hold the hit.
 template <Real T> struct grid_hit {
-    T distance_m{};                                  ///< distance from the ray origin (m)
-    std::int32_t ix = 0;                             ///< cell column
-    std::int32_t iy = 0;                             ///< cell row
-    cell_triangle triangle = cell_triangle::lower;   ///< half of the cell
+    T distance_m{};                                ///< distance from the ray origin (m)
+    std::int32_t ix = 0;                           ///< cell column
+    std::int32_t iy = 0;                           ///< cell row
+    cell_triangle triangle = cell_triangle::lower; ///< half of the cell
 };
 
 /// Height bounds of a grid: the tracers clip rays to the slab bottom_m <= z <= top_m.
@@ -63,12 +63,12 @@ namespace detail {
 template <Real T> struct grid_ray {
     T u0, v0, z0;
     T du, dv, dz;
-    T inv_du, inv_dv;        // 1/du, 1/dv (unused when the step is 0)
-    T w0, dw, inv_dw;        // w = u - v, the coordinate across the diagonals
-    std::int32_t su, sv;     // step of the cell index along u, v: -1, 0 or +1
-    bool has_diag;           // the ray crosses diagonals (dw != 0)
-    T s_lo, s_hi;            // the part of the ray over the grid, within [0, t_max] and the height slab
-    T z_margin;              // a height well above rounding at this ray's scale (m)
+    T inv_du, inv_dv;    // 1/du, 1/dv (unused when the step is 0)
+    T w0, dw, inv_dw;    // w = u - v, the coordinate across the diagonals
+    std::int32_t su, sv; // step of the cell index along u, v: -1, 0 or +1
+    bool has_diag;       // the ray crosses diagonals (dw != 0)
+    T s_lo, s_hi;        // the part of the ray over the grid, within [0, t_max] and the height slab
+    T z_margin;          // a height well above rounding at this ray's scale (m)
 };
 
 /// 1/x, or 0 with step 0 when 1/x is not finite (a direction component too small to ever cross a line).
@@ -94,9 +94,8 @@ template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi
 }
 
 /// Prepares `q` for ray `r` limited to distance t_max_m; false when the ray cannot hit the grid at all.
-template <Real T>
-inline bool setup_ray(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>& r, T t_max_m,
-                      grid_ray<T>& q) noexcept {
+template <Real T> inline bool setup_ray(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>& r, T t_max_m,
+                                        grid_ray<T>& q) noexcept {
     if (!(t_max_m > T(0))) return false;
     const T inv_c = g.inv_cell_m;
     q.u0 = (r.origin.x - g.origin_m.x) * inv_c;
@@ -165,17 +164,15 @@ template <Real T>
     return (q.z0 + q.dz * s) - h;
 }
 /// f where the ray crosses the diagonal of cell (ix, iy).
-template <Real T>
-[[nodiscard]] inline T f_on_diagonal(const height_grid_view<T>& g, const grid_ray<T>& q, std::int32_t ix,
-                                     std::int32_t iy, T s) noexcept {
+template <Real T> [[nodiscard]] inline T f_on_diagonal(const height_grid_view<T>& g, const grid_ray<T>& q,
+                                                       std::int32_t ix, std::int32_t iy, T s) noexcept {
     const T a = (q.u0 + q.du * s) - static_cast<T>(ix);
     const T h0 = g.at(ix, iy);
     const T h = h0 + a * (g.at(ix + 1, iy + 1) - h0);
     return (q.z0 + q.dz * s) - h;
 }
 /// f at any distance s (the ray's start and end points).
-template <Real T>
-[[nodiscard]] inline T f_at(const height_grid_view<T>& g, const grid_ray<T>& q, T s) noexcept {
+template <Real T> [[nodiscard]] inline T f_at(const height_grid_view<T>& g, const grid_ray<T>& q, T s) noexcept {
     return (q.z0 + q.dz * s) - height_at_grid(g, q.u0 + q.du * s, q.v0 + q.dv * s);
 }
 
@@ -189,9 +186,8 @@ template <Real T> struct walk_state {
 
 /// The root of f on the segment [s_a, s_b] of cell (ix, iy), with f_a > 0 >= f_b. False when the root is
 /// not at a positive distance (a ray starting on the surface).
-template <Real T>
-inline bool segment_root(const grid_ray<T>& q, T s_a, T f_a, T s_b, T f_b, std::int32_t ix, std::int32_t iy,
-                         grid_hit<T>& out) noexcept {
+template <Real T> inline bool segment_root(const grid_ray<T>& q, T s_a, T f_a, T s_b, T f_b, std::int32_t ix,
+                                           std::int32_t iy, grid_hit<T>& out) noexcept {
     const T s = std::clamp(s_a + (s_b - s_a) * (f_a / (f_a - f_b)), s_a, s_b);
     if (!(s > T(0))) return false;
     const T s_mid = T(0.5) * (s_a + s_b);
@@ -208,9 +204,8 @@ enum class step_outcome : unsigned char { next, done, found };
 /// the cell's exit (or to s_hi), calling `visit(w, s, f)` at each new breakpoint while `w` still holds the
 /// previous one (so [w.s, s] is a segment inside cell (w.ix, w.iy)); `visit` returns true to stop the walk.
 /// Then moves the state into the next cell.
-template <Real T, class Visit>
-inline step_outcome cell_step(const height_grid_view<T>& g, const grid_ray<T>& q, walk_state<T>& w,
-                              Visit&& visit) noexcept {
+template <Real T, class Visit> inline step_outcome cell_step(const height_grid_view<T>& g, const grid_ray<T>& q,
+                                                             walk_state<T>& w, Visit&& visit) noexcept {
     constexpr T inf = std::numeric_limits<T>::infinity();
     const T sx = q.su > 0 ? cross_u(q, w.ix + 1) : (q.su < 0 ? cross_u(q, w.ix) : inf);
     const T sy = q.sv > 0 ? cross_v(q, w.iy + 1) : (q.sv < 0 ? cross_v(q, w.iy) : inf);
@@ -227,9 +222,12 @@ inline step_outcome cell_step(const height_grid_view<T>& g, const grid_ray<T>& q
         }
     }
     T fe;
-    if (last) fe = f_at(g, q, se);
-    else if (sx <= sy) fe = f_on_u_line(g, q, q.su > 0 ? w.ix + 1 : w.ix, se);
-    else fe = f_on_v_line(g, q, q.sv > 0 ? w.iy + 1 : w.iy, se);
+    if (last)
+        fe = f_at(g, q, se);
+    else if (sx <= sy)
+        fe = f_on_u_line(g, q, q.su > 0 ? w.ix + 1 : w.ix, se);
+    else
+        fe = f_on_v_line(g, q, q.sv > 0 ? w.iy + 1 : w.iy, se);
     if (visit(w, se, fe)) return step_outcome::found;
     w.s = se;
     w.f = fe;
@@ -267,9 +265,8 @@ template <Real T>
 
 /// The reference traversal: every cell along the ray's xy projection, clipped to the grid's footprint and
 /// to [0, t_max_m], gets the exact cell test. Simple on purpose; it checks the accelerated one.
-template <Real T>
-[[nodiscard]] std::optional<grid_hit<T>> trace_reference(const height_grid_view<T>& g, height_bounds<T> hb,
-                                                         const ray<T>& r, T t_max_m) noexcept {
+template <Real T> [[nodiscard]] std::optional<grid_hit<T>>
+trace_reference(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>& r, T t_max_m) noexcept {
     detail::grid_ray<T> q;
     if (!detail::setup_ray(g, hb, r, t_max_m, q)) return std::nullopt;
     detail::walk_state<T> w = detail::start_at(g, q, q.s_lo);
@@ -379,15 +376,28 @@ template <Real T>
             w.above = true; // f > 0 all through the skipped block
             f_known = false;
             // Go up only into a parent block not tested yet: the old parent failed with this same exit.
+#if SSS_V == 1
+            if (level < top_level) ++level;
+#elif SSS_V == 2
+            { const std::int32_t moved = (w.ix ^ old_ix) | (w.iy ^ old_iy);
+              if (level < top_level && (moved >> (level + 1)) != 0) { ++level; if (level < top_level && (moved >> (level + 1)) != 0) ++level; } }
+#else
             if (level < top_level && (((w.ix ^ old_ix) | (w.iy ^ old_iy)) >> (level + 1)) != 0) ++level;
+#endif
             continue;
         }
 
         if (!f_known) {
             switch (kind) {
-            case at_kind::point: w.f = detail::f_at(g, q, w.s); break;
-            case at_kind::u_line: w.f = detail::f_on_u_line(g, q, line, w.s); break;
-            case at_kind::v_line: w.f = detail::f_on_v_line(g, q, line, w.s); break;
+            case at_kind::point:
+                w.f = detail::f_at(g, q, w.s);
+                break;
+            case at_kind::u_line:
+                w.f = detail::f_on_u_line(g, q, line, w.s);
+                break;
+            case at_kind::v_line:
+                w.f = detail::f_on_v_line(g, q, line, w.s);
+                break;
             }
             f_known = true;
             // After a skip f was > 0 just before; only rounding can make it <= 0 here: the hit is this point.

@@ -1,0 +1,164 @@
+#pragma once
+/// \file
+/// A composite object: spheres and capped cylinders given in the object's own frame, placed in the world
+/// by one rigid transform (rotation, then translation).
+///
+/// Spheres and cylinders stay spheres and cylinders under a rigid transform, so the object stores its
+/// primitives already placed (world coordinates): intersection costs no per-ray transform, and the
+/// distances, normals and ids are those of the placed primitives. An object intersects its primitives
+/// one by one behind a test of its bounding box; for many objects, or objects of many primitives (a long
+/// pipeline), put them in an object_set, whose hierarchy spans every primitive.
+///
+/// Frames: the object frame is right-handed; `placement(position, heading, pitch, roll)` follows the
+/// seabed features' convention (stamps.hpp): heading counter-clockwise from world +x (east) about +z (up),
+/// then pitch raises the object's +x end, then roll turns it about its own +x axis (right-handed), i.e.
+/// R = Rz(heading) Ry(-pitch) Rx(roll).
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "sss/core/error.hpp"
+#include "sss/core/hit.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/scene/cylinder.hpp"
+#include "sss/scene/primitive.hpp"
+#include "sss/scene/sphere.hpp"
+
+namespace sss::scene {
+
+/// A rotation followed by a translation: world = rotation * local + translation_m.
+template <Real T> struct rigid_transform {
+    mat3<T> rotation{T(1)};  ///< proper rotation (orthonormal, determinant +1)
+    vec3<T> translation_m{}; ///< world position of the object frame's origin (m)
+
+    [[nodiscard]] vec3<T> point(const vec3<T>& local) const noexcept { return rotation * local + translation_m; }
+    [[nodiscard]] vec3<T> vector(const vec3<T>& local) const noexcept { return rotation * local; }
+};
+
+/// The placement R = Rz(heading) Ry(-pitch) Rx(roll) at `position_m` (angles in rad; see the file comment).
+template <Real T>
+[[nodiscard]] rigid_transform<T> placement(const vec3<T>& position_m, T heading_rad = T(0), T pitch_rad = T(0),
+                                           T roll_rad = T(0)) noexcept {
+    const T ch = std::cos(heading_rad), sh = std::sin(heading_rad);
+    const T cp = std::cos(pitch_rad), sp = std::sin(pitch_rad);
+    const T cr = std::cos(roll_rad), sr = std::sin(roll_rad);
+    // Columns are the images of the local axes (GLM: m[col][row]).
+    const vec3<T> ex{ch * cp, sh * cp, sp};                                  // local +x
+    const vec3<T> ey{-sh * cr - ch * sp * sr, ch * cr - sh * sp * sr, cp * sr}; // local +y
+    const vec3<T> ez = glm::cross(ex, ey);                                   // local +z
+    rigid_transform<T> x;
+    x.rotation = mat3<T>(ex, ey, ez);
+    x.translation_m = position_m;
+    return x;
+}
+
+/// Throws invalid_parameter naming `name` unless `x` is finite and its rotation is proper to within
+/// 1e-4 (float) or 1e-9 (double) in every entry of R^T R - I and in det R - 1.
+template <Real T> void require_rigid(const rigid_transform<T>& x, const std::string& name) {
+    detail::require_finite_vec(x.translation_m, name + ".translation_m");
+    const T tol = sizeof(T) == 4 ? T(1e-4) : T(1e-9);
+    const mat3<T> g = glm::transpose(x.rotation) * x.rotation;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) {
+            sss::detail::require_finite(x.rotation[c][r], name + ".rotation");
+            sss::detail::require(std::abs(g[c][r] - (c == r ? T(1) : T(0))) <= tol, name + ".rotation",
+                                 "must be orthonormal (R^T R = I)");
+        }
+    sss::detail::require(std::abs(glm::determinant(x.rotation) - T(1)) <= tol, name + ".rotation",
+                         "must be a proper rotation (determinant +1, no reflection)");
+}
+
+/// A bounding sphere (m).
+template <Real T> struct bounding_sphere {
+    vec3<T> center_m{};
+    T radius_m{};
+};
+
+template <Real T> class object {
+public:
+    using value_type = T;
+
+    /// \param spheres, cylinders primitives in the object's frame (at least one in all)
+    /// \param where              the object's placement in the world (a proper rotation; see require_rigid)
+    object(const std::vector<sphere<T>>& spheres, const std::vector<cylinder<T>>& cylinders,
+           const rigid_transform<T>& where = {})
+        : placement_(where) {
+        sss::detail::require(!spheres.empty() || !cylinders.empty(), "object.primitives",
+                             "an object needs at least one sphere or cylinder");
+        require_rigid(where, "object.placement");
+        spheres_.reserve(spheres.size());
+        cylinders_.reserve(cylinders.size());
+        for (const sphere<T>& s : spheres) spheres_.emplace_back(where.point(s.center_m()), s.radius_m(), s.ids());
+        for (const cylinder<T>& c : cylinders)
+            cylinders_.emplace_back(where.point(c.end0_m()), where.point(c.end1_m()), c.radius_m(), c.ids());
+        for (const sphere<T>& s : spheres_) bounds_.expand(s.bounds());
+        for (const cylinder<T>& c : cylinders_) bounds_.expand(c.bounds());
+        sphere_.center_m = bounds_.center();
+        for (const sphere<T>& s : spheres_)
+            sphere_.radius_m = std::max(sphere_.radius_m, glm::length(s.center_m() - sphere_.center_m) + s.radius_m());
+        for (const cylinder<T>& c : cylinders_) {
+            const T half = c.length_m() / T(2);
+            sphere_.radius_m = std::max(sphere_.radius_m, glm::length(c.center_m() - sphere_.center_m) +
+                                                              std::sqrt(half * half + c.radius_m() * c.radius_m()));
+        }
+    }
+
+    /// Primitives as placed in the world.
+    [[nodiscard]] const std::vector<sphere<T>>& spheres() const noexcept { return spheres_; }
+    [[nodiscard]] const std::vector<cylinder<T>>& cylinders() const noexcept { return cylinders_; }
+    [[nodiscard]] std::size_t primitive_count() const noexcept { return spheres_.size() + cylinders_.size(); }
+    [[nodiscard]] const rigid_transform<T>& placement() const noexcept { return placement_; }
+
+    /// World axis-aligned box containing every primitive (exact per primitive).
+    [[nodiscard]] const box<T>& bounds() const noexcept { return bounds_; }
+    /// A sphere containing every primitive (centred on the box; not the smallest).
+    [[nodiscard]] const bounding_sphere<T>& bounding() const noexcept { return sphere_; }
+    /// Highest world z of the object (m).
+    [[nodiscard]] T top_m() const noexcept { return bounds_.hi.z; }
+
+    /// Nearest hit over the primitives with 0 < distance <= t_max_m.
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
+        std::optional<hit<T>> best;
+        if (!crosses_bounds(r, t_max_m)) return best;
+        T t_best = t_max_m;
+        for (const sphere<T>& s : spheres_)
+            if (auto h = s.intersect(r, t_best)) {
+                t_best = h->distance_m;
+                best = h;
+            }
+        for (const cylinder<T>& c : cylinders_)
+            if (auto h = c.intersect(r, t_best)) {
+                t_best = h->distance_m;
+                best = h;
+            }
+        return best;
+    }
+
+private:
+    /// Whether the ray's piece [0, t_max] meets the bounding sphere (a conservative early out).
+    [[nodiscard]] bool crosses_bounds(const ray<T>& r, T t_max_m) const noexcept {
+        const vec3<T> f = r.origin - sphere_.center_m;
+        const T b = glm::dot(f, r.direction);
+        const T rad = sphere_.radius_m * (T(1) + T(64) * std::numeric_limits<T>::epsilon());
+        const T t = std::clamp(-b, T(0), t_max_m);
+        const vec3<T> g = f + r.direction * t; // nearest point of the piece to the centre
+        return glm::dot(g, g) <= rad * rad;
+    }
+
+    std::vector<sphere<T>> spheres_;
+    std::vector<cylinder<T>> cylinders_;
+    rigid_transform<T> placement_;
+    box<T> bounds_{};
+    bounding_sphere<T> sphere_{};
+};
+
+} // namespace sss::scene

@@ -1,0 +1,296 @@
+#pragma once
+/// \file
+/// Many objects, and the culling that keeps rays far from all of them nearly free: a bounding volume
+/// hierarchy (BVH) over every primitive of every object.
+///
+/// Build: top-down, splitting each node where the surface-area heuristic (MacDonald & Booth, 1990, "Heuristics
+/// for ray tracing using space subdivision", The Visual Computer 6(3) 153-166) is lowest among 16 bins of the
+/// primitives' centroids along the widest axis (binned as in Wald, 2007, "On fast construction of SAH-based
+/// bounding volume hierarchies", IEEE Symposium on Interactive Ray Tracing); a node becomes a leaf when it
+/// holds at most 4 primitives and splitting would not pay. Boxes are padded by a few ulps of their
+/// coordinates so that rounding in the box test never culls a primitive that the exact test would hit.
+/// Traversal: depth first, near child first, each box tested against [0, nearest hit so far]
+/// (the slab test of Kay & Kajiya, 1986, SIGGRAPH, with the NaN of 0 x inf, a ray in a box's face plane,
+/// read as inside). A ray that misses the root box costs one box test.
+///
+/// The brute-force search (every object, every primitive) is kept to check the hierarchy against.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "sss/core/error.hpp"
+#include "sss/core/hit.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/scene/object.hpp"
+
+namespace sss::scene {
+
+namespace detail {
+
+/// One node of the flattened hierarchy: an inner node's left child follows it, its right child is at
+/// `offset`; a leaf's primitives are items [offset, offset + count).
+template <Real T> struct bvh_node {
+    box<T> bounds;
+    std::uint32_t offset = 0;
+    std::uint16_t count = 0; ///< 0 for an inner node
+    std::uint8_t axis = 0;   ///< split axis of an inner node
+};
+
+/// A ray prepared for many box tests: origin and reciprocal direction (+-inf where a component is 0).
+template <Real T> struct box_ray {
+    vec3<T> origin;
+    vec3<T> inv;
+    explicit box_ray(const ray<T>& r) noexcept
+        : origin(r.origin), inv(T(1) / r.direction.x, T(1) / r.direction.y, T(1) / r.direction.z) {}
+};
+
+/// Whether the ray's piece [0, t_max] meets box b; the entry distance (>= 0) in t_entry.
+template <Real T> [[nodiscard]] inline bool hits_box(const box<T>& b, const box_ray<T>& r, T t_max, T& t_entry) noexcept {
+    T t0 = T(0), t1 = t_max;
+    for (int i = 0; i < 3; ++i) {
+        T a = (b.lo[i] - r.origin[i]) * r.inv[i];
+        T c = (b.hi[i] - r.origin[i]) * r.inv[i];
+        if (a > c) std::swap(a, c);
+        // NaN (0 x inf: the origin in the face plane, the ray parallel to it) leaves the interval as is.
+        t0 = a > t0 ? a : t0;
+        t1 = c < t1 ? c : t1;
+    }
+    t_entry = t0;
+    return t0 <= t1;
+}
+
+/// Item tags: which primitive array, and the index in it.
+inline constexpr std::uint32_t cylinder_tag = 0x80000000u;
+
+} // namespace detail
+
+template <Real T> class object_set {
+public:
+    using value_type = T;
+
+    /// An empty set: every ray misses.
+    object_set() = default;
+
+    /// Builds the hierarchy over every primitive of `objects`.
+    explicit object_set(std::vector<object<T>> objects) : objects_(std::move(objects)) {
+        for (const object<T>& o : objects_) {
+            for (const sphere<T>& s : o.spheres()) spheres_.push_back(s);
+            for (const cylinder<T>& c : o.cylinders()) cylinders_.push_back(c);
+            bounds_.expand(o.bounds());
+        }
+        sss::detail::require(cylinders_.size() < detail::cylinder_tag && spheres_.size() < detail::cylinder_tag,
+                             "object_set.objects", "too many primitives (at most 2^31 of each kind)");
+        build();
+    }
+
+    [[nodiscard]] const std::vector<object<T>>& objects() const noexcept { return objects_; }
+    [[nodiscard]] std::size_t size() const noexcept { return objects_.size(); }
+    [[nodiscard]] bool empty() const noexcept { return objects_.empty(); }
+    [[nodiscard]] std::size_t primitive_count() const noexcept { return spheres_.size() + cylinders_.size(); }
+    [[nodiscard]] std::size_t node_count() const noexcept { return nodes_.size(); }
+    /// Box containing every object (empty box for an empty set).
+    [[nodiscard]] const box<T>& bounds() const noexcept { return bounds_; }
+    /// Highest world z of any object (m); -infinity for an empty set.
+    [[nodiscard]] T top_m() const noexcept { return empty() ? -std::numeric_limits<T>::infinity() : bounds_.hi.z; }
+
+    /// Nearest hit over all objects with 0 < distance <= t_max_m, through the hierarchy.
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
+        if (nodes_.empty()) return std::nullopt;
+        const detail::box_ray<T> br(r);
+        T t_best = t_max_m;
+        std::uint32_t best = no_item;
+        std::array<std::uint32_t, max_depth> stack;
+        std::size_t top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const detail::bvh_node<T>& n = nodes_[stack[--top]];
+            T t_entry;
+            if (!detail::hits_box(n.bounds, br, t_best, t_entry)) continue;
+            if (n.count > 0) {
+                for (std::uint32_t i = n.offset, e = n.offset + n.count; i < e; ++i) {
+                    const std::uint32_t item = items_[i];
+                    const auto c = (item & detail::cylinder_tag) ? cylinders_[item & ~detail::cylinder_tag].first_crossing(r, t_best)
+                                                                 : spheres_[item].first_crossing(r, t_best);
+                    if (c) {
+                        t_best = c->t;
+                        best = item;
+                    }
+                }
+                continue;
+            }
+            const std::uint32_t left = static_cast<std::uint32_t>(&n - nodes_.data()) + 1, right = n.offset;
+            // Near child on top of the stack: the one on the side the ray comes from.
+            if (r.direction[n.axis] < T(0)) {
+                stack[top++] = left;
+                stack[top++] = right;
+            } else {
+                stack[top++] = right;
+                stack[top++] = left;
+            }
+        }
+        if (best == no_item) return std::nullopt;
+        return (best & detail::cylinder_tag) ? cylinders_[best & ~detail::cylinder_tag].intersect(r, t_best)
+                                             : spheres_[best].intersect(r, t_best);
+    }
+
+    /// The same by testing every object (each behind its own bounding sphere): the reference.
+    [[nodiscard]] std::optional<hit<T>> intersect_brute_force(const ray<T>& r, T t_max_m) const noexcept {
+        std::optional<hit<T>> best;
+        T t_best = t_max_m;
+        for (const object<T>& o : objects_)
+            if (auto h = o.intersect(r, t_best)) {
+                t_best = h->distance_m;
+                best = h;
+            }
+        return best;
+    }
+
+private:
+    static constexpr std::uint32_t no_item = 0xffffffffu;
+    static constexpr std::size_t max_depth = 64;  // stack size; the build stops splitting well before
+    static constexpr std::size_t max_leaf = 4;    // primitives a leaf may hold when a split would not pay
+    static constexpr std::size_t bins = 16;
+
+    struct build_item {
+        box<T> bounds;
+        vec3<T> centroid;
+        std::uint32_t item;
+    };
+
+    [[nodiscard]] static box<T> padded(box<T> b) noexcept {
+        const T scale = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
+                                  std::abs(b.hi.y), std::abs(b.hi.z), T(1)});
+        const vec3<T> pad(T(16) * std::numeric_limits<T>::epsilon() * scale);
+        b.lo -= pad;
+        b.hi += pad;
+        return b;
+    }
+
+    void build() {
+        std::vector<build_item> work;
+        work.reserve(primitive_count());
+        for (std::size_t i = 0; i < spheres_.size(); ++i) {
+            const box<T> b = padded(spheres_[i].bounds());
+            work.push_back({b, b.center(), static_cast<std::uint32_t>(i)});
+        }
+        for (std::size_t i = 0; i < cylinders_.size(); ++i) {
+            const box<T> b = padded(cylinders_[i].bounds());
+            work.push_back({b, b.center(), static_cast<std::uint32_t>(i) | detail::cylinder_tag});
+        }
+        if (work.empty()) return;
+        nodes_.reserve(2 * work.size());
+        split(work, 0, work.size(), 0);
+        items_.reserve(work.size());
+        for (const build_item& w : work) items_.push_back(w.item);
+    }
+
+    /// Builds the subtree over work[first, last) at `depth`; returns its node index.
+    std::uint32_t split(std::vector<build_item>& work, std::size_t first, std::size_t last, std::size_t depth) {
+        const auto index = static_cast<std::uint32_t>(nodes_.size());
+        nodes_.emplace_back();
+        box<T> bounds, centroids;
+        for (std::size_t i = first; i < last; ++i) {
+            bounds.expand(work[i].bounds);
+            centroids.expand(work[i].centroid);
+        }
+        nodes_[index].bounds = bounds;
+        const std::size_t n = last - first;
+        auto make_leaf = [&] {
+            nodes_[index].offset = static_cast<std::uint32_t>(first);
+            nodes_[index].count = static_cast<std::uint16_t>(n);
+            return index;
+        };
+        const vec3<T> ext = centroids.extent();
+        int axis = 0;
+        if (ext.y > ext[axis]) axis = 1;
+        if (ext.z > ext[axis]) axis = 2;
+        const bool can_leaf = n <= max_leaf;
+        if (n == 1 || depth + 2 >= max_depth || !(ext[axis] > T(0))) {
+            if (n <= 0xffff) return make_leaf();
+            // Coincident centroids (or the depth limit): split by count, whatever the cost.
+            return split_at(work, first, first + n / 2, last, depth, axis, index);
+        }
+        // Binned surface-area heuristic along the widest axis of the centroids.
+        struct bin {
+            box<T> bounds;
+            std::size_t count = 0;
+        };
+        std::array<bin, bins> b{};
+        const T lo = centroids.lo[axis], scale = T(bins) / ext[axis];
+        auto bin_of = [&](const build_item& w) {
+            const auto k = static_cast<std::size_t>(std::max(T(0), (w.centroid[axis] - lo) * scale));
+            return std::min(k, bins - 1);
+        };
+        for (std::size_t i = first; i < last; ++i) {
+            bin& x = b[bin_of(work[i])];
+            x.bounds.expand(work[i].bounds);
+            ++x.count;
+        }
+        std::array<T, bins> right_area{};
+        std::array<std::size_t, bins> right_count{};
+        box<T> acc;
+        std::size_t cnt = 0;
+        for (std::size_t k = bins - 1; k > 0; --k) {
+            acc.expand(b[k].bounds);
+            cnt += b[k].count;
+            right_area[k] = acc.half_area();
+            right_count[k] = cnt;
+        }
+        acc = box<T>{};
+        cnt = 0;
+        T best_cost = std::numeric_limits<T>::infinity();
+        std::size_t best_k = 0;
+        for (std::size_t k = 1; k < bins; ++k) { // split between bins k-1 and k
+            acc.expand(b[k - 1].bounds);
+            cnt += b[k - 1].count;
+            if (cnt == 0 || right_count[k] == 0) continue;
+            const T cost = acc.half_area() * T(cnt) + right_area[k] * T(right_count[k]);
+            if (cost < best_cost) {
+                best_cost = cost;
+                best_k = k;
+            }
+        }
+        if (best_k == 0) return n <= max_leaf ? make_leaf() : split_at(work, first, first + n / 2, last, depth, axis, index);
+        // A leaf costs n primitive tests; a split one traversal step (~ one test) plus the children's tests
+        // weighted by the chance that a ray through this box enters them (area ratio).
+        const T area = bounds.half_area();
+        const T split_cost = T(1) + (area > T(0) ? best_cost / area : T(n));
+        if (can_leaf && T(n) <= split_cost) return make_leaf();
+        const auto mid = std::partition(work.begin() + static_cast<std::ptrdiff_t>(first),
+                                        work.begin() + static_cast<std::ptrdiff_t>(last),
+                                        [&](const build_item& w) { return bin_of(w) < best_k; });
+        return split_at(work, first, static_cast<std::size_t>(mid - work.begin()), last, depth, axis, index);
+    }
+
+    /// Makes node `index` an inner node over [first, mid) and [mid, last) (by count if either side is empty).
+    std::uint32_t split_at(std::vector<build_item>& work, std::size_t first, std::size_t mid, std::size_t last,
+                           std::size_t depth, int axis, std::uint32_t index) {
+        if (mid == first || mid == last) {
+            mid = first + (last - first) / 2;
+            std::nth_element(work.begin() + static_cast<std::ptrdiff_t>(first), work.begin() + static_cast<std::ptrdiff_t>(mid),
+                             work.begin() + static_cast<std::ptrdiff_t>(last),
+                             [axis](const build_item& a, const build_item& b) { return a.centroid[axis] < b.centroid[axis]; });
+        }
+        nodes_[index].axis = static_cast<std::uint8_t>(axis);
+        split(work, first, mid, depth + 1);
+        const std::uint32_t right = split(work, mid, last, depth + 1);
+        nodes_[index].offset = right;
+        return index;
+    }
+
+    std::vector<object<T>> objects_;
+    std::vector<sphere<T>> spheres_;
+    std::vector<cylinder<T>> cylinders_;
+    std::vector<std::uint32_t> items_;
+    std::vector<detail::bvh_node<T>> nodes_;
+    box<T> bounds_{};
+};
+
+} // namespace sss::scene

@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// A seabed with objects on it and above it: any seabed that models sss::Scene, plus an object_set.
+///
+/// `intersect` returns the nearest hit over both: the seabed first, then the objects on the ray's piece
+/// up to the seabed hit (so objects behind the seabed, and the boxes they sit in, cost nothing); an object
+/// hit at exactly the seabed's distance wins. Shadows need nothing more: a ray stopped by an object never
+/// reaches the seabed behind it. `seabed_height_m` is the seabed's (objects do not change the nominal
+/// altitude that steers ray sampling); `top_m` is the higher of the seabed's top and the objects' tops,
+/// so that the simulator launches rays towards everything that can return an echo.
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+
+#include "sss/core/hit.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/scene/concept.hpp"
+#include "sss/scene/object_set.hpp"
+
+namespace sss::scene {
+
+template <Scene Seabed> class scene {
+public:
+    using value_type = typename Seabed::value_type;
+    using T = value_type;
+
+    explicit scene(Seabed seabed, object_set<T> objects = {})
+        : seabed_(std::move(seabed)), objects_(std::move(objects)) {}
+
+    [[nodiscard]] const Seabed& seabed() const noexcept { return seabed_; }
+    [[nodiscard]] const object_set<T>& objects() const noexcept { return objects_; }
+
+    /// Nearest hit over seabed and objects with 0 < distance <= t_max_m.
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const {
+        std::optional<hit<T>> h = seabed_.intersect(r, t_max_m);
+        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) return o;
+        return h;
+    }
+
+    [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return seabed_.seabed_height_m(x_m, y_m); }
+    [[nodiscard]] T top_m() const { return std::max(seabed_.top_m(), objects_.top_m()); }
+
+private:
+    Seabed seabed_;
+    object_set<T> objects_;
+};
+
+template <class Seabed> scene(Seabed) -> scene<Seabed>;
+template <class Seabed, class Objects> scene(Seabed, Objects) -> scene<Seabed>;
+
+} // namespace sss::scene

@@ -1,0 +1,128 @@
+// The numerically hard cases of the ping pipeline: the first bottom return at nadir, rays that never reach the
+// seabed, an altitude above the maximum range, zero absorption, and grazing angles below 0.1 degree.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "../support/compare.hpp"
+#include "../support/flat_seabed_oracle.hpp"
+#include <sss/sss.hpp>
+
+namespace {
+
+template <class T>
+using default_sim = sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
+                                   sss::motion::straight_line<T>>;
+
+template <class T>
+default_sim<T> make_sim(sss::beam::ideal_fan_params<T> fan, T altitude_m, sss::receiver_params rx, T absorption_db_per_km = T(60),
+                        sss::ray_density density = {}) {
+    sss::motion::straight_line_params<T> m;
+    m.altitude_m = altitude_m;
+    return default_sim<T>(sss::scattering::lambertian<T>(T(-27)), sss::propagation::straight<T>({T(1500), absorption_db_per_km}),
+                          sss::beam::ideal_fan<T>(fan), sss::motion::straight_line<T>(m), rx, density);
+}
+
+template <class T> double sum(const std::vector<T>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+
+template <class T> sss_test::db_error against_oracle(const default_sim<T>& sim, T altitude_m, double absorption, sss::side sd) {
+    sss_test::oracle_setup o;
+    o.altitude_m = double(altitude_m);
+    o.absorption_db_per_km = absorption;
+    o.dt_s = sim.dt_s();
+    o.samples = sim.samples_per_line();
+    o.pulse_length_s = sim.receiver().pulse.length_s;
+    o.pulse = sim.receiver().pulse.shape == sss::pulse_shape::hann ? sss_test::envelope::hann : sss_test::envelope::rectangular;
+    const sss::beam::ideal_fan<double> fan({double(sim.beam().params().along_width_deg), double(sim.beam().params().vertical_width_deg),
+                                            double(sim.beam().params().depression_deg)});
+    const auto expected = sss_test::oracle_line(o, fan, sss::scattering::lambertian<double>(-27.0), sd);
+    const sss::scene::flat_seabed<T> seabed;
+    const auto lines = sim.ping(seabed, 0);
+    return sss_test::compare_db(sd == sss::side::port ? lines.port : lines.starboard, expected, 40.0);
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("the first bottom return starts in the sample holding the nadir two-way time 2H/c", T, float, double) {
+    sss::receiver_params rx;
+    rx.max_range_m = 30.0;
+    const T altitude = T(10.3);
+    const auto sim = make_sim<T>({T(1), T(90), T(45)}, altitude, rx); // the fan reaches straight down
+    const auto lines = sim.ping(sss::scene::flat_seabed<T>{}, 0);
+    const double t_nadir = 2.0 * double(altitude) / 1500.0;
+    const auto k_nadir = static_cast<std::size_t>(t_nadir / sim.dt_s());
+    for (const auto* line : {&lines.port, &lines.starboard}) {
+        for (std::size_t k = 0; k < k_nadir; ++k) CHECK((*line)[k] == T(0));
+        CHECK((*line)[k_nadir] > T(0));
+    }
+    // And the nadir samples agree with the oracle, including the 1/sqrt(t - 2H/c) peak of the density.
+    const auto err = against_oracle(sim, altitude, 60.0, sss::side::starboard);
+    INFO("rms " << err.rms_db << " dB, worst " << err.worst_db << " dB at sample " << err.worst_index);
+    CHECK(err.rms_db <= 0.2);
+    CHECK(std::abs(err.worst_db) <= 1.0);
+}
+
+TEST_CASE_TEMPLATE("rays that never reach the seabed within the maximum range leave silent lines", T, float, double) {
+    sss::receiver_params rx;
+    rx.max_range_m = 50.0;
+    SUBCASE("a fan aimed above the horizon") {
+        const auto sim = make_sim<T>({T(1), T(30), T(-20)}, T(10), rx);
+        const auto lines = sim.ping(sss::scene::flat_seabed<T>{}, 0);
+        CHECK(sum(lines.port) == 0.0);
+        CHECK(sum(lines.starboard) == 0.0);
+    }
+    SUBCASE("a fan whose lowest ray meets the seabed just beyond the maximum range") {
+        // Lowest ray 10 deg down from 10 m: the seabed is 57.6 m away, beyond 50 m.
+        const auto sim = make_sim<T>({T(1), T(10), T(5)}, T(10), rx);
+        const auto lines = sim.ping(sss::scene::flat_seabed<T>{}, 0);
+        CHECK(sum(lines.starboard) == 0.0);
+    }
+}
+
+TEST_CASE_TEMPLATE("an altitude above the maximum range gives no return and no failure", T, float, double) {
+    sss::receiver_params rx;
+    rx.max_range_m = 20.0;
+    const auto sim = make_sim<T>({T(1), T(90), T(45)}, T(25), rx);
+    const auto lines = sim.ping(sss::scene::flat_seabed<T>{}, 0);
+    CHECK(lines.port.size() == sim.samples_per_line());
+    CHECK(sum(lines.port) == 0.0);
+    CHECK(sum(lines.starboard) == 0.0);
+}
+
+TEST_CASE_TEMPLATE("zero absorption leaves only spreading: the render matches the lossless oracle", T, float, double) {
+    sss::receiver_params rx;
+    rx.max_range_m = 40.0;
+    const auto sim = make_sim<T>({T(1), T(50), T(20)}, T(10), rx, T(0));
+    const auto err = against_oracle(sim, T(10), 0.0, sss::side::port);
+    INFO("rms " << err.rms_db << " dB, worst " << err.worst_db);
+    CHECK(err.rms_db <= 0.2);
+    CHECK(std::abs(err.worst_db) <= 1.0);
+    // Lossless and lossy differ by exactly the two-way absorption at far range.
+    const auto lossy = make_sim<T>({T(1), T(50), T(20)}, T(10), rx, T(60));
+    const auto a = sim.ping(sss::scene::flat_seabed<T>{}, 0), b = lossy.ping(sss::scene::flat_seabed<T>{}, 0);
+    const std::size_t k = sim.samples_per_line() - 10;
+    const double r = (double(k) + 0.5) * sim.dt_s() * 750.0 - 0.0375; // centre of the pulse window
+    CHECK(10 * std::log10(double(a.port[k]) / double(b.port[k])) == doctest::Approx(2 * 60.0 * r / 1000.0).epsilon(0.01).scale(0));
+}
+
+TEST_CASE_TEMPLATE("grazing angles below 0.1 degree render finite and match the oracle", T, float, double) {
+    // 0.8 m altitude and 600 m range: the far samples graze the seabed at 0.076 degrees.
+    sss::receiver_params rx;
+    rx.max_range_m = 600.0;
+    rx.sample_rate_hz = 2000.0;
+    rx.pulse.length_s = 1e-3;
+    const auto sim = make_sim<T>({T(1), T(20), T(10)}, T(0.8), rx, T(1));
+    const auto lines = sim.ping(sss::scene::flat_seabed<T>{}, 0);
+    for (T v : lines.starboard) REQUIRE(std::isfinite(double(v)));
+    const std::size_t last = sim.samples_per_line() - 2;
+    const double graze_deg = std::asin(0.8 / ((double(last) + 0.5) * sim.dt_s() * 750.0)) * 180.0 / 3.141592653589793;
+    CHECK(graze_deg < 0.1);
+    CHECK(lines.starboard[last] > T(0));
+    sss_test::oracle_setup o;
+    const auto err = against_oracle(sim, T(0.8), 1.0, sss::side::starboard);
+    INFO("rms " << err.rms_db << " dB, worst " << err.worst_db << " dB at sample " << err.worst_index << " of " << err.compared);
+    CHECK(err.rms_db <= 0.2);
+    CHECK(std::abs(err.worst_db) <= 1.0);
+}
