@@ -37,6 +37,7 @@
 #include "sss/sampling/launch_angles.hpp"
 #include "sss/scattering/concept.hpp"
 #include "sss/scattering/lambertian.hpp"
+#include "sss/scattering/specular_bounce.hpp"
 #include "sss/scene/concept.hpp"
 
 namespace sss {
@@ -168,39 +169,54 @@ public:
             const double column_sr = std::sin(hi) - std::sin(lo);
             depression_angles<T>(angles, sd, along, ext.depression_min_rad, ext.depression_max_rad, p.body_to_world,
                                  altitude, clearance, max_range_m, cd);
-            ray_end prev;
+            ray_end prev, prev_bounce;
             bool in_run = false;
             for (const T e : angles) {
                 if (std::isnan(e)) { in_run = false; continue; }
-                ray_end cur = shoot(scene, p, sd, along, e, t_max_one_way, column_sr);
+                ray_end bounce;
+                const ray_end cur = shoot(scene, p, sd, along, e, t_max_one_way, column_sr, bounce);
                 if (in_run) {
                     const double de = std::abs(cur.e - prev.e);
-                    if (prev.valid && cur.valid && same_surface(prev.surface, cur.surface)) {
-                        visit(tube_echo<T>{prev.t, cur.t, 0.5 * (prev.power_per_rad + cur.power_per_rad) * de, prev.surface});
-                    } else {
-                        if (prev.valid) visit(tube_echo<T>{prev.t, prev.t, 0.5 * prev.power_per_rad * de, prev.surface});
-                        if (cur.valid) visit(tube_echo<T>{cur.t, cur.t, 0.5 * cur.power_per_rad * de, cur.surface});
-                    }
+                    emit_tube(prev, cur, de, visit);
+                    if constexpr (bouncing) emit_tube(prev_bounce, bounce, de, visit);
                 }
                 prev = cur;
+                prev_bounce = bounce;
                 in_run = true;
             }
         }
     }
 
 private:
+    /// True when the scattering policy switches on one specular bounce (scattering/specular_bounce.hpp).
+    static constexpr bool bouncing = requires { S::specular_bounce_enabled; };
+
     struct ray_end {
         bool valid = false;
         double e = 0.0, t = 0.0, power_per_rad = 0.0;
-        hit<T> surface{};
+        hit<T> surface{}; ///< where the echo comes from
+        hit<T> via{};     ///< for a bounced path: where it bounced
     };
 
+    /// The energy between two adjacent rays: a tube spread over their times when both ends meet the same surface
+    /// (and bounced on the same surface), else each end's half as a point.
+    template <class Visitor> static void emit_tube(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
+        const bool joined = a.valid && b.valid && same_surface(a.surface, b.surface) && same_surface(a.via, b.via);
+        if (joined) {
+            visit(tube_echo<T>{a.t, b.t, 0.5 * (a.power_per_rad + b.power_per_rad) * de, a.surface});
+        } else {
+            if (a.valid) visit(tube_echo<T>{a.t, a.t, 0.5 * a.power_per_rad * de, a.surface});
+            if (b.valid) visit(tube_echo<T>{b.t, b.t, 0.5 * b.power_per_rad * de, b.surface});
+        }
+    }
+
     /// One ray: its two-way time and return power per radian of depression, or invalid if it meets nothing.
+    /// With the specular bounce on, `bounce` receives the echo of the bounced path (else it stays invalid).
     template <Scene Sc>
     [[nodiscard]] ray_end shoot(const Sc& scene, const pose<T>& p, side sd, T along, T e, T t_max_one_way,
-                             double column_sr) const {
+                                double column_sr, ray_end& bounce) const {
         ray_end r;
-        r.e = double(e);
+        r.e = bounce.e = double(e);
         const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
         const auto path = propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way);
         if (!path) return r;
@@ -208,14 +224,45 @@ private:
         const T sin_facet = -glm::dot(path->arrival, h.normal);
         const T sin_graze = std::min(T(1), -glm::dot(path->arrival, h.shading_normal));
         if (!(sin_facet > T(0)) || !(sin_graze > T(0))) return r;
-        const T w = beam_.weight(sd, along, e);
-        const T sigma = scattering_.backscatter(std::asin(sin_graze), h.material);
+        const T graze = std::asin(sin_graze);
+        const double w = source_level_ * double(beam_.weight(sd, along, e)) * column_sr;
+        const double sigma = double(scattering_.backscatter(graze, h.material));
         const double loss = double(path->spreading) * double(path->absorption) * double(path->absorption);
         r.valid = true;
         r.t = 2.0 * double(path->time_s);
-        r.power_per_rad = source_level_ * double(w) * double(sigma) * loss * column_sr / double(sin_facet);
+        r.power_per_rad = w * sigma * loss / double(sin_facet);
         r.surface = h;
+        if constexpr (bouncing) bounce_leg(scene, *path, graze, t_max_one_way, w, bounce);
         return r;
+    }
+
+    /// The second leg of a specular bounce: reflected about the shading normal, traced on with the time left.
+    /// Spreading continues the ray tube through the bounce (image source: 1/(r1 + r2)^2 in isovelocity water);
+    /// the echo carries the coherent intensity reflection coefficient twice (out and back).
+    template <Scene Sc>
+    void bounce_leg(const Sc& scene, const path<T>& first, T graze, T t_max_one_way, double weight, ray_end& out) const {
+        const hit<T>& h = first.surface;
+        const T remaining = t_max_one_way - first.time_s;
+        if (!(remaining > T(0))) return;
+        const vec3<T> n = h.shading_normal;
+        const vec3<T> d2 = first.arrival - T(2) * glm::dot(first.arrival, n) * n;
+        const T offset = std::max(T(1e-4), h.distance_m * T(1e-5)); // leave the surface without meeting it again
+        const auto second = propagation_.trace(ray<T>{h.point + h.normal * offset, d2}, scene, remaining);
+        if (!second) return;
+        const hit<T>& h2 = second->surface;
+        const T sin_facet = -glm::dot(second->arrival, h2.normal);
+        const T sin_graze = std::min(T(1), -glm::dot(second->arrival, h2.shading_normal));
+        if (!(sin_facet > T(0)) || !(sin_graze > T(0))) return;
+        const double reflection = double(scattering_.bounce_reflection(graze, h.material));
+        const double legs = 1.0 / std::sqrt(double(first.spreading)) + 1.0 / std::sqrt(double(second->spreading));
+        const double absorption = double(first.absorption) * double(second->absorption);
+        const double sigma = double(scattering_.backscatter(std::asin(sin_graze), h2.material));
+        out.valid = true;
+        out.t = 2.0 * (double(first.time_s) + double(second->time_s));
+        out.power_per_rad =
+            weight * sigma * reflection * reflection * absorption * absorption / (legs * legs) / double(sin_facet);
+        out.surface = h2;
+        out.via = h;
     }
 
     template <Scene Sc> void accumulate(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler) const {

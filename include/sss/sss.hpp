@@ -18,6 +18,7 @@
 #include "sss/scattering/concept.hpp"
 #include "sss/scattering/jackson.hpp"
 #include "sss/scattering/lambertian.hpp"
+#include "sss/scattering/specular_bounce.hpp"
 #include "sss/scattering/reflection.hpp"
 #include "sss/scattering/sediments.hpp"
 

@@ -82,6 +82,19 @@ public:
     [[nodiscard]] const jackson_coefficients<double>& coefficients(std::uint32_t id) const noexcept { return coefficients_[index(id)]; }
     /// The backscatter table of a material id.
     [[nodiscard]] const jackson_backscatter_table<T>& table(std::uint32_t id) const noexcept { return tables_[index(id)]; }
+    /// Coherent (specular) intensity reflection coefficient |R|^2 of a material at grazing angle graze_rad:
+    /// the Rayleigh coefficient of the fluid sediment (rho, nu, delta) times the Kirchhoff roughness factor
+    /// exp(-2 k^2 h^2 sin^2 theta) squared, h the RMS height of the roughness finer than patch_m (m; e.g. the
+    /// scene's cell size: coarser relief is the scene's own geometry). In [0, 1]: a bounce never adds energy.
+    [[nodiscard]] T reflection(T graze_rad, std::uint32_t material, T patch_m) const noexcept {
+        const sediment_params<T>& p = materials_[index(material)];
+        const double k = two_pi_v<double> * double(f_hz_) / double(c_mps_);
+        const double h = roughness_rms_height_m(double(p.w2_cm4), double(p.gamma), two_pi_v<double> / double(patch_m));
+        const double r = std::abs(rayleigh_reflection(p, graze_rad));
+        const double f = coherent_roughness_factor(k, h, double(graze_rad));
+        return static_cast<T>(std::min(1.0, r * r * f * f));
+    }
+
     [[nodiscard]] T frequency_hz() const noexcept { return f_hz_; }
     [[nodiscard]] T sound_speed_mps() const noexcept { return c_mps_; }
 

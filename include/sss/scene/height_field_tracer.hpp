@@ -376,14 +376,7 @@ template <Real T>
             w.above = true; // f > 0 all through the skipped block
             f_known = false;
             // Go up only into a parent block not tested yet: the old parent failed with this same exit.
-#if SSS_V == 1
-            if (level < top_level) ++level;
-#elif SSS_V == 2
-            { const std::int32_t moved = (w.ix ^ old_ix) | (w.iy ^ old_iy);
-              if (level < top_level && (moved >> (level + 1)) != 0) { ++level; if (level < top_level && (moved >> (level + 1)) != 0) ++level; } }
-#else
             if (level < top_level && (((w.ix ^ old_ix) | (w.iy ^ old_iy)) >> (level + 1)) != 0) ++level;
-#endif
             continue;
         }
 

@@ -1,0 +1,154 @@
+#pragma once
+/// \file
+/// Where a curved ray arc meets a Scene: the arc is handed to the scene as straight chords, and the chord's
+/// hit is moved onto the arc.
+///
+/// The arc (ray_arc.hpp) lies in the vertical plane of the ray. At arc length s from its start it is offset by
+///     x(s)  = l(s) cos(phi0 - h),   dz(s) = l(s) sin(phi0 - h),   h = kappa s / 2,   l(s) = s sin(h)/h
+/// (horizontal range and depth increase, m; l is the chord from the start, which runs along the mean
+/// inclination), and its inclination is phi(s) = phi0 - kappa s; kappa = cos(phi0) g / c0 (1/m) is its signed
+/// curvature. A chord spanning arc length ds of a circle of curvature k = |kappa| has sagitta (the largest
+/// distance between arc and chord)
+///     e = (1 - cos(k ds / 2)) / k  ~  k ds^2 / 8,
+/// so chords with ds <= (4/k) asin(sqrt(k tol / 2)) keep every point of the arc within tol of a chord
+/// (chord_arc_length_m). A 1 mm tolerance in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives
+/// 2.5 m chords; under a 0.017 1/s gradient, 27 m.
+///
+/// The scene's hit on a chord lies on the facet the chord met, within tol of the arc. The arc meets that facet's
+/// plane n . (X - H) = 0 (n the facet normal, H the chord's hit) where f(s) = n . (X(s) - H) vanishes; Newton's
+/// method, f'(s) = n . t(s) with t the unit tangent, converges from the chord's estimate in two or three steps
+/// (the start is within tol / sin(graze) of the root and the error squares each step). On a planar surface
+/// (the flat seabed, a triangle) the refined point lies on the surface to rounding, so hit position and arc
+/// length are exact, not merely within tol; what tol still bounds is which facet is found: near an edge, or
+/// where the arc grazes a surface the chord passes above or below, the answer may differ by up to tol.
+/// A straight arc (kappa = 0) is one chord along the ray itself, and its hit is used as it is.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+
+#include "sss/core/hit.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/propagation/ray_arc.hpp"
+#include "sss/scene/concept.hpp"
+
+namespace sss::propagation {
+
+/// Where an arc lies in the world. Plain data.
+template <Real T> struct arc_frame {
+    vec3<T> start{};      ///< world position of the arc's start (m)
+    vec3<T> horizontal{}; ///< unit horizontal direction of travel (world, z = 0)
+};
+
+/// A point of an arc relative to the arc's start. Plain data.
+template <Real T> struct arc_offset {
+    T range_m{};     ///< horizontal distance from the start (m)
+    T depth_m{};     ///< depth increase from the start (m, positive down)
+    T sin_incline{}; ///< sine of the inclination below horizontal there
+    T cos_incline{}; ///< its cosine (>= 0)
+};
+
+/// The offset at arc length arc_m (m) of an arc starting at inclination phi0 (given as sin_phi0, cos_phi0) with
+/// signed curvature kappa_per_m (1/m): the closed forms of the file comment, with no cancellation as kappa -> 0.
+template <Real T>
+[[nodiscard]] inline arc_offset<T> offset_along_arc(T sin_phi0, T cos_phi0, T kappa_per_m, T arc_m) noexcept {
+    const T h = kappa_per_m * arc_m / T(2);
+    const T sh = std::sin(h), ch = std::cos(h);
+    const T chord = arc_m * arc_detail::sinc(h);
+    const T sin_mean = sin_phi0 * ch - cos_phi0 * sh; // sin(phi0 - h)
+    const T cos_mean = cos_phi0 * ch + sin_phi0 * sh; // cos(phi0 - h)
+    // phi = phi0 - 2h: rotate the mean direction by h once more.
+    return {chord * cos_mean, chord * sin_mean, sin_mean * ch - cos_mean * sh, cos_mean * ch + sin_mean * sh};
+}
+
+/// The longest arc length (m) a chord may span on a circle of curvature |curvature_per_m| (1/m) so that the arc
+/// stays within tolerance_m (m) of it; +infinity on a straight line. At most half the circle.
+template <Real T> [[nodiscard]] inline T chord_arc_length_m(T curvature_per_m, T tolerance_m) noexcept {
+    const T k = std::abs(curvature_per_m);
+    if (k == T(0)) return std::numeric_limits<T>::infinity();
+    const T q = k * tolerance_m / T(2);
+    if (!(q < T(1))) return pi_v<T> / k;
+    return T(4) * std::asin(std::sqrt(q)) / k;
+}
+
+/// A scene hit on an arc: what the scene reported, moved onto the arc, and where along the arc it lies.
+template <Real T> struct arc_hit {
+    hit<T> surface{};     ///< point on the arc; distance_m is the arc length from the arc's start (m)
+    T arc_m{};            ///< arc length from the arc's start to the hit (m)
+    arc_offset<T> at{};   ///< the arc's offset at the hit
+};
+
+/// The first hit of the scene along the arc between arc lengths s_begin_m and s_end_m (m), found through chords
+/// of sagitta at most tolerance_m (m) and refined onto the arc (file comment). `chords` counts the calls to
+/// scene.intersect. s_end_m may be +infinity only for a straight arc (zero curvature).
+template <Scene S, Real T>
+[[nodiscard]] std::optional<arc_hit<T>> intersect_arc(const S& scene, const ray_arc<T>& arc, const arc_frame<T>& frame,
+                                                      T s_begin_m, T s_end_m, T tolerance_m, std::size_t& chords) {
+    if (!(s_end_m > s_begin_m)) return std::nullopt;
+    const T sin0 = std::sin(arc.start_incline_rad);
+    const T cos0 = std::max(std::cos(arc.start_incline_rad), T(0));
+    const T kappa = cos0 / arc.start_speed_mps * arc.gradient_per_s;
+    const vec3<T> down{T(0), T(0), T(-1)};
+    const auto world = [&](const arc_offset<T>& o) { return frame.start + frame.horizontal * o.range_m + down * o.depth_m; };
+    const T eps = std::numeric_limits<T>::epsilon();
+
+    if (kappa == T(0)) { // one chord: the ray itself
+        const arc_offset<T> o = offset_along_arc(sin0, cos0, kappa, s_begin_m);
+        const ray<T> chord{world(o), frame.horizontal * cos0 + down * sin0};
+        ++chords;
+        const auto h = scene.intersect(chord, s_end_m - s_begin_m);
+        if (!h) return std::nullopt;
+        arc_hit<T> out{*h, s_begin_m + h->distance_m, offset_along_arc(sin0, cos0, kappa, s_begin_m + h->distance_m)};
+        out.surface.distance_m = out.arc_m;
+        return out;
+    }
+
+    const T step_max = chord_arc_length_m(kappa, tolerance_m);
+    const T span = s_end_m - s_begin_m;
+    const T pieces = std::min(std::ceil(span / step_max), T(1 << 20));
+    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(pieces));
+    const T ds = span / static_cast<T>(n);
+    vec3<T> p = world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
+    for (std::size_t k = 0; k < n; ++k) {
+        const T s_lo = s_begin_m + ds * static_cast<T>(k);
+        const T s_hi = k + 1 == n ? s_end_m : s_begin_m + ds * static_cast<T>(k + 1);
+        const vec3<T> q = world(offset_along_arc(sin0, cos0, kappa, s_hi));
+        const vec3<T> d = q - p;
+        const T len = std::sqrt(glm::dot(d, d));
+        if (!(len > T(0))) { p = q; continue; }
+        // A hit exactly on a chord joint must not slip between the two chords: reach a few roundings past the end.
+        const T scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), len});
+        ++chords;
+        const auto h = scene.intersect(ray<T>{p, d / len}, len + T(16) * eps * scale);
+        if (h) {
+            // Newton on f(s) = n . (X(s) - H) from the chord's estimate, kept within the chord's neighbourhood.
+            const vec3<T> n_hat = h->normal;
+            const T n_h = glm::dot(n_hat, frame.horizontal);
+            const T n_d = -n_hat.z; // n . (downward unit)
+            const T base = glm::dot(n_hat, frame.start - h->point);
+            T s = s_lo + (s_hi - s_lo) * std::min(h->distance_m / len, T(1));
+            const T lo = std::max(s_lo - (s_hi - s_lo), T(0)), hi = s_hi + (s_hi - s_lo);
+            arc_offset<T> o = offset_along_arc(sin0, cos0, kappa, s);
+            for (int it = 0; it < 8; ++it) {
+                const T f = base + o.range_m * n_h + o.depth_m * n_d;
+                const T df = o.cos_incline * n_h + o.sin_incline * n_d;
+                if (!(std::abs(df) > T(0))) break;
+                const T next = std::clamp(s - f / df, lo, hi);
+                const T step = next - s;
+                s = next;
+                o = offset_along_arc(sin0, cos0, kappa, s);
+                if (!(std::abs(step) > T(4) * eps * std::max(s, T(1)))) break;
+            }
+            arc_hit<T> out{*h, s, o};
+            out.surface.point = world(o);
+            out.surface.distance_m = s;
+            return out;
+        }
+        p = q;
+    }
+    return std::nullopt;
+}
+
+} // namespace sss::propagation

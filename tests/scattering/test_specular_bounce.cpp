@@ -1,0 +1,95 @@
+// One specular bounce: a compile-time choice that changes nothing where the reflected ray escapes, adds the
+// bounced path's echo at the summed travel time where it meets something, and never adds energy.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include <sss/sss.hpp>
+#include <sss/scene/height_field.hpp>
+
+namespace {
+
+using jackson_d = sss::scattering::jackson<double>;
+using bouncing_d = sss::scattering::specular_bounce<jackson_d>;
+
+jackson_d sand() {
+    return jackson_d(100000.0, 1500.0, sss::scattering::sediment_preset<double>(sss::scattering::sediment::medium_sand));
+}
+
+template <class S>
+using sim_t = sss::simulator<S, sss::propagation::straight<double>, sss::beam::ideal_fan<double>, sss::motion::straight_line<double>>;
+
+double total(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+
+} // namespace
+
+static_assert(sss::Reflecting<jackson_d> && sss::Scattering<bouncing_d>);
+static_assert(!sss::Reflecting<sss::scattering::lambertian<double>>);
+
+TEST_CASE("the coherent reflection coefficient lies in [0, 1] and falls with roughness finer than the patch") {
+    const auto j = sand();
+    for (double g = 0.0; g <= 1.5708; g += 0.01) {
+        const double r = j.reflection(g, 0, 0.1);
+        CHECK(r >= 0.0);
+        CHECK(r <= 1.0);
+        CHECK(j.reflection(g, 0, 1.0) <= r + 1e-15); // a larger patch leaves more roughness to reduce it
+    }
+}
+
+TEST_CASE("with nothing for the reflected ray to meet, the bounce leaves the render unchanged") {
+    sss::receiver_params rx;
+    rx.max_range_m = 40;
+    const sss::scene::flat_seabed<double> seabed;
+    const sim_t<jackson_d> plain(sand(), {}, {}, {}, rx);
+    const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, {}, {}, rx);
+    const auto a = plain.ping(seabed, 0), b = bouncing.ping(seabed, 0);
+    CHECK(a.starboard == b.starboard);
+    CHECK(a.port == b.port);
+}
+
+TEST_CASE("a bounce off the seabed onto a raised bank adds echoes at the summed travel time and never adds energy") {
+    // Flat seabed at z = 0 with a bank rising steeply to 6 m beyond 30 m on the starboard side (east): rays that
+    // bounce off the flat part travel on to the bank's face and come back the same way, later than the direct echo
+    // from the same face.
+    const std::size_t nx = 801, ny = 401;
+    const double cell = 0.1;
+    std::vector<double> h(nx * ny, 0.0);
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix) {
+            const double x = -20.0 + double(ix) * cell;
+            h[iy * nx + ix] = x > 30.0 ? std::min(6.0, (x - 30.0) * 3.0) : 0.0;
+        }
+    const sss::scene::height_field<double> bank(nx, ny, cell, {-20.0, -20.0}, h);
+    sss::receiver_params rx;
+    rx.max_range_m = 60;
+    const sim_t<jackson_d> plain(sand(), {}, sss::beam::ideal_fan<double>({1.0, 80.0, 40.0}), {}, rx);
+    const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, sss::beam::ideal_fan<double>({1.0, 80.0, 40.0}), {}, rx);
+    const auto a = plain.ping(bank, 0), b = bouncing.ping(bank, 0);
+    // Port sees only flat seabed: identical.
+    CHECK(a.port == b.port);
+    // Starboard gains energy only from bounced paths: every sample at least the plain one.
+    double extra = 0;
+    std::size_t first_extra = b.starboard.size();
+    for (std::size_t k = 0; k < b.starboard.size(); ++k) {
+        CHECK(b.starboard[k] >= a.starboard[k] * (1 - 1e-12));
+        if (b.starboard[k] > a.starboard[k] * (1 + 1e-9)) {
+            first_extra = std::min(first_extra, k);
+            extra += b.starboard[k] - a.starboard[k];
+        }
+    }
+    CHECK(extra > 0);
+    // A path bounced once off the plane z = 0 is as long as the straight line from the towfish's mirror image
+    // (z = -10 m) to where it ends; on the bank (x >= 30 m, z >= 0) that is at least the distance from the image to
+    // the bank's foot, sqrt(30^2 + 10^2): no bounced echo can arrive earlier.
+    const double bounce_path = std::sqrt(30.0 * 30.0 + 10.0 * 10.0);
+    const double t_bounce = 2.0 * bounce_path / 1500.0;
+    CHECK(double(first_extra) * plain.dt_s() >= t_bounce - 2 * plain.dt_s());
+    // Energy never increases through a bounce: the bounced echoes carry less than the direct echo of the bank.
+    double bank_direct = 0;
+    for (std::size_t k = std::size_t(t_bounce / plain.dt_s()) - 5; k < a.starboard.size(); ++k) bank_direct += a.starboard[k];
+    CHECK(extra < bank_direct);
+    CHECK(total(b.starboard) > total(a.starboard));
+}
