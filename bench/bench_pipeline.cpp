@@ -317,7 +317,8 @@ void run_table(const table_options& opt) {
     std::FILE* out = opt.to_stderr ? stderr : stdout;
     std::fprintf(out, "\nSpeed against error%s: flat seabed z = 0, towfish 10 m up, 50 m/side, 20 kHz sampling,\n"
                       "Lambert -27 dB, 1500 m/s, 60 dB/km; starboard line vs the quadrature oracle, samples within\n"
-                      "40 dB of its peak; us/ping: processor time, best of 5 batches, one thread.\n",
+                      "40 dB of its peak (at/of: the sample of the worst error / samples compared); us/ping: processor\n"
+                      "time, best of 5 batches, one thread.\n",
                  quick ? " (quick: default scene, 3 densities)" : "");
     std::vector<row> rows;
     table_scene<default_fan>(rows, out, "default fan", "ideal fan 1 x 50 deg at 20 deg", 100e-6, quick);

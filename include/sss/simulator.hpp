@@ -44,7 +44,7 @@ namespace sss {
 
 /// How many rays a ping launches.
 struct ray_density {
-    std::size_t along = 8;         ///< along-track columns per side
+    std::size_t along = 8;         ///< along-track columns per side, at least (a beam may ask for more: Beam concept)
     std::size_t across = 0;        ///< rays per column; 0: `per_sample` rays per time sample of the column's span
     double per_sample = 1.0;       ///< rays per time sample when `across` is 0
 };
@@ -158,7 +158,7 @@ public:
         column_density cd;
         if (density_.across != 0) cd.rays = density_.across;
         else cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
-        const std::size_t n_along = density_.along;
+        const std::size_t n_along = along_columns(ext, sd);
         const double a0 = ext.along_min_rad, a1 = ext.along_max_rad;
         std::vector<T> angles;
         for (std::size_t j = 0; j < n_along; ++j) {
@@ -185,6 +185,17 @@ public:
                 in_run = true;
             }
         }
+    }
+
+    /// Along-track columns on one side: the requested count, or more where the beam's pattern needs them.
+    [[nodiscard]] std::size_t along_columns(const beam_extent<T>& ext, side sd) const noexcept {
+        std::size_t n = density_.along;
+        if constexpr (AlongResolvedBeam<B>) {
+            const double step = double(beam_.along_resolution_rad(sd));
+            const double width = double(ext.along_max_rad) - double(ext.along_min_rad);
+            if (step > 0.0 && width > 0.0) n = std::max(n, static_cast<std::size_t>(std::min(4096.0, std::ceil(width / step))));
+        }
+        return n;
     }
 
 private:

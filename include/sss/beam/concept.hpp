@@ -16,7 +16,9 @@
 /// | `b.weight(side, along, depression)`| T                 | two-way intensity weight: transmit power pattern times    |
 /// |                                    |                   | receive power pattern (linear, 1 on the maximum axis)     |
 ///
-/// `weight` is `noexcept` and zero outside the extent.
+/// `weight` is `noexcept` and zero outside the extent. A beam whose pattern has structure along track may also
+/// provide `b.along_resolution_rad(side)` (T, rad): the along-track angular step that resolves it; the simulator
+/// then launches at least extent / step columns (see `ray_density`).
 
 #include <cmath>
 #include <concepts>
@@ -43,6 +45,12 @@ template <class B>
 concept Beam = Real<typename B::value_type> && requires(const B& b, side s, typename B::value_type a) {
     { b.extent(s) } -> std::same_as<beam_extent<typename B::value_type>>;
     { b.weight(s, a, a) } noexcept -> std::same_as<typename B::value_type>;
+};
+
+/// True when a beam states the along-track angular step that resolves its pattern.
+template <class B>
+concept AlongResolvedBeam = Beam<B> && requires(const B& b, side s) {
+    { b.along_resolution_rad(s) } -> std::same_as<typename B::value_type>;
 };
 
 } // namespace sss

@@ -123,8 +123,18 @@ public:
         const vec3<T> c = direction_cosines(along_rad, depression_rad);
         if (c.z <= T(0)) return T(0);
         const T tx = tx_along_.amplitude(c.x) * tx_vertical_.amplitude(c.y);
+        if (!p_.receive) return (tx * tx) * (tx * tx); // the same array transmits and receives
         const T rx = rx_along_.amplitude(c.x) * rx_vertical_.amplitude(c.y);
         return (tx * tx) * (rx * rx);
+    }
+
+    /// Along-track angular step (rad) that resolves the pattern: a third of the null spacing lambda / L of the
+    /// longer along-track aperture L (transmit or receive), so that ray columns sample every lobe.
+    [[nodiscard]] T along_resolution_rad(side) const noexcept {
+        auto length = [](const array_axis<T>& a) { return T(a.count - 1) * a.pitch_m + a.element_m; };
+        T L = length(p_.transmit.along);
+        if (p_.receive) L = std::max(L, length(p_.receive->along));
+        return wavelength_m_ / L / T(3);
     }
 
 private:
