@@ -102,6 +102,7 @@ public:
             cylinders_.emplace_back(where.point(c.end0_m()), where.point(c.end1_m()), c.radius_m(), c.ids());
         for (const sphere<T>& s : spheres_) bounds_.expand(s.bounds());
         for (const cylinder<T>& c : cylinders_) bounds_.expand(c.bounds());
+        padded_ = detail::padded(bounds_);
         sphere_.center_m = bounds_.center();
         for (const sphere<T>& s : spheres_)
             sphere_.radius_m = std::max(sphere_.radius_m, glm::length(s.center_m() - sphere_.center_m) + s.radius_m());
@@ -125,10 +126,11 @@ public:
     /// Highest world z of the object (m).
     [[nodiscard]] T top_m() const noexcept { return bounds_.hi.z; }
 
-    /// Nearest hit over the primitives with 0 < distance <= t_max_m.
+    /// Nearest hit over the primitives with 0 < distance <= t_max_m (behind a test of the bounding box).
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         std::optional<hit<T>> best;
-        if (!crosses_bounds(r, t_max_m)) return best;
+        T t_entry;
+        if (!detail::hits_box(padded_, detail::box_ray<T>(r), t_max_m, t_entry)) return best;
         T t_best = t_max_m;
         for (const sphere<T>& s : spheres_)
             if (auto h = s.intersect(r, t_best)) {
@@ -144,20 +146,11 @@ public:
     }
 
 private:
-    /// Whether the ray's piece [0, t_max] meets the bounding sphere (a conservative early out).
-    [[nodiscard]] bool crosses_bounds(const ray<T>& r, T t_max_m) const noexcept {
-        const vec3<T> f = r.origin - sphere_.center_m;
-        const T b = glm::dot(f, r.direction);
-        const T rad = sphere_.radius_m * (T(1) + T(64) * std::numeric_limits<T>::epsilon());
-        const T t = std::clamp(-b, T(0), t_max_m);
-        const vec3<T> g = f + r.direction * t; // nearest point of the piece to the centre
-        return glm::dot(g, g) <= rad * rad;
-    }
-
     std::vector<sphere<T>> spheres_;
     std::vector<cylinder<T>> cylinders_;
     rigid_transform<T> placement_;
     box<T> bounds_{};
+    box<T> padded_{}; // bounds_ grown by a few ulps: rounding in the box test never culls a hit
     bounding_sphere<T> sphere_{};
 };
 

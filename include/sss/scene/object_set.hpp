@@ -43,29 +43,6 @@ template <Real T> struct bvh_node {
     std::uint8_t axis = 0;   ///< split axis of an inner node
 };
 
-/// A ray prepared for many box tests: origin and reciprocal direction (+-inf where a component is 0).
-template <Real T> struct box_ray {
-    vec3<T> origin;
-    vec3<T> inv;
-    explicit box_ray(const ray<T>& r) noexcept
-        : origin(r.origin), inv(T(1) / r.direction.x, T(1) / r.direction.y, T(1) / r.direction.z) {}
-};
-
-/// Whether the ray's piece [0, t_max] meets box b; the entry distance (>= 0) in t_entry.
-template <Real T> [[nodiscard]] inline bool hits_box(const box<T>& b, const box_ray<T>& r, T t_max, T& t_entry) noexcept {
-    T t0 = T(0), t1 = t_max;
-    for (int i = 0; i < 3; ++i) {
-        T a = (b.lo[i] - r.origin[i]) * r.inv[i];
-        T c = (b.hi[i] - r.origin[i]) * r.inv[i];
-        if (a > c) std::swap(a, c);
-        // NaN (0 x inf: the origin in the face plane, the ray parallel to it) leaves the interval as is.
-        t0 = a > t0 ? a : t0;
-        t1 = c < t1 ? c : t1;
-    }
-    t_entry = t0;
-    return t0 <= t1;
-}
-
 /// Item tags: which primitive array, and the index in it.
 inline constexpr std::uint32_t cylinder_tag = 0x80000000u;
 
@@ -84,6 +61,7 @@ public:
             for (const sphere<T>& s : o.spheres()) spheres_.push_back(s);
             for (const cylinder<T>& c : o.cylinders()) cylinders_.push_back(c);
             bounds_.expand(o.bounds());
+            object_boxes_.push_back(detail::padded(o.bounds()));
         }
         sss::detail::require(cylinders_.size() < detail::cylinder_tag && spheres_.size() < detail::cylinder_tag,
                              "object_set.objects", "too many primitives (at most 2^31 of each kind)");
@@ -140,15 +118,18 @@ public:
                                              : spheres_[best].intersect(r, t_best);
     }
 
-    /// The same by testing every object (each behind its own bounding sphere): the reference.
+    /// The same by testing every object (each behind its own bounding box): the reference.
     [[nodiscard]] std::optional<hit<T>> intersect_brute_force(const ray<T>& r, T t_max_m) const noexcept {
         std::optional<hit<T>> best;
-        T t_best = t_max_m;
-        for (const object<T>& o : objects_)
-            if (auto h = o.intersect(r, t_best)) {
+        const detail::box_ray<T> br(r);
+        T t_best = t_max_m, t_entry;
+        for (std::size_t i = 0; i < objects_.size(); ++i) {
+            if (!detail::hits_box(object_boxes_[i], br, t_best, t_entry)) continue;
+            if (auto h = objects_[i].intersect(r, t_best)) {
                 t_best = h->distance_m;
                 best = h;
             }
+        }
         return best;
     }
 
@@ -164,24 +145,15 @@ private:
         std::uint32_t item;
     };
 
-    [[nodiscard]] static box<T> padded(box<T> b) noexcept {
-        const T scale = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
-                                  std::abs(b.hi.y), std::abs(b.hi.z), T(1)});
-        const vec3<T> pad(T(16) * std::numeric_limits<T>::epsilon() * scale);
-        b.lo -= pad;
-        b.hi += pad;
-        return b;
-    }
-
     void build() {
         std::vector<build_item> work;
         work.reserve(primitive_count());
         for (std::size_t i = 0; i < spheres_.size(); ++i) {
-            const box<T> b = padded(spheres_[i].bounds());
+            const box<T> b = detail::padded(spheres_[i].bounds());
             work.push_back({b, b.center(), static_cast<std::uint32_t>(i)});
         }
         for (std::size_t i = 0; i < cylinders_.size(); ++i) {
-            const box<T> b = padded(cylinders_[i].bounds());
+            const box<T> b = detail::padded(cylinders_[i].bounds());
             work.push_back({b, b.center(), static_cast<std::uint32_t>(i) | detail::cylinder_tag});
         }
         if (work.empty()) return;
@@ -286,6 +258,7 @@ private:
     }
 
     std::vector<object<T>> objects_;
+    std::vector<box<T>> object_boxes_; // padded bounds of each object, contiguous for the brute-force search
     std::vector<sphere<T>> spheres_;
     std::vector<cylinder<T>> cylinders_;
     std::vector<std::uint32_t> items_;

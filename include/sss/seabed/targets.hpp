@@ -81,12 +81,12 @@ template <Real T>
     const std::size_t n = s_m.size();
     std::vector<std::size_t> v;
     if (n == 0) return v;
-    // Is (a, b, c) a right turn or straight, i.e. is b on or below the chord from a to c?
-    auto not_above = [&](std::size_t a, std::size_t b, std::size_t c) {
-        const double cross = (double(s_m[b]) - double(s_m[a])) * (double(z_m[c]) - double(z_m[a])) -
-                             (double(z_m[b]) - double(z_m[a])) * (double(s_m[c]) - double(s_m[a]));
-        return cross >= 0.0;
+    // > 0 when b lies below the chord from a to c, 0 on it, < 0 above it.
+    auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
+        return (double(s_m[b]) - double(s_m[a])) * (double(z_m[c]) - double(z_m[a])) -
+               (double(z_m[b]) - double(z_m[a])) * (double(s_m[c]) - double(s_m[a]));
     };
+    auto not_above = [&](std::size_t a, std::size_t b, std::size_t c) { return turn(a, b, c) >= 0.0; };
     if (!(s_m[n - 1] - s_m[0] > max_span_m)) { // unlimited reach: the upper hull by the monotone chain
         for (std::size_t i = 0; i < n; ++i) {
             while (v.size() >= 2 && not_above(v[v.size() - 2], v.back(), i)) v.pop_back();
@@ -100,8 +100,11 @@ template <Real T>
         std::size_t best = i + 1;
         for (std::size_t j = i + 2; j < n && s_m[j] - s_m[i] <= max_span_m; ++j)
             if (not_above(i, best, j)) best = j; // j at least as steep as best: take the farther
-        if (v.size() >= 2 && not_above(v[v.size() - 2], v.back(), best)) v.back() = best; // collinear support
-        else v.push_back(best);
+        // A support exactly collinear with its neighbours is dropped when the chord stays within reach.
+        if (v.size() >= 2 && turn(v[v.size() - 2], v.back(), best) == 0.0 && s_m[best] - s_m[v[v.size() - 2]] <= max_span_m)
+            v.back() = best;
+        else
+            v.push_back(best);
         i = best;
     }
     return v;
@@ -200,7 +203,7 @@ template <Real T> struct pipeline_params {
 
 /// A stretch where the pipe does not touch the seabed.
 template <Real T> struct free_span {
-    T start_m{}, end_m{}; ///< along-route distances of its supports (m)
+    T start_m{}, end_m{}; ///< along-route distances where the pipe leaves and meets the seabed (m)
     T clearance_m{};      ///< largest height of the pipe above where it would rest on the seabed (m)
 };
 
@@ -213,8 +216,9 @@ template <Real T> struct pipeline_layout {
 /// Lays a pipe along the route: its axis is the taut string (reach max_span_m) over the heights at which a
 /// disc of the pipe's radius rests on the seabed profile along the route; it therefore touches the seabed
 /// where supported and spans depressions in straight lines. Straight runs are merged (tolerance_m) and the
-/// route's vertices are kept as axis vertices. Free spans are reported where the axis rises above the
-/// resting height by more than max(tolerance_m, 1 mm).
+/// route's vertices are kept as axis vertices. A free span is a run of samples where the axis lies above
+/// the resting height by more than max(tolerance_m, 1 mm); it is reported from the last sample before the
+/// run to the first after it.
 template <Real T, HeightFunction<T> F>
 [[nodiscard]] pipeline_layout<T> lay_pipeline(const pipeline_params<T>& p, const F& seabed_height_m) {
     const auto& route = p.route_m;
@@ -274,10 +278,20 @@ template <Real T, HeightFunction<T> F>
     const T span_floor = std::max(p.tolerance_m, T(0.001));
     for (std::size_t k = 0; k + 1 < sup.size(); ++k) {
         const std::size_t a = sup[k], b = sup[k + 1];
-        T gap = T(0);
-        for (std::size_t i = a + 1; i < b; ++i)
-            gap = std::max(gap, rest[a] + (rest[b] - rest[a]) * (s[i] - s[a]) / (s[b] - s[a]) - rest[i]);
-        if (gap > span_floor) out.spans.push_back({s[a], s[b], gap});
+        free_span<T> run{};
+        bool open = false;
+        for (std::size_t i = a + 1; i <= b; ++i) {
+            const T gap = i == b ? T(0) : rest[a] + (rest[b] - rest[a]) * (s[i] - s[a]) / (s[b] - s[a]) - rest[i];
+            if (gap > span_floor) {
+                if (!open) run = {s[i - 1], s[i], gap};
+                open = true;
+                run.clearance_m = std::max(run.clearance_m, gap);
+            } else if (open) {
+                run.end_m = s[i];
+                out.spans.push_back(run);
+                open = false;
+            }
+        }
     }
     // Merge supports while the dropped ones stay within tolerance of the chord.
     std::vector<T> kept_s;

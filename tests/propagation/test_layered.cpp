@@ -1,0 +1,571 @@
+// Layered water: the propagation policy that refracts rays through a sound-speed profile, checked against the
+// closed-form constant-gradient arc, the straight-ray policy in uniform water, finite differences of the ray
+// family (ray-tube spreading), reciprocity, the long-double layered oracle, and the hard cases (ducts, horizontal
+// launches, a turning point on the seabed, a thousand thin layers, the sea surface).
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sss/core/error.hpp"
+#include "sss/propagation/layered.hpp"
+#include "sss/propagation/straight.hpp"
+#include "sss/scene/flat_seabed.hpp"
+#include "support/layered_oracle.hpp"
+
+using namespace sss;
+using namespace sss::propagation;
+using ld = long double;
+
+namespace {
+
+constexpr double deg = 3.14159265358979323846 / 180;
+
+double rel(double got, long double want) {
+    return want == 0 ? std::abs(got) : static_cast<double>(std::abs((static_cast<ld>(got) - want) / want));
+}
+
+// A ray from depth depth_m below a surface at world z surface_z, going down at grazing angle graze (rad; negative
+// is up) towards azimuth az (rad, from +x).
+template <class T> ray<T> launch(T surface_z, T depth_m, double graze, double az) {
+    return ray<T>{vec3<T>{T(3), T(-2), surface_z - depth_m},
+                  vec3<T>{T(std::cos(graze) * std::cos(az)), T(std::cos(graze) * std::sin(az)), T(-std::sin(graze))}};
+}
+
+template <class T> T horizontal_distance(const vec3<T>& a, const vec3<T>& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// A plane n . X = d, hit from either side; geometry everywhere below top (m).
+template <class T> struct plane_scene {
+    using value_type = T;
+    vec3<T> n{T(0), T(0), T(1)};
+    T d{};
+    T top = std::numeric_limits<T>::infinity();
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max) const {
+        const T denom = glm::dot(n, r.direction);
+        if (denom == T(0)) return std::nullopt;
+        const T s = (d - glm::dot(n, r.origin)) / denom;
+        if (!(s > T(0) && s <= t_max)) return std::nullopt;
+        hit<T> h;
+        h.distance_m = s;
+        h.point = r.at(s);
+        h.normal = denom < T(0) ? n : -n;
+        h.shading_normal = h.normal;
+        return h;
+    }
+    [[nodiscard]] T seabed_height_m(T, T) const { return -std::numeric_limits<T>::infinity(); }
+    [[nodiscard]] T top_m() const { return top; }
+};
+static_assert(Scene<plane_scene<double>>);
+
+// Records every chord it is handed and hits nothing.
+struct recording_scene {
+    using value_type = double;
+    struct chord { vec3<double> a, b; };
+    mutable std::vector<chord> chords;
+    [[nodiscard]] std::optional<hit<double>> intersect(const ray<double>& r, double t_max) const {
+        chords.push_back({r.origin, r.at(t_max)});
+        return std::nullopt;
+    }
+    [[nodiscard]] double seabed_height_m(double, double) const { return -1e9; }
+    [[nodiscard]] double top_m() const { return 1e9; }
+};
+
+// Signed textbook constant-gradient arc from inclination phi0 (+ down) over a depth change dz != 0: range, time, arc
+// length, end inclination. x = (sin phi0 - sin phi1)/kappa, s = (phi0 - phi1)/kappa, t = (atanh sin phi0 - atanh
+// sin phi1)/g, with kappa = g cos(phi0)/c0; the ray arrives moving the way dz points, turned or not.
+struct textbook { ld x, t, s, phi1; };
+textbook textbook_arc(ld c0, ld g, ld phi0, ld dz) {
+    const ld xi = std::cos(phi0) / c0, c1 = c0 + g * dz, cos1 = xi * c1;
+    ld sin1 = std::sqrt((1 - cos1) * (1 + cos1));
+    if (dz < 0) sin1 = -sin1;
+    const ld phi1 = std::atan2(sin1, cos1), kappa = xi * g;
+    return {(std::sin(phi0) - sin1) / kappa, (std::atanh(std::sin(phi0)) - std::atanh(sin1)) / g, (phi0 - phi1) / kappa, phi1};
+}
+
+sss_test::layered_water water_of(const sound_speed_profile<double>& p, double seabed_depth,
+                                 std::function<double(double)> alpha = {}) {
+    sss_test::layered_water w;
+    w.depth_m.assign(p.depths_m().begin(), p.depths_m().end());
+    w.speed_mps.assign(p.speeds_mps().begin(), p.speeds_mps().end());
+    w.seabed_depth_m = seabed_depth;
+    w.absorption_db_per_km = std::move(alpha);
+    return w;
+}
+
+// The thermocline used below: 1500 m/s at the surface, 1499 at 44 m, down 20 m/s to 54 m, then +0.0165 1/s.
+sound_speed_profile<double> thermocline() { return {{0, 44, 54, 200}, {1500, 1499, 1479, 1481.409}}; }
+
+} // namespace
+
+TEST_CASE("a constant-gradient layer reproduces the closed-form arc (range, time, path, grazing) to 1e-9") {
+    // c0 1500 m/s at the source (10 m), g 0.1 1/s, 20 deg down to a seabed 100 m below: the reference example.
+    for (int split : {1, 100}) {
+        std::vector<double> d, c;
+        for (int k = 0; k <= split; ++k) { d.push_back(10 + 1000.0 * k / split); c.push_back(1500 + 100.0 * k / split); }
+        const layered<double> water(sound_speed_profile<double>(d, c), {});
+        const scene::flat_seabed<double> seabed(-110);
+        const auto r = launch<double>(0, 10, 20 * deg, 0.7);
+        const auto p = water.trace_path(r, seabed, 1.0);
+        REQUIRE(p);
+        const auto ref = textbook_arc(1500, 0.1L, 20 * static_cast<ld>(deg), 100);
+        const double range = horizontal_distance(p->result.surface.point, r.origin);
+        const double graze = std::asin(-p->result.arrival.z);
+        const double err = std::max({rel(range, ref.x), rel(p->result.time_s, ref.t), rel(p->path_length_m, ref.s),
+                                     rel(graze, ref.phi1), rel(p->result.surface.distance_m, ref.s)});
+        MESSAGE(split << " layer(s): worst relative error vs the closed form " << err);
+        CHECK(err < 1e-9);
+        // The printed check values.
+        CHECK(std::abs(range - 282.998) <= 5e-4);
+        CHECK(std::abs(p->result.time_s - 0.1994308) <= 5e-8);
+        CHECK(std::abs(graze / deg - 18.922649) <= 5e-7);
+        // The hit is on the seabed, in the launch azimuth.
+        CHECK(p->result.surface.point.z == doctest::Approx(-110).epsilon(1e-14));
+        CHECK(std::atan2(p->result.surface.point.y - r.origin.y, p->result.surface.point.x - r.origin.x) ==
+              doctest::Approx(0.7).epsilon(1e-13));
+        CHECK(p->arcs == static_cast<std::size_t>(split == 1 ? 1 : 10));
+    }
+}
+
+TEST_CASE("a ray launched upward turns inside a downward-refracting layer and lands where the closed form says") {
+    // c falls 0.1 m/s per m of depth: a ray 5 deg up from 100 m turns and comes down to a seabed at 200 m.
+    const layered<double> water(sound_speed_profile<double>({0, 1000}, {1550, 1450}), {});
+    const scene::flat_seabed<double> seabed(-200);
+    const auto r = launch<double>(0, 100, -5 * deg, -2.0);
+    const auto p = water.trace_path(r, seabed, 5.0);
+    REQUIRE(p);
+    const auto ref = textbook_arc(1540, -0.1L, -5 * static_cast<ld>(deg), 100);
+    const double range = horizontal_distance(p->result.surface.point, r.origin);
+    const double err = std::max({rel(range, ref.x), rel(p->result.time_s, ref.t), rel(p->path_length_m, ref.s),
+                                 rel(std::asin(-p->result.arrival.z), ref.phi1)});
+    MESSAGE("turning arc: worst relative error " << err << " (range " << range << " m)");
+    CHECK(err < 1e-9);
+}
+
+TEST_CASE("in water of constant speed, layered equals straight rays to 1e-12 (hits, time, spreading, arrival)") {
+    // Knots at odd depths, all 1500 m/s: every layer boundary is crossed, none bends anything.
+    const std::vector<double> d{0, 5, 17, 40, 41, 50, 63, 90};
+    const layered<double> water(sound_speed_profile<double>(d, std::vector<double>(d.size(), 1500.0)), {70.0});
+    const straight<double> iso({1500, 40});
+    const scene::flat_seabed<double> seabed(0);
+    const francois_garrison<double> fg(300000, {});
+    double worst = 0, worst_abs = 0, worst_db = 0;
+    int hits = 0;
+    for (double graze : {0.5, 2.0, 7.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0, 90.0}) {
+        for (double az : {0.0, 1.1, 2.5, -2.0}) {
+            const auto r = launch<double>(70, 50, graze * deg, az);
+            const auto a = water.trace_path(r, seabed, 1.0);
+            const auto b = iso.trace(r, seabed, 1.0);
+            REQUIRE(a.has_value() == b.has_value());
+            if (!a) continue;
+            ++hits;
+            for (int k = 0; k < 3; ++k) {
+                worst = std::max(worst, std::abs(a->result.surface.point[k] - b->surface.point[k]) /
+                                            std::max(1.0, std::abs(b->surface.point[k])));
+                worst_abs = std::max(worst_abs, std::abs(a->result.arrival[k] - b->arrival[k]));
+            }
+            const double s = b->surface.distance_m;
+            worst = std::max({worst, rel(a->result.time_s, b->time_s), rel(a->result.spreading, b->spreading),
+                              rel(a->outgoing_spreading, b->spreading), rel(a->result.surface.distance_m, s),
+                              std::abs(a->range_m - std::hypot(b->surface.point.x - r.origin.x, b->surface.point.y - r.origin.y)) / s});
+            // Spreading in decibels is 20 log10 r; absorption is Francois-Garrison along the straight line.
+            worst_db = std::max(worst_db, std::abs(10 * std::log10(a->result.spreading) + 20 * std::log10(s)));
+            const double want = std::pow(10.0, -straight_path_absorption_db(fg, 50.0, 70.0, s) / 10);
+            worst = std::max(worst, rel(a->result.absorption, want));
+        }
+    }
+    MESSAGE(hits << " rays: worst relative difference " << worst << ", arrival " << worst_abs << ", spreading "
+                 << worst_db << " dB off 20 log10 r");
+    CHECK(hits == 36); // 0.5 deg reaches the seabed beyond t_max: both miss
+    CHECK(worst < 1e-12);
+    CHECK(worst_abs < 1e-12);
+    CHECK(worst_db < 0.01);
+    CHECK(worst_db < 1e-10);
+}
+
+TEST_CASE("ray-tube spreading in a thermocline matches the section 4 formula by finite differences") {
+    // S = cos(theta0) / (r sin(theta) |dr/dtheta0|), dr/dtheta0 by central differences of traced ranges.
+    const layered<double> water(thermocline(), {60.0});
+    const scene::flat_seabed<double> seabed(0);
+    double worst = 0;
+    for (double graze : {6.0, 12.0, 25.0, 45.0, 70.0, 88.0}) {
+        auto range = [&](double th) {
+            const auto r = launch<double>(60, 50, th, 0.3);
+            return water.trace_path(r, seabed, 1.0)->range_m;
+        };
+        const double th = graze * deg, h = 1e-5;
+        const auto p = water.trace_path(launch<double>(60, 50, th, 0.3), seabed, 1.0);
+        REQUIRE(p);
+        const double drdth = (range(th + h) - range(th - h)) / (2 * h);
+        const double sin_b = -p->result.arrival.z;
+        const double fd = std::cos(th) / (p->range_m * sin_b * std::abs(drdth));
+        const double e = rel(p->outgoing_spreading, fd);
+        worst = std::max(worst, e);
+        // The return leg: (c_B/c_A)^2 times the outgoing tube.
+        const double ratio = p->hit_speed_mps / p->source_speed_mps;
+        CHECK(p->result.spreading == doctest::Approx(p->outgoing_spreading * ratio * ratio).epsilon(1e-14));
+        CHECK(p->hit_speed_mps == doctest::Approx(1479 + 0.0165 * 6).epsilon(1e-12));
+    }
+    MESSAGE("worst relative difference from finite differences: " << worst);
+    CHECK(worst < 1e-7);
+}
+
+TEST_CASE("the return leg's spreading is that of the reversed ray (reciprocity), and so is its travel time") {
+    // Trace back from the seabed hit, against the arrival direction, to a plane at the towfish depth.
+    const layered<double> water(thermocline(), {60.0});
+    const scene::flat_seabed<double> seabed(0);
+    plane_scene<double> ceiling;
+    ceiling.d = 10; // world z of the towfish
+    ceiling.top = 10;
+    double worst = 0;
+    for (double graze : {8.0, 20.0, 40.0, 65.0}) {
+        const auto r = launch<double>(60, 50, graze * deg, -1.0);
+        const auto fwd = water.trace_path(r, seabed, 1.0);
+        REQUIRE(fwd);
+        const ray<double> back{fwd->result.surface.point, -fwd->result.arrival};
+        const auto rev = water.trace_path(back, ceiling, 1.0);
+        REQUIRE(rev);
+        worst = std::max({worst, rel(rev->outgoing_spreading, fwd->result.spreading), rel(rev->result.time_s, fwd->result.time_s),
+                          rel(rev->range_m, fwd->range_m), rel(rev->result.absorption, fwd->result.absorption)});
+        CHECK(glm::length(rev->result.surface.point - r.origin) < 1e-9);
+        CHECK(glm::length(rev->result.arrival + r.direction) < 1e-12);
+    }
+    MESSAGE("worst relative difference, reversed vs forward: " << worst);
+    CHECK(worst < 1e-10);
+}
+
+TEST_CASE("traced rays through a thermocline agree with the long-double layered oracle") {
+    const auto profile = thermocline();
+    const layered<double> water(profile, {60.0});
+    const auto w = water_of(profile, 60.0, [&](double z) { return water.absorption_db_per_km(z); });
+    const scene::flat_seabed<double> seabed(0);
+    double worst = 0;
+    for (double graze : {3.0, 9.0, 20.0, 40.0, 60.0, 80.0, 89.9}) {
+        const auto p = water.trace_path(launch<double>(60, 50, graze * deg, 2.0), seabed, 1.0);
+        REQUIRE(p);
+        const auto o = sss_test::layered_ray_to_seabed(w, 50.0, graze * deg);
+        REQUIRE(o.reaches);
+        worst = std::max({worst, rel(p->range_m, o.range_m), rel(p->result.time_s, o.time_s),
+                          rel(std::asin(-p->result.arrival.z), o.graze_rad), rel(p->outgoing_spreading, o.spreading),
+                          rel(p->result.absorption, o.absorption)});
+    }
+    MESSAGE("worst relative difference from the oracle: " << worst);
+    CHECK(worst < 1e-10);
+}
+
+TEST_CASE("rays trapped in a sound channel never reach the seabed: nullopt within t_max") {
+    // A speed minimum at 50 m; the seabed at 300 m. Rays within about 9 deg of horizontal at 52 m are trapped.
+    const layered<double> water(sound_speed_profile<double>({0, 50, 100, 300}, {1500, 1480, 1500, 1503}), {300.0});
+    const scene::flat_seabed<double> seabed(0);
+    for (double graze : {-3.0, 0.0, 1.0, 3.0, 6.0}) CHECK_FALSE(water.trace(launch<double>(300, 52, graze * deg, 0.0), seabed, 5.0));
+    // Steeper rays escape and hit.
+    for (double graze : {12.0, 30.0}) CHECK(water.trace(launch<double>(300, 52, graze * deg, 0.0), seabed, 5.0));
+
+    // The same channel resolved into 1000 thin layers: still trapped, and the trace ends at t_max.
+    std::vector<double> d, c;
+    for (int k = 0; k <= 1000; ++k) {
+        const double z = 0.1 * k;
+        d.push_back(z);
+        c.push_back(1480 + 20 * (1 - std::exp(-std::pow((z - 50) / 25, 2))));
+    }
+    d.push_back(300);
+    c.push_back(1503);
+    const layered<double> fine(sound_speed_profile<double>(d, c), {300.0});
+    CHECK_FALSE(fine.trace(launch<double>(300, 52, 4 * deg, 0.0), seabed, 2.0));
+    CHECK(fine.trace(launch<double>(300, 52, 30 * deg, 0.0), seabed, 2.0));
+}
+
+TEST_CASE("horizontal launches: bent down by a negative gradient, straight on in uniform water, held on a speed minimum") {
+    const scene::flat_seabed<double> seabed(0);
+    // (a) Mid-layer, c falling 2 m/s per m: the ray curves down onto the seabed 4 m below.
+    {
+        const layered<double> water(sound_speed_profile<double>({40, 60}, {1500, 1460}), {60.0});
+        const auto r = launch<double>(60, 56, 0.0, 0.4);
+        const auto p = water.trace_path(r, seabed, 1.0);
+        REQUIRE(p);
+        const auto ref = textbook_arc(1468, -2.0L, 0.0L, 4);
+        CHECK(rel(p->range_m, ref.x) < 1e-9);
+        CHECK(rel(p->result.time_s, ref.t) < 1e-9);
+        CHECK(rel(std::asin(-p->result.arrival.z), ref.phi1) < 1e-9);
+        CHECK(p->outgoing_spreading > 0);
+        CHECK(std::isfinite(p->outgoing_spreading));
+    }
+    // (b) Uniform water: it never comes down.
+    {
+        const layered<double> water(sound_speed_profile<double>::constant(1500), {60.0});
+        CHECK_FALSE(water.trace(launch<double>(60, 56, 0.0, 0.4), seabed, 1.0));
+    }
+    // (c) Exactly on a knot that is a speed minimum: both layers bend it back, it runs along the knot.
+    {
+        const layered<double> water(sound_speed_profile<double>({0, 50, 100}, {1500, 1480, 1500}), {300.0});
+        CHECK_FALSE(water.trace(launch<double>(300, 50, 0.0, 0.0), seabed, 1.0));
+    }
+    // (d) Exactly on a knot with uniform water above and a falling speed below: it curves down from the knot.
+    {
+        const layered<double> water(sound_speed_profile<double>({50, 100}, {1500, 1400}), {60.0});
+        const auto p = water.trace_path(launch<double>(60, 50, 0.0, 0.0), seabed, 1.0);
+        REQUIRE(p);
+        const auto ref = textbook_arc(1500, -2.0L, 0.0L, 10);
+        CHECK(rel(p->range_m, ref.x) < 1e-9);
+        CHECK(rel(p->result.time_s, ref.t) < 1e-9);
+    }
+}
+
+TEST_CASE("a turning point exactly at the seabed gives a grazing hit or none, and neighbours behave") {
+    // Uniform above 50 m, +0.2 1/s below; from 50 m a ray turns where c = 1500/cos(phi0): put that on the seabed at 60 m.
+    const layered<double> water(sound_speed_profile<double>({50, 100}, {1500, 1510}), {60.0});
+    const scene::flat_seabed<double> seabed(0);
+    const double phi_star = std::acos(1500.0 / 1502.0);
+    const auto at = water.trace_path(launch<double>(60, 50, phi_star, 0.0), seabed, 1.0);
+    if (at) {
+        CHECK(std::abs(at->result.arrival.z) < 1e-3);
+        CHECK(std::isfinite(at->result.time_s));
+        CHECK(std::isfinite(at->result.spreading));
+        CHECK(at->result.surface.point.z == doctest::Approx(0.0).epsilon(1e-9));
+    }
+    MESSAGE("exactly at the turning depth: " << std::string(at ? "grazing hit" : "no hit"));
+    // Slightly steeper: a shallow hit where the closed form puts it.
+    const double steeper = phi_star * (1 + 1e-3);
+    const auto p = water.trace_path(launch<double>(60, 50, steeper, 0.0), seabed, 1.0);
+    REQUIRE(p);
+    const auto ref = textbook_arc(1500, 0.2L, static_cast<ld>(steeper), 10);
+    CHECK(rel(p->range_m, ref.x) < 1e-9);
+    CHECK(rel(p->result.time_s, ref.t) < 1e-9);
+    CHECK(rel(std::asin(-p->result.arrival.z), ref.phi1) < 1e-6);
+    CHECK(std::asin(-p->result.arrival.z) < 0.003);
+    // Slightly shallower: turns above the seabed and climbs to the surface.
+    CHECK_FALSE(water.trace(launch<double>(60, 50, phi_star * (1 - 1e-3), 0.0), seabed, 1.0));
+}
+
+TEST_CASE("a thousand thin layers: one gradient split 1000 ways, and a smooth thermocline, agree with closed forms") {
+    const scene::flat_seabed<double> seabed(0);
+    // One constant gradient cut into 1000 layers over 100 m.
+    {
+        std::vector<double> d, c;
+        for (int k = 0; k <= 1000; ++k) { d.push_back(0.1 * k); c.push_back(1500 - 0.3 * 0.1 * k); }
+        const layered<double> water(sound_speed_profile<double>(d, c), {100.0});
+        double worst = 0;
+        for (double graze : {5.0, 30.0, 80.0}) {
+            const auto p = water.trace_path(launch<double>(100, 20, graze * deg, 0.0), seabed, 1.0);
+            REQUIRE(p);
+            const auto ref = textbook_arc(1500 - 0.3 * 20, -0.3L, static_cast<ld>(graze * deg), 80);
+            worst = std::max({worst, rel(p->range_m, ref.x), rel(p->result.time_s, ref.t), rel(p->path_length_m, ref.s)});
+            CHECK(p->arcs == 800u);
+        }
+        MESSAGE("1000 layers of one gradient: worst relative error " << worst);
+        CHECK(worst < 1e-10);
+    }
+    // A smooth tanh thermocline on 1000 knots, against the oracle on the same knots.
+    {
+        std::vector<double> d, c;
+        for (int k = 0; k <= 1000; ++k) { d.push_back(0.1 * k); c.push_back(1500 - 10 * std::tanh((0.1 * k - 50) / 5)); }
+        const sound_speed_profile<double> profile(d, c);
+        const layered<double> water(profile, {90.0});
+        const auto w = water_of(profile, 90.0);
+        double worst = 0;
+        for (double graze : {4.0, 30.0, 60.0}) {
+            const auto p = water.trace_path(launch<double>(90, 30, graze * deg, 0.0), seabed, 1.0);
+            REQUIRE(p);
+            const auto o = sss_test::layered_ray_to_seabed(w, 30.0, graze * deg);
+            REQUIRE(o.reaches);
+            worst = std::max({worst, rel(p->range_m, o.range_m), rel(p->result.time_s, o.time_s),
+                              rel(p->outgoing_spreading, o.spreading), rel(std::asin(-p->result.arrival.z), o.graze_rad)});
+        }
+        MESSAGE("smooth thermocline on 1000 knots: worst relative difference from the oracle " << worst);
+        CHECK(worst < 1e-9);
+    }
+}
+
+TEST_CASE("the sea surface ends a climbing ray, and a ray cannot start above it") {
+    const layered<double> water(sound_speed_profile<double>::constant(1500), {60.0});
+    const scene::flat_seabed<double> seabed(0);
+    CHECK_FALSE(water.trace(launch<double>(60, 20, -10 * deg, 0.0), seabed, 10.0));
+    CHECK_FALSE(water.trace(launch<double>(60, 0, -1 * deg, 0.0), seabed, 10.0));
+    CHECK(water.trace(launch<double>(60, 0, 30 * deg, 0.0), seabed, 10.0)); // from the surface itself, down
+    CHECK_THROWS_AS((void)water.trace(launch<double>(60, -1, 30 * deg, 0.0), seabed, 10.0), sss::invalid_parameter);
+    // Time limit: the seabed is 40 m away along this ray.
+    const auto r = launch<double>(60, 20, 90 * deg, 0.0);
+    CHECK(water.trace(r, seabed, 40.0 / 1500 * (1 + 1e-9)));
+    CHECK_FALSE(water.trace(r, seabed, 40.0 / 1500 * (1 - 1e-9)));
+}
+
+TEST_CASE("the reference speed is the harmonic mean over the water column, unless given") {
+    // c from 1500 at the surface to 1400 at 100 m: 100 m / integral dz/c = 100 g / ln(c1/c0), g = -1 1/s.
+    const layered<double> water(sound_speed_profile<double>({0, 100}, {1500, 1400}), {});
+    CHECK(rel(water.reference_speed_mps(), 100.0L * -1 / std::log(1400.0L / 1500)) < 1e-13);
+    // A knot below the surface: uniform above it counts with its own speed.
+    const layered<double> w2(sound_speed_profile<double>({20, 30}, {1500, 1490}), {});
+    const ld slowness = 20.0L / 1500 + 10.0L * std::log(1500.0L / 1490) / 10; // 20/1500 + (1/|g|) ln(c0/c1), |g| = 1
+    CHECK(rel(w2.reference_speed_mps(), 30 / slowness) < 1e-13);
+    CHECK(layered<double>(sound_speed_profile<double>::constant(1493), {}).reference_speed_mps() == 1493);
+    layered_params<double> p;
+    p.reference_speed_mps = 1510;
+    CHECK(layered<double>(sound_speed_profile<double>({0, 100}, {1500, 1400}), p).reference_speed_mps() == 1510);
+}
+
+TEST_CASE("curved rays land exactly on a tilted plane whatever the chord tolerance") {
+    // A plane tilted 20 deg, crossing the thermocline: chords of 0.1 mm to 3 m all refine to the same point.
+    const auto profile = thermocline();
+    plane_scene<double> slope;
+    slope.n = glm::normalize(vec3<double>{std::sin(20 * deg), 0.0, std::cos(20 * deg)});
+    slope.d = glm::dot(slope.n, vec3<double>{40, 0, 5});
+    const auto r = launch<double>(60, 50, 7 * deg, 0.05);
+    std::vector<vec3<double>> hits;
+    double worst_plane = 0;
+    for (double tol : {1e-4, 1e-3, 1e-1, 3.0}) {
+        layered_params<double> p;
+        p.surface_z_m = 60;
+        p.chord_tolerance_m = tol;
+        const layered<double> water(profile, p);
+        const auto h = water.trace_path(r, slope, 1.0);
+        REQUIRE(h);
+        hits.push_back(h->result.surface.point);
+        worst_plane = std::max(worst_plane, std::abs(glm::dot(slope.n, h->result.surface.point) - slope.d));
+        // On the arc: a flat seabed at the hit's depth is met at the same point.
+        const layered<double> water2(profile, p);
+        const auto f = water2.trace_path(r, scene::flat_seabed<double>(h->result.surface.point.z), 1.0);
+        REQUIRE(f);
+        CHECK(glm::length(f->result.surface.point - h->result.surface.point) < 1e-9);
+        CHECK(rel(f->result.time_s, h->result.time_s) < 1e-12);
+    }
+    double spread = 0;
+    for (const auto& h : hits) spread = std::max(spread, glm::length(h - hits.front()));
+    MESSAGE("tilted plane: distance from the plane " << worst_plane << " m, spread over tolerances " << spread << " m");
+    CHECK(worst_plane < 1e-10);
+    CHECK(spread < 1e-9);
+}
+
+TEST_CASE("chords stay within the stated sagitta tolerance of the arc, and the bound is tight") {
+    for (double k : {1e-5, 1e-3, 0.1}) {
+        for (double tol : {1e-4, 1e-3, 1e-1}) {
+            const double ds = chord_arc_length_m(k, tol);
+            const double sagitta = 2 * std::pow(std::sin(k * ds / 4), 2) / k; // (1 - cos(k ds/2))/k
+            CHECK(sagitta <= tol * (1 + 1e-12));
+            CHECK(sagitta >= tol * (1 - 1e-6));
+        }
+    }
+    CHECK(chord_arc_length_m(0.0, 1e-3) == std::numeric_limits<double>::infinity());
+    // Every chord handed to the scene in a strong thermocline, against points sampled along the true arcs.
+    layered_params<double> p;
+    p.surface_z_m = 60;
+    p.chord_tolerance_m = 1e-3;
+    const layered<double> water(sound_speed_profile<double>({0, 44, 54, 200}, {1500, 1499, 1440, 1442}), p);
+    recording_scene rec;
+    (void)water.trace(launch<double>(60, 45, 3 * deg, 0.0), rec, 0.03);
+    REQUIRE(rec.chords.size() > 10);
+    // The path, sampled every 5 cm with the exact arcs.
+    std::vector<vec3<double>> pts;
+    {
+        const auto profile = water.profile();
+        double z = 45, phi = 3 * deg, x = 0;
+        std::size_t i = profile.layer_index(z);
+        for (int n = 0; n < 3; ++n) {
+            const auto st = step_through_layer(profile.layer(i), z, phi, vertical_direction::down);
+            const double len = std::min(st.arc.length_m, 45.0);
+            for (double s = 0; s <= len; s += 0.05) {
+                const auto a = arc_point(st.arc, s);
+                pts.push_back({3 + x + a.range_m, -2, 60 - a.depth_m});
+            }
+            if (st.boundary != layer_exit::bottom) break;
+            x += st.exit.range_m;
+            z = st.exit.depth_m;
+            phi = st.exit.graze_rad();
+            ++i;
+        }
+    }
+    double worst = 0;
+    for (const auto& q : pts) {
+        double best = 1e9;
+        for (const auto& c : rec.chords) {
+            const vec3<double> ab = c.b - c.a;
+            const double u = std::clamp(glm::dot(q - c.a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+            best = std::min(best, glm::length(q - (c.a + ab * u)));
+        }
+        if (q.x - 3 < 40) worst = std::max(worst, best);
+    }
+    MESSAGE(rec.chords.size() << " chords; largest arc-to-chord distance " << worst << " m (tolerance 1e-3 m)");
+    CHECK(worst <= 1e-3 * (1 + 1e-6));
+    CHECK(worst > 0.5e-3);
+}
+
+TEST_CASE("absorption integrates Francois-Garrison and Ainslie-McColm along the path") {
+    // A vertical ray through uniform water from 50 m to 1050 m: exactly length x depth mean.
+    for (auto formula : {absorption_formula::francois_garrison, absorption_formula::ainslie_mccolm}) {
+        layered_params<double> p;
+        p.surface_z_m = 1050;
+        p.absorption = formula;
+        p.frequency_hz = 100000;
+        const layered<double> water(sound_speed_profile<double>::constant(1500), p);
+        const auto h = water.trace(launch<double>(1050, 50, 90 * deg, 0.0), scene::flat_seabed<double>(0), 10.0);
+        REQUIRE(h);
+        const double want_db = formula == absorption_formula::francois_garrison
+                                   ? straight_path_absorption_db(francois_garrison<double>(100000, {}), 50.0, 1050.0, 1000.0)
+                                   : straight_path_absorption_db(ainslie_mccolm<double>(100000, {}), 50.0, 1050.0, 1000.0);
+        const double e = rel(-10 * std::log10(h->absorption), want_db);
+        MESSAGE("1000 m vertical path, relative error of the absorption (dB): " << e);
+        CHECK(e < 1e-10);
+    }
+    // The two formulas differ by a few percent at 300 kHz, as published (Ainslie-McColm within 10% of F-G).
+    layered_params<double> am;
+    am.surface_z_m = 60;
+    am.absorption = absorption_formula::ainslie_mccolm;
+    const layered<double> a(thermocline(), am), f(thermocline(), {60.0});
+    const double ratio = a.absorption_db_per_km(50) / f.absorption_db_per_km(50);
+    CHECK(ratio > 0.9);
+    CHECK(ratio < 1.1);
+    CHECK(ratio != 1.0);
+}
+
+TEST_CASE("float layered water matches the closed forms and the straight policy to float precision") {
+    const layered<float> water(sound_speed_profile<float>({10.f, 1010.f}, {1500.f, 1600.f}), {});
+    const auto r = launch<float>(0.f, 10.f, 20 * deg, 0.7);
+    const auto p = water.trace_path(r, scene::flat_seabed<float>(-110.f), 1.f);
+    REQUIRE(p);
+    const auto ref = textbook_arc(1500, 0.1L, 20 * static_cast<ld>(deg), 100);
+    CHECK(rel(p->range_m, ref.x) < 2e-6);
+    CHECK(rel(p->result.time_s, ref.t) < 2e-6);
+    const layered<float> iso(sound_speed_profile<float>({0.f, 30.f, 55.f}, {1500.f, 1500.f, 1500.f}), {70.f});
+    const straight<float> st({1500.f, 40.f});
+    for (double graze : {3.0, 20.0, 60.0, 90.0}) {
+        const auto rr = launch<float>(70.f, 50.f, graze * deg, 1.0);
+        const auto a = iso.trace(rr, scene::flat_seabed<float>(0.f), 1.f);
+        const auto b = st.trace(rr, scene::flat_seabed<float>(0.f), 1.f);
+        REQUIRE(a);
+        REQUIRE(b);
+        CHECK(rel(a->time_s, b->time_s) < 2e-6);
+        CHECK(rel(a->spreading, b->spreading) < 5e-6);
+        CHECK(glm::length(a->surface.point - b->surface.point) < 1e-4f);
+    }
+}
+
+TEST_CASE("invalid layered parameters are rejected, naming the field") {
+    const auto profile = sound_speed_profile<double>::constant(1500);
+    auto throws_naming = [&](layered_params<double> p, const char* name) {
+        try {
+            (void)layered<double>(profile, p);
+            return false;
+        } catch (const sss::invalid_parameter& e) {
+            return std::string(e.what()).find(name) != std::string::npos;
+        }
+    };
+    layered_params<double> p;
+    p.chord_tolerance_m = 0;
+    CHECK(throws_naming(p, "layered.chord_tolerance_m"));
+    p = {};
+    p.frequency_hz = -1;
+    CHECK(throws_naming(p, "layered.frequency_hz"));
+    p = {};
+    p.surface_z_m = std::numeric_limits<double>::quiet_NaN();
+    CHECK(throws_naming(p, "layered.surface_z_m"));
+    p = {};
+    p.water.temperature_c = 80;
+    CHECK(throws_naming(p, "water.temperature_c"));
+    p = {};
+    p.reference_speed_mps = -3;
+    CHECK(throws_naming(p, "layered.reference_speed_mps"));
+}
