@@ -46,4 +46,39 @@
 
 #include "sss/sampling/launch_angles.hpp"
 
+#include "sss/io/height_field_io.hpp"
+#include "sss/io/sound_speed_profile.hpp"
+#include "sss/io/trajectory_csv.hpp"
+
+#include "sss/propagation/arc_intersection.hpp"
+#include "sss/propagation/launch_table.hpp"
+#include "sss/propagation/layered.hpp"
+#include "sss/propagation/ray_tube.hpp"
+
+#include "sss/scattering/jackson_bistatic.hpp"
+#include "sss/scattering/jackson_table.hpp"
+#include "sss/scattering/jackson_terms.hpp"
+
+#include "sss/scene/cylinder.hpp"
+#include "sss/scene/height_field.hpp"
+#include "sss/scene/height_field_fan.hpp"
+#include "sss/scene/height_field_pyramid.hpp"
+#include "sss/scene/height_field_surface.hpp"
+#include "sss/scene/height_field_tracer.hpp"
+#include "sss/scene/object.hpp"
+#include "sss/scene/object_set.hpp"
+#include "sss/scene/primitive.hpp"
+#include "sss/scene/scene.hpp"
+#include "sss/scene/sphere.hpp"
+
+#include "sss/seabed/composite.hpp"
+#include "sss/seabed/fft.hpp"
+#include "sss/seabed/fractal.hpp"
+#include "sss/seabed/power_law_spectrum.hpp"
+#include "sss/seabed/random.hpp"
+#include "sss/seabed/raster.hpp"
+#include "sss/seabed/ripples.hpp"
+#include "sss/seabed/stamps.hpp"
+#include "sss/seabed/targets.hpp"
+
 #include "sss/simulator.hpp"

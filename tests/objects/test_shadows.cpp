@@ -91,13 +91,17 @@ TEST_CASE_TEMPLATE("A cylinder lying along the track casts a shadow that ends wh
     const double e_far = tangent_depression(x0, a, a, -1);
     const double r_end = H / std::sin(e_far), x_end = H / std::tan(e_far);
     const double k_end = sample_of(2 * r_end / c_mps);
-    // The echo of the cylinder ends with its far tangent point (range sqrt(|OC|^2 - a^2)) plus the pulse.
-    const double k_echo_end = sample_of(2 * std::sqrt(x0 * x0 + (H - a) * (H - a) - a * a) / c_mps + pulse_s);
+    // Echoes stop one pulse after the later of the cylinder's far tangent point (range sqrt(|OC|^2 - a^2))
+    // and the last lit seabed point in front of it, where the near tangent ray lands.
+    const double r_top = std::sqrt(x0 * x0 + (H - a) * (H - a) - a * a);
+    const double r_front = H / std::sin(tangent_depression(x0, a, a, +1));
+    const double k_echo_end = sample_of(2 * std::max(r_top, r_front) / c_mps + pulse_s);
     double peak = 0;
     for (auto v : stbd) peak = std::max(peak, double(v));
     const double floor = 1e-9 * peak;
-    // The zero run: from the end of the cylinder's echo to the end of the shadow.
-    const auto k0 = static_cast<std::size_t>(std::ceil(k_echo_end)) + 1;
+    // The zero run: from the end of those echoes to the end of the shadow.
+    const auto k0 = static_cast<std::size_t>(std::ceil(k_echo_end));
+    CHECK(double(stbd[k0 - 3]) > floor);
     REQUIRE(k0 + 10 < static_cast<std::size_t>(k_end));
     for (std::size_t k = k0; k + 1 < static_cast<std::size_t>(k_end); ++k) CHECK(double(stbd[k]) <= floor);
     const std::size_t k_first = first_above(stbd, k0, floor);

@@ -9,6 +9,8 @@
 
 #include <sss/sss.hpp>
 #include <sss/scene/height_field.hpp>
+#include <sss/scene/scene.hpp>
+#include <sss/scene/sphere.hpp>
 
 namespace {
 
@@ -92,4 +94,57 @@ TEST_CASE("a bounce off the seabed onto a raised bank adds echoes at the summed 
     for (std::size_t k = std::size_t(t_bounce / plain.dt_s()) - 5; k < a.starboard.size(); ++k) bank_direct += a.starboard[k];
     CHECK(extra < bank_direct);
     CHECK(total(b.starboard) > total(a.starboard));
+}
+
+TEST_CASE("a sphere above a flat seabed returns a second echo at the seabed-bounce travel time, only with the bounce") {
+    // Towfish 10 m above a sandy seabed; a 1 m sphere 20 m to starboard with its centre 3 m above the seabed.
+    // Direct echoes come from the sphere's near side, between 20.19 m and 21.17 m of range. A path bounced once off
+    // the seabed is as long as the line from the towfish's mirror image (10 m below the seabed) to the sphere, whose
+    // nearest point lies |C - I| - a = sqrt(20^2 + 13^2) - 1 = 22.85 m away.
+    using namespace sss::scene;
+    const surface_ids ids{0, 5, 3};
+    std::vector<object<double>> objs{object<double>({sphere<double>({20.0, 0.0, 3.0}, 1.0, ids)}, {})};
+    const scene sc(flat_seabed<double>(0.0), object_set<double>(std::move(objs)));
+    sss::receiver_params rx;
+    rx.max_range_m = 40;
+    const sss::beam::ideal_fan<double> fan({1.0, 80.0, 40.0});
+    const sss::motion::straight_line<double> still({{0.0, 0.0}, 0.0, 0.0, 10.0, 0.1});
+    const sim_t<jackson_d> plain(sand(), {}, fan, still, rx);
+    const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, fan, still, rx);
+    const auto pose = plain.motion().pose_at(0);
+    const double c = 1500.0;
+    const double t_direct_end = 2.0 * std::sqrt(20.0 * 20.0 + 7.0 * 7.0 - 1.0) / c;
+    const double t_bounce = 2.0 * (std::sqrt(20.0 * 20.0 + 13.0 * 13.0) - 1.0) / c;
+
+    auto sphere_energy = [&](const auto& sim, double t_from, double t_to, double& first) {
+        double e = 0;
+        first = 1e9;
+        sim.trace(sc, pose, sss::side::starboard, [&](const sss::tube_echo<double>& t) {
+            const double t0 = std::min(t.t0_s, t.t1_s);
+            if (t.surface.object == 5u && t0 >= t_from && t0 <= t_to) {
+                e += t.power;
+                first = std::min(first, t0);
+            }
+        });
+        return e;
+    };
+    double first_direct = 0, first_bounce = 0, first_plain_late = 0;
+    const double direct = sphere_energy(plain, 0.0, t_direct_end + 1e-6, first_direct);
+    const double bounced = sphere_energy(bouncing, t_direct_end + 1e-6, 1.0, first_bounce);
+    const double plain_late = sphere_energy(plain, t_direct_end + 1e-6, 1.0, first_plain_late);
+    INFO("direct " << direct << " from " << first_direct << " s; bounced " << bounced << " from " << first_bounce
+                   << " s (predicted " << t_bounce << " s)");
+    CHECK(direct > 0);
+    CHECK(first_direct == doctest::Approx(2.0 * (std::sqrt(449.0) - 1.0) / c).epsilon(1e-3));
+    // Present with the bounce, at the bounced path's travel time...
+    CHECK(bounced > 0);
+    CHECK(first_bounce == doctest::Approx(t_bounce).epsilon(2e-3));
+    // ... absent without it.
+    CHECK(plain_late == 0.0);
+    // Energy never increases through a bounce.
+    CHECK(bounced < direct);
+    // And the rendered line shows it: a later echo in the bounce render only.
+    const auto a = plain.ping(sc, 0), b = bouncing.ping(sc, 0);
+    const auto k = static_cast<std::size_t>(t_bounce / plain.dt_s()) + 1;
+    CHECK(b.starboard[k] > a.starboard[k]);
 }

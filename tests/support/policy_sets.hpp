@@ -6,10 +6,13 @@
 
 #include <tuple>
 #include <type_traits>
+#include <vector>
 
 #include <sss/sss.hpp>
+#include <sss/propagation/layered.hpp>
 
 #include "flat_seabed_oracle.hpp"
+#include "layered_oracle.hpp"
 
 namespace sss_test {
 
@@ -42,7 +45,7 @@ template <class L> struct as_tuple;
 template <class... Ts> struct as_tuple<type_list<Ts...>> { using type = std::tuple<Ts...>; };
 
 template <class T> using scattering_policies = type_list<sss::scattering::lambertian<T>, sss::scattering::jackson<T>>;
-template <class T> using propagation_policies = type_list<sss::propagation::straight<T>>;
+template <class T> using propagation_policies = type_list<sss::propagation::straight<T>, sss::propagation::layered<T>>;
 template <class T> using beam_policies = type_list<sss::beam::ideal_fan<T>, sss::beam::planar_array<T>>;
 template <class T>
 using motion_policies = type_list<sss::motion::straight_line<T>, sss::motion::perturbed<T>, sss::motion::trajectory<T>>;
@@ -67,6 +70,35 @@ template <class T> struct matrix_policy<sss::propagation::straight<T>> {
     static void describe(oracle_setup& o, const sss::propagation::straight<T>& p) {
         o.c_mps = double(p.params().sound_speed_mps);
         o.absorption_db_per_km = double(p.params().absorption_db_per_km);
+    }
+    // The oracle line of a combination with this water (propagation policies choose their oracle).
+    template <class Beam, class Scattering>
+    static std::vector<double> oracle_line(const oracle_setup& o, const Beam& beam, const Scattering& scat, sss::side sd) {
+        return sss_test::oracle_line(o, beam, scat, sd);
+    }
+};
+template <class T> struct matrix_policy<sss::propagation::layered<T>> {
+    // A summer thermocline around the towfish: 1500 m/s at the surface, 1499 at 44 m, down 20 m/s to 54 m, then the
+    // pressure gradient (+0.0165 1/s). The sea surface is 60 m above the seabed (world z 0), so the towfish (about
+    // 10 m up) sits inside the thermocline and its rays bend down. Francois-Garrison absorption at 300 kHz.
+    static sss::propagation::layered<T> make() {
+        sss::propagation::layered_params<T> p;
+        p.surface_z_m = T(60);
+        p.frequency_hz = T(300000);
+        return sss::propagation::layered<T>{
+            sss::propagation::sound_speed_profile<T>({T(0), T(44), T(54), T(200)}, {T(1500), T(1499), T(1479), T(1481.409)}), p};
+    }
+    static void describe(oracle_setup& o, const sss::propagation::layered<T>& p) { o.c_mps = double(p.reference_speed_mps()); }
+    // The layered oracle over the same water (seen through the double-precision twin).
+    template <class Beam, class Scattering>
+    static std::vector<double> oracle_line(const oracle_setup& o, const Beam& beam, const Scattering& scat, sss::side sd) {
+        const auto water = matrix_policy<sss::propagation::layered<double>>::make();
+        layered_water w;
+        w.depth_m.assign(water.profile().depths_m().begin(), water.profile().depths_m().end());
+        w.speed_mps.assign(water.profile().speeds_mps().begin(), water.profile().speeds_mps().end());
+        w.seabed_depth_m = water.params().surface_z_m; // the matrix's seabed is world z = 0
+        w.absorption_db_per_km = [water](double z) { return water.absorption_db_per_km(z); };
+        return oracle_line_layered(o, w, beam, scat, sd);
     }
 };
 template <class T> struct matrix_policy<sss::beam::ideal_fan<T>> {

@@ -48,19 +48,37 @@ template <Real T> struct arc_offset {
     T depth_m{};     ///< depth increase from the start (m, positive down)
     T sin_incline{}; ///< sine of the inclination below horizontal there
     T cos_incline{}; ///< its cosine (>= 0)
+    T sin_half{};    ///< sine of half the turn since the start, sin(kappa s / 2)
 };
+
+/// sin(h)/h and cos(h): by their Taylor series (to h^12, exact to rounding) when |h| <= 1/8, the usual case on
+/// a sonar path, else from the library functions.
+template <Real T> inline void sinc_cos(T h, T& sinc_h, T& cos_h) noexcept {
+    if (std::abs(h) <= T(0.125)) {
+        const T q = h * h;
+        sinc_h = T(1) + q * (T(-1.0 / 6) + q * (T(1.0 / 120) + q * (T(-1.0 / 5040) + q * (T(1.0 / 362880) +
+                                                                                         q * T(-1.0 / 39916800)))));
+        cos_h = T(1) + q * (T(-0.5) + q * (T(1.0 / 24) + q * (T(-1.0 / 720) + q * (T(1.0 / 40320) +
+                                                                               q * (T(-1.0 / 3628800) + q * T(1.0 / 479001600))))));
+        return;
+    }
+    sinc_h = std::sin(h) / h;
+    cos_h = std::cos(h);
+}
 
 /// The offset at arc length arc_m (m) of an arc starting at inclination phi0 (given as sin_phi0, cos_phi0) with
 /// signed curvature kappa_per_m (1/m): the closed forms of the file comment, with no cancellation as kappa -> 0.
 template <Real T>
 [[nodiscard]] inline arc_offset<T> offset_along_arc(T sin_phi0, T cos_phi0, T kappa_per_m, T arc_m) noexcept {
     const T h = kappa_per_m * arc_m / T(2);
-    const T sh = std::sin(h), ch = std::cos(h);
-    const T chord = arc_m * arc_detail::sinc(h);
+    T sinc_h, ch;
+    sinc_cos(h, sinc_h, ch);
+    const T sh = h * sinc_h;
+    const T chord = arc_m * sinc_h;
     const T sin_mean = sin_phi0 * ch - cos_phi0 * sh; // sin(phi0 - h)
     const T cos_mean = cos_phi0 * ch + sin_phi0 * sh; // cos(phi0 - h)
     // phi = phi0 - 2h: rotate the mean direction by h once more.
-    return {chord * cos_mean, chord * sin_mean, sin_mean * ch - cos_mean * sh, cos_mean * ch + sin_mean * sh};
+    return {chord * cos_mean, chord * sin_mean, sin_mean * ch - cos_mean * sh, cos_mean * ch + sin_mean * sh, sh};
 }
 
 /// The longest arc length (m) a chord may span on a circle of curvature |curvature_per_m| (1/m) so that the arc
@@ -80,16 +98,16 @@ template <Real T> struct arc_hit {
     arc_offset<T> at{};   ///< the arc's offset at the hit
 };
 
-/// The first hit of the scene along the arc between arc lengths s_begin_m and s_end_m (m), found through chords
-/// of sagitta at most tolerance_m (m) and refined onto the arc (file comment). `chords` counts the calls to
+/// The first hit of the scene along an arc between arc lengths s_begin_m and s_end_m (m), found through chords of
+/// sagitta at most tolerance_m (m) and refined onto the arc (file comment). The arc starts at inclination phi0,
+/// given as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to
 /// scene.intersect. s_end_m may be +infinity only for a straight arc (zero curvature).
 template <Scene S, Real T>
-[[nodiscard]] std::optional<arc_hit<T>> intersect_arc(const S& scene, const ray_arc<T>& arc, const arc_frame<T>& frame,
-                                                      T s_begin_m, T s_end_m, T tolerance_m, std::size_t& chords) {
+[[nodiscard]] std::optional<arc_hit<T>> intersect_arc(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0,
+                                                      T kappa_per_m, T s_begin_m, T s_end_m, T tolerance_m,
+                                                      std::size_t& chords) {
     if (!(s_end_m > s_begin_m)) return std::nullopt;
-    const T sin0 = std::sin(arc.start_incline_rad);
-    const T cos0 = std::max(std::cos(arc.start_incline_rad), T(0));
-    const T kappa = cos0 / arc.start_speed_mps * arc.gradient_per_s;
+    const T sin0 = sin_phi0, cos0 = cos_phi0, kappa = kappa_per_m;
     const vec3<T> down{T(0), T(0), T(-1)};
     const auto world = [&](const arc_offset<T>& o) { return frame.start + frame.horizontal * o.range_m + down * o.depth_m; };
     const T eps = std::numeric_limits<T>::epsilon();
@@ -131,6 +149,8 @@ template <Scene S, Real T>
             T s = s_lo + (s_hi - s_lo) * std::min(h->distance_m / len, T(1));
             const T lo = std::max(s_lo - (s_hi - s_lo), T(0)), hi = s_hi + (s_hi - s_lo);
             arc_offset<T> o = offset_along_arc(sin0, cos0, kappa, s);
+            // The error squares each step, so a step below sqrt(eps) of the scale leaves only rounding behind.
+            const T settled = std::sqrt(eps) * std::max(s_hi, T(1));
             for (int it = 0; it < 8; ++it) {
                 const T f = base + o.range_m * n_h + o.depth_m * n_d;
                 const T df = o.cos_incline * n_h + o.sin_incline * n_d;
@@ -139,7 +159,7 @@ template <Scene S, Real T>
                 const T step = next - s;
                 s = next;
                 o = offset_along_arc(sin0, cos0, kappa, s);
-                if (!(std::abs(step) > T(4) * eps * std::max(s, T(1)))) break;
+                if (!(std::abs(step) > settled)) break;
             }
             arc_hit<T> out{*h, s, o};
             out.surface.point = world(o);
@@ -149,6 +169,15 @@ template <Scene S, Real T>
         p = q;
     }
     return std::nullopt;
+}
+
+/// As above for a ray_arc (its start inclination, speed and gradient give sin phi0, cos phi0 and kappa).
+template <Scene S, Real T>
+[[nodiscard]] std::optional<arc_hit<T>> intersect_arc(const S& scene, const ray_arc<T>& arc, const arc_frame<T>& frame,
+                                                      T s_begin_m, T s_end_m, T tolerance_m, std::size_t& chords) {
+    const T cos0 = std::max(std::cos(arc.start_incline_rad), T(0));
+    return intersect_arc(scene, frame, std::sin(arc.start_incline_rad), cos0,
+                         cos0 / arc.start_speed_mps * arc.gradient_per_s, s_begin_m, s_end_m, tolerance_m, chords);
 }
 
 } // namespace sss::propagation

@@ -28,6 +28,16 @@
 /// evaluated once at construction it is the cheaper of the two per depth here (Ainslie-McColm needs two
 /// exponentials per depth).
 ///
+/// Launch table (launch_table.hpp, on by default). All rays of a ping leave one point, and above the scene's
+/// top_m the water alone decides their paths: a per-thread table over launch angle, built for the current source
+/// depth and scene top (about a thousand exact descents, a fraction of a millisecond) and validated interval by
+/// interval against exact tracing, gives each ray its state where the geometry begins, from where it is traced
+/// exactly. Each result depends only on the ray, the scene's top and the water (the table is a function of them,
+/// not of which rays came before), and differs from exact tracing by at most the table's validation tolerance,
+/// 1e-9 relative in double (64 float epsilons in float); rays the table does not cover (upward, grazing below
+/// 1e-3 rad, or in an interval that failed validation) are traced exactly. Turn it off (`launch_table = false`)
+/// for rays from ever-changing origins, where the table would be rebuilt for nearly every ray.
+///
 /// Spreading (ray_tube.hpp). `path::spreading` is the return leg's S_BA: intensity back at the transducer
 /// relative to that 1 m off the hit. The echo of a footprint needs exactly that one: the outgoing tube S_AB
 /// sets the footprint's area (1/S_AB per steradian) and its incident intensity (S_AB), and the two cancel;
@@ -35,8 +45,10 @@
 /// `layered_path::outgoing_spreading`.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -47,6 +59,7 @@
 #include "sss/propagation/absorption.hpp"
 #include "sss/propagation/arc_intersection.hpp"
 #include "sss/propagation/concept.hpp"
+#include "sss/propagation/launch_table.hpp"
 #include "sss/propagation/profile.hpp"
 #include "sss/propagation/ray_arc.hpp"
 #include "sss/propagation/ray_tube.hpp"
@@ -64,6 +77,7 @@ template <Real T> struct layered_params {
     absorption_formula absorption = absorption_formula::francois_garrison;
     T chord_tolerance_m = T(1e-3);     ///< largest distance between an arc and the chords handed to the scene (m)
     T reference_speed_mps = T(0);      ///< speed for sampling (m/s); 0: the water column's harmonic mean
+    bool launch_table = true;          ///< look rays up in a per-ping launch table above the geometry (file comment)
 };
 
 /// Everything a layered trace knows about one path. Plain data.
@@ -96,6 +110,7 @@ public:
             layers_.push_back(l);
         }
         c_ref_ = p.reference_speed_mps > T(0) ? p.reference_speed_mps : harmonic_mean_speed();
+        id_ = next_id_.fetch_add(1, std::memory_order_relaxed);
     }
 
     [[nodiscard]] const sound_speed_profile<T>& profile() const noexcept { return profile_; }
@@ -106,6 +121,45 @@ public:
     /// deepest knot, depth / integral dz/c (the speed of a vertical ray's average); c(0) when that column is
     /// empty (all knots at or above the surface).
     [[nodiscard]] T reference_speed_mps() const noexcept { return c_ref_; }
+
+    /// How far out (m) to launch rays: the straight-line slant range altitude_m / sin(theta*) of the shallowest
+    /// downward launch theta* whose ray reaches a flat seabed altitude_m (m) below `origin` within one-way time
+    /// t_max_s (s), at most twice the reference range c_ref t_max_s; c_ref t_max_s where nothing better is known.
+    /// Water that bends rays down brings echoes from launches shallower than straight geometry predicts, so a sampler
+    /// that stops at the straight-ray range would leave the far end of the line empty. It steers sampling only.
+    [[nodiscard]] T sampling_range_m(const vec3<T>& origin, T altitude_m, T t_max_s) const noexcept {
+        const T fallback = c_ref_ * t_max_s;
+        const T z_a = p_.surface_z_m - origin.z, z_b = z_a + altitude_m;
+        if (!(z_a >= T(0)) || !(altitude_m > T(0)) || !(t_max_s > T(0))) return fallback;
+        // One-way time to depth z_b of the ray launched down at graze (rad); +infinity if it turns first.
+        const auto time_to_seabed = [&](T graze) {
+            T z = z_a, g = graze, t = 0;
+            std::size_t i = profile_.layer_index(z, vertical_direction::down);
+            for (std::size_t n = 0; n < layers_.size() + 2; ++n) {
+                gradient_layer<T> l = layers_[std::min(i, layers_.size() - 1)];
+                l.z_bottom_m = std::min(l.z_bottom_m, z_b);
+                const layer_step<T> st = step_through_layer(l, z, g, vertical_direction::down);
+                if (st.boundary != layer_exit::bottom) return std::numeric_limits<T>::infinity();
+                t += st.exit.time_s;
+                if (st.exit.depth_m >= z_b) return t;
+                z = st.exit.depth_m;
+                g = st.exit.graze_rad();
+                ++i;
+            }
+            return std::numeric_limits<T>::infinity();
+        };
+        T lo = T(1e-3), hi = half_pi_v<T>; // time(lo) > t_max >= time(hi) once bracketed
+        if (!(time_to_seabed(hi) <= t_max_s)) return fallback;
+        if (time_to_seabed(lo) <= t_max_s) {
+            hi = lo;
+        } else {
+            for (int it = 0; it < 60 && hi - lo > T(1e-7); ++it) {
+                const T mid = (lo + hi) / T(2);
+                (time_to_seabed(mid) <= t_max_s ? hi : lo) = mid;
+            }
+        }
+        return std::min(altitude_m / std::sin(hi), T(2) * fallback);
+    }
 
     /// Absorption (dB/km) at depth_m (m) with the chosen formula.
     [[nodiscard]] T absorption_db_per_km(T depth_m) const noexcept {
@@ -124,7 +178,6 @@ public:
     /// As `trace`, with the details of the path.
     template <Scene S>
     [[nodiscard]] std::optional<layered_path<T>> trace_path(const ray<T>& r, const S& scene, T t_max_s) const {
-        constexpr T inf = std::numeric_limits<T>::infinity();
         constexpr T eps = std::numeric_limits<T>::epsilon();
         const T depth0 = p_.surface_z_m - r.origin.z;
         if (!(depth0 >= T(0)))
@@ -132,98 +185,47 @@ public:
                                                       " > layered.surface_z_m " + std::to_string(p_.surface_z_m) + ")");
         if (!(t_max_s > T(0))) return std::nullopt;
 
-        const T hlen = std::hypot(r.direction.x, r.direction.y);
+        const T hlen = std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
         const vec3<T> hdir = hlen > T(0) ? vec3<T>{r.direction.x / hlen, r.direction.y / hlen, T(0)}
                                          : vec3<T>{T(1), T(0), T(0)};
-        T z = depth0;
-        T phi = std::atan2(-r.direction.z, hlen);
-        std::size_t i = profile_.layer_index(z, phi < T(0) ? vertical_direction::up : vertical_direction::down);
+        const T phi0 = std::atan2(-r.direction.z, hlen);
+        const T sin0 = std::sin(phi0), cos0 = std::max(std::cos(phi0), T(0));
 
         // Geometry lies at depths >= top_depth; chords start a margin above it.
         const T top_depth = p_.surface_z_m - scene.top_m();
         const T margin = std::max(p_.chord_tolerance_m, T(64) * eps * (std::abs(p_.surface_z_m) + std::abs(scene.top_m())));
         const T chord_depth = top_depth - margin;
 
+        march m;
+        m.layer = profile_.layer_index(depth0, phi0 < T(0) ? vertical_direction::up : vertical_direction::down);
         layered_path<T> out;
-        out.source_speed_mps = layers_[i].speed_mps(z);
-        ray_tube<T> tube{out.source_speed_mps, std::sin(phi)};
-        T t = 0, x = 0, s_total = 0, absorption_db = 0;
-        int zero_steps = 0;
-        constexpr std::size_t max_arcs = std::size_t(1) << 24;
+        out.source_speed_mps = layers_[m.layer].speed_mps(depth0);
+        m.tube = ray_tube<T>{out.source_speed_mps, sin0};
+        m.z = depth0;
+        m.phi = phi0;
+        m.sin_phi = sin0;
+        m.cos_phi = cos0;
 
-        for (std::size_t n_arcs = 0; n_arcs < max_arcs; ++n_arcs) {
-            const gradient_layer<T>& layer = layers_[i];
-            layer_step<T> st;
-            if (zero_steps >= 2) {
-                // Horizontal on a knot whose two layers both bend it back: it runs along the knot.
-                const T c = layer.speed_mps(z);
-                st.arc = {z, c, T(0), T(0), inf};
-                st.exit = {z, inf, inf, inf, T(0)};
-                st.boundary = layer_exit::none;
-            } else {
-                st = step_through_layer(layer, z, std::abs(phi), phi < T(0) ? vertical_direction::up : vertical_direction::down);
+        if (p_.launch_table && sin0 > T(0) && chord_depth > depth0 && std::isfinite(chord_depth)) {
+            if (const auto d = table_for(depth0, chord_depth).lookup(sin0, cos0)) {
+                // Resume at the table's depth; the inclination there follows from Snell's law.
+                m.layer = profile_.layer_index(chord_depth, vertical_direction::down);
+                m.z = chord_depth;
+                const T c = std::min(cos0 / out.source_speed_mps * layers_[m.layer].speed_mps(chord_depth), T(1));
+                m.cos_phi = c;
+                m.sin_phi = std::sqrt((T(1) - c) * (T(1) + c));
+                m.phi_known = false;
+                m.t = d->time_s;
+                m.x = d->range_m;
+                m.s = d->path_m;
+                m.absorption_db = d->absorption_db;
+                m.tube.q_sum = d->q_sum;
+                m.tube.k_sum = d->k_sum;
+                m.tube.started = true;
+                if (!(m.t <= t_max_s)) return std::nullopt;
             }
-            const ray_arc<T>& arc = st.arc;
-            ++out.arcs;
-            const T sin_a = std::sin(arc.start_incline_rad);
-            const T cos_a = std::max(std::cos(arc.start_incline_rad), T(0));
-            const T xi = cos_a / arc.start_speed_mps;
-            const T kappa = xi * arc.gradient_per_s;
-            const arc_frame<T> frame{vec3<T>{r.origin.x + hdir.x * x, r.origin.y + hdir.y * x, p_.surface_z_m - arc.start_depth_m},
-                                     hdir};
-
-            // Path length the time left allows in this layer (c is largest at one of its bounds).
-            const T c_max = layer.gradient_per_s == T(0)
-                                ? layer.c_ref_mps
-                                : std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m));
-            const T s_cap = c_max * (t_max_s - t);
-            const T s_end = std::min(arc.length_m, s_cap);
-
-            if (const auto s_begin = chord_start(st, kappa, chord_depth, s_end)) {
-                if (auto h = intersect_arc(scene, arc, frame, *s_begin, s_end, p_.chord_tolerance_m, out.chords)) {
-                    const arc_sample<T> at = arc_point(arc, h->arc_m);
-                    const T t_hit = t + at.time_s;
-                    if (!(t_hit <= t_max_s)) return std::nullopt;
-                    const arc_offset<T>& o = h->at;
-                    const T depth_hit = arc.start_depth_m + o.depth_m;
-                    out.hit_speed_mps = layer.speed_mps(depth_hit);
-                    const T q = ray_tube_q(o.range_m, xi, h->arc_m, arc.start_speed_mps, out.hit_speed_mps);
-                    out.outgoing_spreading = tube.outgoing_spreading(q, sin_a, o.sin_incline);
-                    const T ratio = out.hit_speed_mps / out.source_speed_mps;
-                    absorption_db += arc_absorption_db(arc.start_depth_m, sin_a, cos_a, kappa, h->arc_m);
-                    out.range_m = x + o.range_m;
-                    out.path_length_m = s_total + h->arc_m;
-                    out.result.surface = h->surface;
-                    out.result.surface.distance_m = out.path_length_m;
-                    out.result.time_s = t_hit;
-                    out.result.spreading = out.outgoing_spreading * ratio * ratio;
-                    out.result.absorption = std::exp(-ln10_v<T> / T(10) * absorption_db);
-                    out.result.arrival = hdir * o.cos_incline + vec3<T>{T(0), T(0), -o.sin_incline};
-                    return out;
-                }
-            }
-            if (st.boundary == layer_exit::none || !(arc.length_m <= s_cap)) return std::nullopt;
-
-            // Through the layer: accumulate and move on.
-            const arc_sample<T>& e = st.exit;
-            const T c_exit = layer.speed_mps(e.depth_m);
-            tube.add_piece(ray_tube_q(e.range_m, xi, e.arc_m, arc.start_speed_mps, c_exit), sin_a, std::sin(e.incline_rad));
-            absorption_db += arc_absorption_db(arc.start_depth_m, sin_a, cos_a, kappa, e.arc_m);
-            t += e.time_s;
-            x += e.range_m;
-            s_total += e.arc_m;
-            zero_steps = e.arc_m == T(0) ? zero_steps + 1 : 0;
-            z = e.depth_m;
-            phi = e.incline_rad;
-            if (st.boundary == layer_exit::bottom) {
-                ++i;
-            } else {
-                if (layer.z_top_m <= T(0) || i == 0) return std::nullopt; // reached the sea surface
-                --i;
-            }
-            if (!(t <= t_max_s)) return std::nullopt;
         }
-        return std::nullopt;
+        return follow(m, r, hdir, scene, t_max_s, chord_depth, out);
     }
 
 private:
@@ -239,9 +241,200 @@ private:
         return p;
     }
 
+    /// Where a ray stands between arcs.
+    struct march {
+        std::size_t layer = 0;
+        T z{}, phi{}, sin_phi{}, cos_phi{}; ///< depth (m) and inclination (rad, + down; phi stale unless phi_known)
+        bool phi_known = true;
+        T t{}, x{}, s{}, absorption_db{};    ///< time (s), range (m), path (m), absorption (dB) so far
+        ray_tube<T> tube{};
+    };
+
+    /// Follows the ray from `m` arc by arc until it meets the scene, leaves the water or runs out of time.
+    template <Scene S>
+    [[nodiscard]] std::optional<layered_path<T>> follow(march m, const ray<T>& r, const vec3<T>& hdir, const S& scene,
+                                                        T t_max_s, T chord_depth, layered_path<T> out) const {
+        constexpr T inf = std::numeric_limits<T>::infinity();
+        constexpr std::size_t max_arcs = std::size_t(1) << 24;
+        int zero_steps = 0;
+        for (std::size_t n_arcs = 0; n_arcs < max_arcs; ++n_arcs) {
+            const gradient_layer<T>& layer = layers_[m.layer];
+            if (zero_steps >= 2) { // horizontal on a knot whose two layers both bend it back: it runs along the knot
+                m.phi = T(0);
+                m.sin_phi = T(0);
+                m.cos_phi = T(1);
+                m.phi_known = true;
+            }
+            ++out.arcs;
+            const T g = zero_steps >= 2 ? T(0) : layer.gradient_per_s;
+            const T c0 = layer.speed_mps(m.z);
+            const T xi = m.cos_phi / c0;
+            arc_detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, g, xi, xi * g};
+            const arc_frame<T> frame{vec3<T>{r.origin.x + hdir.x * m.x, r.origin.y + hdir.y * m.x, p_.surface_z_m - m.z}, hdir};
+            // Path length the time left allows in this layer (c is largest at one of its bounds).
+            const T c_max = g == T(0) ? c0 : std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m));
+            const T s_cap = c_max * (t_max_s - m.t);
+
+            // Where the arc surely stays in the layer and may meet geometry, look before stepping through the layer.
+            T s_done = T(0);
+            if (m.z >= chord_depth) {
+                const T stay = std::min(stay_length(layer, m.z, a), s_cap);
+                if (stay > T(0)) {
+                    if (auto h = intersect_arc(scene, frame, a.sin0, a.cos0, a.kappa, T(0), stay, p_.chord_tolerance_m,
+                                               out.chords))
+                        return finish(m, a, *h, layer, hdir, t_max_s, out);
+                    s_done = stay;
+                }
+            }
+
+            if (!m.phi_known) {
+                m.phi = std::atan2(m.sin_phi, m.cos_phi);
+                a.phi0 = m.phi;
+                m.phi_known = true;
+            }
+            layer_step<T> st;
+            if (zero_steps >= 2) {
+                st.arc = {m.z, c0, T(0), T(0), inf};
+                st.exit = {m.z, inf, inf, inf, T(0)};
+                st.boundary = layer_exit::none;
+            } else {
+                st = step_through_layer(layer, m.z, std::abs(m.phi), m.phi < T(0) ? vertical_direction::up : vertical_direction::down);
+            }
+            const ray_arc<T>& arc = st.arc;
+            const T s_end = std::min(arc.length_m, s_cap);
+            if (s_done < s_end) {
+                if (const auto s_begin = chord_start(st, a.kappa, chord_depth, s_end)) {
+                    if (auto h = intersect_arc(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
+                                               p_.chord_tolerance_m, out.chords))
+                        return finish(m, a, *h, layer, hdir, t_max_s, out);
+                }
+            }
+            if (st.boundary == layer_exit::none || !(arc.length_m <= s_cap)) return std::nullopt;
+
+            // Through the layer: accumulate and move on.
+            const bool top = st.boundary == layer_exit::top;
+            if (top && (layer.z_top_m <= T(0) || m.layer == 0)) return std::nullopt; // reached the sea surface
+            advance(m, a, st, layer);
+            zero_steps = st.exit.arc_m == T(0) ? zero_steps + 1 : 0;
+            if (top) --m.layer;
+            else ++m.layer;
+            if (!(m.t <= t_max_s)) return std::nullopt;
+        }
+        return std::nullopt;
+    }
+
+    /// Adds a whole arc through a layer to the march.
+    void advance(march& m, const arc_detail::arc_start<T>& a, const layer_step<T>& st, const gradient_layer<T>& layer) const {
+        const arc_sample<T>& e = st.exit;
+        const T sin_e = std::sin(e.incline_rad);
+        m.tube.add_piece(ray_tube_q(e.range_m, a.xi, e.arc_m, a.c0, layer.speed_mps(e.depth_m)), a.sin0, sin_e);
+        m.absorption_db += arc_absorption_db(a, e.arc_m);
+        m.t += e.time_s;
+        m.x += e.range_m;
+        m.s += e.arc_m;
+        m.z = e.depth_m;
+        m.phi = e.incline_rad;
+        m.sin_phi = sin_e;
+        m.cos_phi = std::max(std::cos(e.incline_rad), T(0));
+        m.phi_known = true;
+    }
+
+    /// The path to a hit on the current arc.
+    [[nodiscard]] std::optional<layered_path<T>> finish(const march& m, const arc_detail::arc_start<T>& a,
+                                                        const arc_hit<T>& h, const gradient_layer<T>& layer,
+                                                        const vec3<T>& hdir, T t_max_s, layered_path<T> out) const {
+        const arc_offset<T>& o = h.at;
+        T dt;
+        if (a.cos0 > T(0)) {
+            dt = arc_detail::arc_time(a, o.range_m, o.cos_incline, o.sin_half * o.sin_half);
+        } else { // vertical
+            const T dz = o.depth_m;
+            dt = std::abs(dz) / a.c0 * arc_detail::log1p_ratio(a.g * dz / a.c0);
+        }
+        const T t_hit = m.t + dt;
+        if (!(t_hit <= t_max_s)) return std::nullopt;
+        out.hit_speed_mps = layer.speed_mps(a.z0 + o.depth_m);
+        const T q = ray_tube_q(o.range_m, a.xi, h.arc_m, a.c0, out.hit_speed_mps);
+        out.outgoing_spreading = m.tube.outgoing_spreading(q, a.sin0, o.sin_incline);
+        const T ratio = out.hit_speed_mps / out.source_speed_mps;
+        const T absorption_db = m.absorption_db + arc_absorption_db(a, h.arc_m);
+        out.range_m = m.x + o.range_m;
+        out.path_length_m = m.s + h.arc_m;
+        out.result.surface = h.surface;
+        out.result.surface.distance_m = out.path_length_m;
+        out.result.time_s = t_hit;
+        out.result.spreading = out.outgoing_spreading * ratio * ratio;
+        out.result.absorption = std::exp(-ln10_v<T> / T(10) * absorption_db);
+        out.result.arrival = hdir * o.cos_incline + vec3<T>{T(0), T(0), -o.sin_incline};
+        return out;
+    }
+
+    /// A length of arc (m) the ray surely travels before it can leave the layer: the depth it must cover to reach
+    /// the boundary ahead, or to turn and come back past its start to the other one. 0 for a horizontal start.
+    [[nodiscard]] static T stay_length(const gradient_layer<T>& layer, T z, const arc_detail::arc_start<T>& a) noexcept {
+        if (a.sin0 > T(0)) {
+            const T ahead = layer.z_bottom_m - z;
+            if (!(a.kappa > T(0))) return ahead;
+            const T turn = a.sin0 * a.sin0 / ((T(1) + a.cos0) * a.kappa); // depth to the turning point
+            return std::min(ahead, T(2) * turn + (z - layer.z_top_m));
+        }
+        if (a.sin0 < T(0)) {
+            const T ahead = z - layer.z_top_m;
+            if (!(a.kappa < T(0))) return ahead;
+            const T turn = a.sin0 * a.sin0 / ((T(1) + a.cos0) * -a.kappa);
+            return std::min(ahead, T(2) * turn + (layer.z_bottom_m - z));
+        }
+        return T(0);
+    }
+
+    /// The ray launched down at inclination (sin_phi0, cos_phi0) from depth z_a, where it first reaches depth z_h
+    /// going down all the way (nullopt if it turns or levels off first): the launch table's exact trace.
+    [[nodiscard]] std::optional<descent_state<T>> descend(T z_a, T z_h, T sin_phi0, T cos_phi0) const noexcept {
+        march m;
+        m.layer = profile_.layer_index(z_a, vertical_direction::down);
+        m.z = z_a;
+        m.sin_phi = sin_phi0;
+        m.cos_phi = cos_phi0;
+        m.phi = std::atan2(sin_phi0, cos_phi0);
+        m.tube = ray_tube<T>{layers_[m.layer].speed_mps(z_a), sin_phi0};
+        for (std::size_t n = 0; n <= layers_.size(); ++n) {
+            gradient_layer<T> layer = layers_[std::min(m.layer, layers_.size() - 1)];
+            layer.z_bottom_m = std::min(layer.z_bottom_m, z_h);
+            const T c0 = layer.speed_mps(m.z);
+            const T xi = m.cos_phi / c0;
+            const arc_detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, layer.gradient_per_s, xi,
+                                             xi * layer.gradient_per_s};
+            const layer_step<T> st = step_through_layer(layer, m.z, m.phi, vertical_direction::down);
+            if (st.boundary != layer_exit::bottom || !(st.exit.incline_rad > T(0))) return std::nullopt;
+            advance(m, a, st, layer);
+            if (m.z >= z_h) return descent_state<T>{m.x, m.t, m.s, m.absorption_db, m.tube.q_sum, m.tube.k_sum};
+            ++m.layer;
+        }
+        return std::nullopt;
+    }
+
+    /// This thread's launch table for source depth z_a and table depth z_h, built when either (or the water) changes.
+    [[nodiscard]] const launch_table<T>& table_for(T z_a, T z_h) const {
+        struct entry {
+            std::uint64_t owner = 0;
+            T z_a{}, z_h{};
+            std::optional<launch_table<T>> table;
+        };
+        thread_local entry cache;
+        if (cache.owner != id_ || cache.z_a != z_a || cache.z_h != z_h || !cache.table) {
+            const T tolerance = std::max(T(1e-9), T(64) * std::numeric_limits<T>::epsilon());
+            cache.table.emplace([&](T s, T c) { return descend(z_a, z_h, s, c); }, tolerance);
+            cache.owner = id_;
+            cache.z_a = z_a;
+            cache.z_h = z_h;
+        }
+        return *cache.table;
+    }
+
     /// Arc length from which the arc may meet geometry (it is at depth >= chord_depth there), or nullopt when it
-    /// stays shallower than chord_depth up to s_end.
-    [[nodiscard]] static std::optional<T> chord_start(const layer_step<T>& st, T kappa, T chord_depth, T s_end) noexcept {
+    /// stays shallower than chord_depth up to s_end. When the whole of [0, s_end] would take at most two chords, the
+    /// chords simply start at 0 (finding the exact depth crossing would cost more than the chord it saves).
+    [[nodiscard]] std::optional<T> chord_start(const layer_step<T>& st, T kappa, T chord_depth, T s_end) const noexcept {
         const ray_arc<T>& arc = st.arc;
         if (!(s_end > T(0))) return std::nullopt;
         if (arc.start_depth_m >= chord_depth) return T(0);
@@ -253,19 +446,21 @@ private:
             deepest = arc.start_depth_m + T(2) * sh * sh / kappa;
         }
         if (!(deepest >= chord_depth)) return std::nullopt;
+        // Sagitta of the whole span (small-angle form): at most two chords' worth of tolerance.
+        if (std::abs(kappa) * s_end * s_end <= T(32) * p_.chord_tolerance_m) return T(0);
         const auto p = arc_point_at_depth(arc, chord_depth);
         if (!p || !(p->arc_m < s_end)) return std::nullopt;
         return p->arc_m;
     }
 
-    /// One-way absorption (dB) along the first len_m (m) of an arc starting at depth z0_m with inclination
-    /// (sin_a, cos_a) and curvature kappa (1/m): three-point Gauss-Legendre in arc length (file comment).
-    [[nodiscard]] T arc_absorption_db(T z0_m, T sin_a, T cos_a, T kappa, T len_m) const noexcept {
+    /// One-way absorption (dB) along the first len_m (m) of the arc `a`: three-point Gauss-Legendre in arc length
+    /// (file comment).
+    [[nodiscard]] T arc_absorption_db(const arc_detail::arc_start<T>& a, T len_m) const noexcept {
         if (!(len_m > T(0))) return T(0);
         const T half = len_m / T(2);
         const T off = half * T(0.774596669241483377035853079956479922L); // sqrt(3/5)
         const auto alpha = [&](T s) {
-            return absorption_db_per_km(std::max(z0_m + offset_along_arc(sin_a, cos_a, kappa, s).depth_m, T(0)));
+            return absorption_db_per_km(std::max(a.z0 + offset_along_arc(a.sin0, a.cos0, a.kappa, s).depth_m, T(0)));
         };
         const T mean = (T(5) * (alpha(half - off) + alpha(half + off)) + T(8) * alpha(half)) / T(18);
         return mean * len_m / T(1000);
@@ -293,6 +488,8 @@ private:
     ainslie_mccolm<T> am_;
     std::vector<gradient_layer<T>> layers_;
     T c_ref_{};
+    std::uint64_t id_ = 0; ///< identifies the water for the launch-table cache (copies share it: same water)
+    inline static std::atomic<std::uint64_t> next_id_{1};
 };
 
 static_assert(Propagation<layered<float>> && Propagation<layered<double>>);

@@ -11,7 +11,8 @@
 /// coordinates so that rounding in the box test never culls a primitive that the exact test would hit.
 /// Traversal: depth first, near child first, each box tested against [0, nearest hit so far]
 /// (the slab test of Kay & Kajiya, 1986, SIGGRAPH, with the NaN of 0 x inf, a ray in a box's face plane,
-/// read as inside). A ray that misses the root box costs one box test.
+/// read as inside). A ray whose piece passes outside the sphere around the root box costs one point-to-segment
+/// distance (no division); one that misses the root box, one box test more.
 ///
 /// The brute-force search (every object, every primitive) is kept to check the hierarchy against.
 
@@ -24,6 +25,8 @@
 #include <optional>
 #include <utility>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
@@ -39,8 +42,8 @@ namespace detail {
 template <Real T> struct bvh_node {
     box<T> bounds;
     std::uint32_t offset = 0;
-    std::uint16_t count = 0; ///< 0 for an inner node
-    std::uint8_t axis = 0;   ///< split axis of an inner node
+    std::uint32_t count = 0; ///< 0 for an inner node
+    std::uint32_t axis = 0;  ///< split axis of an inner node
 };
 
 /// Item tags: which primitive array, and the index in it.
@@ -81,6 +84,13 @@ public:
     /// Nearest hit over all objects with 0 < distance <= t_max_m, through the hierarchy.
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         if (nodes_.empty()) return std::nullopt;
+        { // Early out without divisions: the piece [0, t_max] passes farther from the root box's centre than
+          // its half diagonal (padded).
+            const vec3<T> f = r.origin - root_center_;
+            const T t = std::clamp(-glm::dot(f, r.direction), T(0), t_max_m);
+            const vec3<T> g = f + r.direction * t;
+            if (glm::dot(g, g) > root_radius2_) return std::nullopt;
+        }
         const detail::box_ray<T> br(r);
         T t_best = t_max_m;
         std::uint32_t best = no_item;
@@ -105,7 +115,7 @@ public:
             }
             const std::uint32_t left = static_cast<std::uint32_t>(&n - nodes_.data()) + 1, right = n.offset;
             // Near child on top of the stack: the one on the side the ray comes from.
-            if (r.direction[n.axis] < T(0)) {
+            if (r.direction[static_cast<int>(n.axis)] < T(0)) {
                 stack[top++] = left;
                 stack[top++] = right;
             } else {
@@ -159,6 +169,10 @@ private:
         if (work.empty()) return;
         nodes_.reserve(2 * work.size());
         split(work, 0, work.size(), 0);
+        const box<T>& root = nodes_.front().bounds;
+        root_center_ = root.center();
+        const T half_diagonal = glm::length(root.extent()) * T(0.5) * (T(1) + T(64) * std::numeric_limits<T>::epsilon());
+        root_radius2_ = half_diagonal * half_diagonal;
         items_.reserve(work.size());
         for (const build_item& w : work) items_.push_back(w.item);
     }
@@ -176,7 +190,7 @@ private:
         const std::size_t n = last - first;
         auto make_leaf = [&] {
             nodes_[index].offset = static_cast<std::uint32_t>(first);
-            nodes_[index].count = static_cast<std::uint16_t>(n);
+            nodes_[index].count = static_cast<std::uint32_t>(n);
             return index;
         };
         const vec3<T> ext = centroids.extent();
@@ -184,11 +198,10 @@ private:
         if (ext.y > ext[axis]) axis = 1;
         if (ext.z > ext[axis]) axis = 2;
         const bool can_leaf = n <= max_leaf;
-        if (n == 1 || depth + 2 >= max_depth || !(ext[axis] > T(0))) {
-            if (n <= 0xffff) return make_leaf();
-            // Coincident centroids (or the depth limit): split by count, whatever the cost.
-            return split_at(work, first, first + n / 2, last, depth, axis, index);
-        }
+        // The depth limit keeps the traversal stack (max_depth entries) from overflowing: a leaf, however full.
+        if (n == 1 || depth + 2 >= max_depth) return make_leaf();
+        if (!(ext[axis] > T(0))) // coincident centroids: split by count, whatever the cost
+            return n <= max_leaf ? make_leaf() : split_at(work, first, first + n / 2, last, depth, axis, index);
         // Binned surface-area heuristic along the widest axis of the centroids.
         struct bin {
             box<T> bounds;
@@ -250,7 +263,7 @@ private:
                              work.begin() + static_cast<std::ptrdiff_t>(last),
                              [axis](const build_item& a, const build_item& b) { return a.centroid[axis] < b.centroid[axis]; });
         }
-        nodes_[index].axis = static_cast<std::uint8_t>(axis);
+        nodes_[index].axis = static_cast<std::uint32_t>(axis);
         split(work, first, mid, depth + 1);
         const std::uint32_t right = split(work, mid, last, depth + 1);
         nodes_[index].offset = right;
@@ -263,6 +276,8 @@ private:
     std::vector<cylinder<T>> cylinders_;
     std::vector<std::uint32_t> items_;
     std::vector<detail::bvh_node<T>> nodes_;
+    vec3<T> root_center_{};
+    T root_radius2_{};
     box<T> bounds_{};
 };
 

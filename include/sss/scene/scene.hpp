@@ -34,7 +34,8 @@ public:
     /// Nearest hit over seabed and objects with 0 < distance <= t_max_m.
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const {
         std::optional<hit<T>> h = seabed_.intersect(r, t_max_m);
-        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) return o;
+        if (objects_.empty()) return h;
+        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
         return h;
     }
 

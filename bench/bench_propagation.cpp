@@ -1,0 +1,194 @@
+// Cost of propagation per ray: straight rays against layered water, on the same rays over the same flat seabed.
+//
+// Scene: flat seabed at world z = 0, towfish 10 m above it (depth 50 m, sea surface at z = 60), 4096 rays whose
+// straight-line slant ranges to the seabed run from 10 m to 60 m, launched towards varying azimuths, traced in a
+// scrambled order; one-way time limit 0.1 s.
+// Waters:
+//   straight      isovelocity 1500 m/s, 60 dB/km (sss::propagation::straight)
+//   uniform       layered, 1500 m/s at five knots (0, 20, 44, 54, 200 m): straight paths, crossing knots
+//   thermocline   layered, 1500 m/s at the surface, 1499 at 44 m, 1479 at 54 m (a 20 m/s drop around the towfish),
+//                 then +0.0165 1/s (the policy matrix's water)
+//   fine          layered, a smooth thermocline (1490 - 10 tanh((z - 49)/3)) on knots every 0.1 m
+// Layered waters use Francois-Garrison absorption at 300 kHz and 1 mm chords.
+// Then whole pings (simulator: Lambert -27 dB, 300 kHz planar array 32 x 2 tilted 15 deg to -30 dB, 40 m range,
+// 20 kHz sampling, default ray density), straight against thermocline water.
+// Before the benchmarks a summary prints the per-ray cost of each water and its ratio to straight rays, by its own
+// timing loop (best of five), for trace alone and for whole pings.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <vector>
+
+#include <sss/beam/planar_array.hpp>
+#include <sss/motion/straight_line.hpp>
+#include <sss/propagation/layered.hpp>
+#include <sss/propagation/straight.hpp>
+#include <sss/scattering/lambertian.hpp>
+#include <sss/scene/flat_seabed.hpp>
+#include <sss/simulator.hpp>
+
+namespace {
+
+using sss::propagation::layered;
+using sss::propagation::layered_params;
+using sss::propagation::sound_speed_profile;
+using sss::propagation::straight;
+
+constexpr std::size_t ray_count = 4096;
+
+template <class T> std::vector<sss::ray<T>> bench_rays() {
+    std::vector<sss::ray<T>> rays(ray_count);
+    for (std::size_t i = 0; i < ray_count; ++i) {
+        const double range = 10.0 + 50.0 * double((i * 1237) % ray_count) / double(ray_count);
+        const double graze = std::asin(10.0 / range), az = 0.0015 * double(i);
+        rays[i] = {{T(0), T(0), T(10)},
+                   {T(std::cos(graze) * std::cos(az)), T(std::cos(graze) * std::sin(az)), T(-std::sin(graze))}};
+    }
+    return rays;
+}
+
+template <class T> layered_params<T> water_params() {
+    layered_params<T> p;
+    p.surface_z_m = T(60);
+    p.frequency_hz = T(300000);
+    return p;
+}
+
+template <class T> layered<T> uniform_water() {
+    return layered<T>(sound_speed_profile<T>({T(0), T(20), T(44), T(54), T(200)}, std::vector<T>(5, T(1500))), water_params<T>());
+}
+template <class T> layered<T> thermocline_water() {
+    return layered<T>(sound_speed_profile<T>({T(0), T(44), T(54), T(200)}, {T(1500), T(1499), T(1479), T(1481.409)}),
+                      water_params<T>());
+}
+template <class T> layered<T> fine_water() {
+    std::vector<T> d, c;
+    for (int k = 0; k <= 1000; ++k) {
+        d.push_back(T(0.1 * k));
+        c.push_back(T(1490.0 - 10.0 * std::tanh((0.1 * k - 49.0) / 3.0)));
+    }
+    return layered<T>(sound_speed_profile<T>(d, c), water_params<T>());
+}
+
+enum class water { straight, uniform, thermocline, fine };
+
+template <class P, class T> double trace_all(const P& p, const std::vector<sss::ray<T>>& rays) {
+    const sss::scene::flat_seabed<T> seabed(T(0));
+    double sum = 0;
+    for (const auto& r : rays)
+        if (const auto h = p.trace(r, seabed, T(0.1))) sum += double(h->time_s);
+    return sum;
+}
+
+template <class T, water W> void propagation_trace(benchmark::State& state) {
+    const auto rays = bench_rays<T>();
+    const straight<T> iso({T(1500), T(60)});
+    const layered<T> lay = W == water::uniform ? uniform_water<T>() : W == water::fine ? fine_water<T>() : thermocline_water<T>();
+    for (auto _ : state) {
+        if constexpr (W == water::straight) benchmark::DoNotOptimize(trace_all(iso, rays));
+        else benchmark::DoNotOptimize(trace_all(lay, rays));
+    }
+    state.SetItemsProcessed(state.iterations() * std::int64_t(ray_count));
+    state.SetLabel(W == water::straight ? "straight" : W == water::uniform ? "layered, uniform" :
+                   W == water::thermocline ? "layered, thermocline" : "layered, 1000 knots");
+}
+BENCHMARK_TEMPLATE(propagation_trace, double, water::straight);
+BENCHMARK_TEMPLATE(propagation_trace, double, water::uniform);
+BENCHMARK_TEMPLATE(propagation_trace, double, water::thermocline);
+BENCHMARK_TEMPLATE(propagation_trace, double, water::fine);
+BENCHMARK_TEMPLATE(propagation_trace, float, water::straight);
+BENCHMARK_TEMPLATE(propagation_trace, float, water::thermocline);
+
+template <class T, class P>
+using ping_simulator = sss::simulator<sss::scattering::lambertian<T>, P, sss::beam::planar_array<T>, sss::motion::straight_line<T>>;
+
+template <class T, class P> ping_simulator<T, P> make_pinger(const P& p) {
+    sss::receiver_params rx;
+    rx.sample_rate_hz = 20000.0;
+    rx.max_range_m = 40.0;
+    rx.pulse = {100e-6, sss::pulse_shape::rectangular};
+    sss::beam::planar_array_params<T> b;
+    b.frequency_hz = T(300000);
+    b.depression_deg = T(15);
+    b.transmit.along = {32, T(0.0150), T(0.0156), {}};
+    b.transmit.vertical = {2, T(0.0190), T(0.0200), {}};
+    b.threshold_db = T(-30);
+    return ping_simulator<T, P>(sss::scattering::lambertian<T>{T(-27)}, p, sss::beam::planar_array<T>{b},
+                                sss::motion::straight_line<T>{{{T(0), T(0)}, T(30), T(2), T(10), T(0.1)}}, rx);
+}
+
+template <class T, class P> std::size_t rays_per_ping(const ping_simulator<T, P>& sim) {
+    std::size_t n = 0;
+    const sss::scene::flat_seabed<T> seabed(T(0));
+    for (sss::side sd : {sss::side::port, sss::side::starboard})
+        sim.trace(seabed, sim.motion().pose_at(0), sd, [&](const sss::tube_echo<T>&) { ++n; });
+    return n; // tubes; one more ray per along-track column and side than tubes, near enough
+}
+
+template <class T, bool Layered> void propagation_ping(benchmark::State& state) {
+    const sss::scene::flat_seabed<T> seabed(T(0));
+    const auto run = [&](const auto& sim) {
+        std::size_t i = 0;
+        for (auto _ : state) benchmark::DoNotOptimize(sim.ping(seabed, i++ % 16).starboard.data());
+        state.SetItemsProcessed(state.iterations() * std::int64_t(rays_per_ping(sim)));
+    };
+    if constexpr (Layered) run(make_pinger<T>(thermocline_water<T>()));
+    else run(make_pinger<T>(straight<T>({T(1500), T(60)})));
+    state.SetLabel(Layered ? "ping, layered thermocline" : "ping, straight");
+}
+BENCHMARK_TEMPLATE(propagation_ping, double, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(propagation_ping, double, true)->Unit(benchmark::kMillisecond);
+
+// Best of five timings of f (seconds).
+template <class F> double best_of_five(F&& f) {
+    double best = 1e30;
+    for (int k = 0; k < 5; ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        f();
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return best;
+}
+
+void print_summary() {
+    const auto rays = bench_rays<double>();
+    double sink = 0;
+    const double t_straight = best_of_five([&] { sink += trace_all(straight<double>({1500.0, 60.0}), rays); });
+    std::printf("Per-ray trace cost, flat seabed 10 m below, slant ranges 10-60 m (%zu rays):\n", ray_count);
+    std::printf("  %-34s %8.1f ns\n", "straight", 1e9 * t_straight / double(ray_count));
+    const auto report = [&](const char* name, const layered<double>& w) {
+        const double t = best_of_five([&] { sink += trace_all(w, rays); });
+        std::printf("  %-34s %8.1f ns   x%.1f straight\n", name, 1e9 * t / double(ray_count), t / t_straight);
+    };
+    report("layered, uniform (5 knots)", uniform_water<double>());
+    report("layered, thermocline", thermocline_water<double>());
+    report("layered, smooth thermocline (1000 knots)", fine_water<double>());
+
+    const sss::scene::flat_seabed<double> seabed(0.0);
+    const auto a = make_pinger<double>(straight<double>({1500.0, 60.0}));
+    const auto b = make_pinger<double>(thermocline_water<double>());
+    const double pa = best_of_five([&] { sink += double(a.ping(seabed, 3).starboard[100]); });
+    const double pb = best_of_five([&] { sink += double(b.ping(seabed, 3).starboard[100]); });
+    const std::size_t na = rays_per_ping(a), nb = rays_per_ping(b);
+    std::printf("Whole pings (planar array, 40 m, Lambert; per ray = ping time / rays):\n");
+    std::printf("  %-34s %8.3f ms  %6zu rays  %6.1f ns/ray\n", "straight", 1e3 * pa, na, 1e9 * pa / double(na));
+    std::printf("  %-34s %8.3f ms  %6zu rays  %6.1f ns/ray   x%.2f straight per ray\n", "layered, thermocline", 1e3 * pb, nb,
+                1e9 * pb / double(nb), (pb / double(nb)) / (pa / double(na)));
+    std::printf("(checksum %g)\n\n", sink);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    print_summary();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
