@@ -184,6 +184,22 @@ public:
                 prev_bounce = bounce;
                 in_run = true;
             }
+            // The spacing assumed straight rays to a flat seabed; bent rays (or a scene rising towards the far end)
+            // may still return in time beyond the last angle. Continue at the last angular step while they do.
+            if (in_run && prev.valid && angles.size() >= 2 && !std::isnan(angles[angles.size() - 2])) {
+                const double step = double(angles[angles.size() - 2]) - prev.e;
+                for (std::size_t extra = 0; step > 0.0 && extra < angles.size(); ++extra) {
+                    const double e = prev.e - step;
+                    if (e < double(ext.depression_min_rad)) break;
+                    ray_end bounce;
+                    const ray_end cur = shoot(scene, p, sd, along, static_cast<T>(e), t_max_one_way, column_sr, bounce);
+                    emit_tube(prev, cur, step, visit);
+                    if constexpr (bouncing) emit_tube(prev_bounce, bounce, step, visit);
+                    if (!cur.valid && !bounce.valid) break;
+                    prev = cur;
+                    prev_bounce = bounce;
+                }
+            }
         }
     }
 

@@ -24,7 +24,8 @@ const std::vector<double>& expected_line(const sss_test::oracle_setup& o, sss::s
         using sss_test::matrix_policy;
         const auto beam = matrix_policy<B>::make();
         const auto scattering = matrix_policy<S>::make();
-        it = cache.emplace(key, sss_test::oracle_line(o, beam, scattering, sd)).first;
+        // The propagation policy chooses its oracle: straight rays or closed-form arcs.
+        it = cache.emplace(key, matrix_policy<P>::oracle_line(o, beam, scattering, sd)).first;
     }
     return it->second;
 }

@@ -9,9 +9,8 @@
 /// inclination), and its inclination is phi(s) = phi0 - kappa s; kappa = cos(phi0) g / c0 (1/m) is its signed
 /// curvature. A chord spanning arc length ds of a circle of curvature k = |kappa| has sagitta (the largest
 /// distance between arc and chord)
-///     e = (1 - cos(k ds / 2)) / k  ~  k ds^2 / 8,
-/// so chords with ds <= (4/k) asin(sqrt(k tol / 2)) keep every point of the arc within tol of a chord
-/// (chord_arc_length_m). A 1 mm tolerance in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives
+///     e = (1 - cos(k ds / 2)) / k  <=  k ds^2 / 8,
+/// so chords with ds <= sqrt(8 tol / k) keep every point of the arc within tol of a chord (chord_arc_length_m). A 1 mm tolerance in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives
 /// 2.5 m chords; under a 0.017 1/s gradient, 27 m.
 ///
 /// The scene's hit on a chord lies on the facet the chord met, within tol of the arc. The arc meets that facet's
@@ -51,9 +50,15 @@ template <Real T> struct arc_offset {
     T sin_half{};    ///< sine of half the turn since the start, sin(kappa s / 2)
 };
 
-/// sin(h)/h and cos(h): by their Taylor series (to h^12, exact to rounding) when |h| <= 1/8, the usual case on
-/// a sonar path, else from the library functions.
+/// sin(h)/h and cos(h): by their Taylor series, exact to rounding, when |h| <= 1/8 (to h^4 and h^6 below 1e-3, to
+/// h^10 and h^12 above), the usual case on a sonar path; else from the library functions.
 template <Real T> inline void sinc_cos(T h, T& sinc_h, T& cos_h) noexcept {
+    if (std::abs(h) <= T(1e-3)) { // next terms h^6/5040 and h^8/40320: below 1e-21
+        const T q = h * h;
+        sinc_h = T(1) + q * (T(-1.0 / 6) + q * T(1.0 / 120));
+        cos_h = T(1) + q * (T(-0.5) + q * (T(1.0 / 24) + q * T(-1.0 / 720)));
+        return;
+    }
     if (std::abs(h) <= T(0.125)) {
         const T q = h * h;
         sinc_h = T(1) + q * (T(-1.0 / 6) + q * (T(1.0 / 120) + q * (T(-1.0 / 5040) + q * (T(1.0 / 362880) +
@@ -81,14 +86,13 @@ template <Real T>
     return {chord * cos_mean, chord * sin_mean, sin_mean * ch - cos_mean * sh, cos_mean * ch + sin_mean * sh, sh};
 }
 
-/// The longest arc length (m) a chord may span on a circle of curvature |curvature_per_m| (1/m) so that the arc
-/// stays within tolerance_m (m) of it; +infinity on a straight line. At most half the circle.
+/// An arc length (m) a chord may span on a circle of curvature |curvature_per_m| (1/m) with the arc staying within
+/// tolerance_m (m) of it: sqrt(8 tol / k), from the sagitta's bound (1 - cos(k ds/2))/k <= k ds^2/8, which is
+/// within k tol / 6 (relative) of the longest such length; at most half the circle; +infinity on a straight line.
 template <Real T> [[nodiscard]] inline T chord_arc_length_m(T curvature_per_m, T tolerance_m) noexcept {
     const T k = std::abs(curvature_per_m);
     if (k == T(0)) return std::numeric_limits<T>::infinity();
-    const T q = k * tolerance_m / T(2);
-    if (!(q < T(1))) return pi_v<T> / k;
-    return T(4) * std::asin(std::sqrt(q)) / k;
+    return std::min(std::sqrt(T(8) * tolerance_m / k), pi_v<T> / k);
 }
 
 /// A scene hit on an arc: what the scene reported, moved onto the arc, and where along the arc it lies.
@@ -123,34 +127,50 @@ template <Scene S, Real T>
         return out;
     }
 
-    const T step_max = chord_arc_length_m(kappa, tolerance_m);
     const T span = s_end_m - s_begin_m;
-    const T pieces = std::min(std::ceil(span / step_max), T(1 << 20));
-    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(pieces));
-    const T ds = span / static_cast<T>(n);
-    vec3<T> p = world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
-    for (std::size_t k = 0; k < n; ++k) {
-        const T s_lo = s_begin_m + ds * static_cast<T>(k);
-        const T s_hi = k + 1 == n ? s_end_m : s_begin_m + ds * static_cast<T>(k + 1);
-        const vec3<T> q = world(offset_along_arc(sin0, cos0, kappa, s_hi));
-        const vec3<T> d = q - p;
-        const T len = std::sqrt(glm::dot(d, d));
+    // Chords per metre of arc: the reciprocal of chord_arc_length_m, without its divisions.
+    const T k = std::abs(kappa);
+    const T rate = std::max(std::sqrt(k / (T(8) * tolerance_m)), k / pi_v<T>);
+    const T pieces = std::min(std::ceil(span * rate), T(1 << 20));
+    const std::size_t n = pieces > T(1) ? static_cast<std::size_t>(pieces) : 1;
+    const T ds = n == 1 ? span : span / static_cast<T>(n);
+    vec3<T> p = s_begin_m == T(0) ? frame.start : world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
+    for (std::size_t k_chord = 0; k_chord < n; ++k_chord) {
+        const T s_lo = s_begin_m + ds * static_cast<T>(k_chord);
+        const T s_hi = k_chord + 1 == n ? s_end_m : s_begin_m + ds * static_cast<T>(k_chord + 1);
+        vec3<T> q, dir;
+        T len;
+        if (s_lo == T(0)) { // from the arc's start the chord runs along the mean inclination: no normalising
+            T sinc_h, ch;
+            sinc_cos(kappa * s_hi / T(2), sinc_h, ch);
+            const T sh = kappa * s_hi / T(2) * sinc_h;
+            dir = frame.horizontal * (cos0 * ch + sin0 * sh) + down * (sin0 * ch - cos0 * sh);
+            len = s_hi * sinc_h;
+            q = p + dir * len;
+        } else {
+            q = world(offset_along_arc(sin0, cos0, kappa, s_hi));
+            const vec3<T> d = q - p;
+            len = std::sqrt(glm::dot(d, d));
+            dir = d * (T(1) / len);
+        }
         if (!(len > T(0))) { p = q; continue; }
+        const T inv_len = T(1) / len;
         // A hit exactly on a chord joint must not slip between the two chords: reach a few roundings past the end.
-        const T scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), len});
+        const T scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::max(std::abs(p.z), len));
         ++chords;
-        const auto h = scene.intersect(ray<T>{p, d / len}, len + T(16) * eps * scale);
+        const auto h = scene.intersect(ray<T>{p, dir}, len + T(16) * eps * scale);
         if (h) {
             // Newton on f(s) = n . (X(s) - H) from the chord's estimate, kept within the chord's neighbourhood.
             const vec3<T> n_hat = h->normal;
             const T n_h = glm::dot(n_hat, frame.horizontal);
             const T n_d = -n_hat.z; // n . (downward unit)
             const T base = glm::dot(n_hat, frame.start - h->point);
-            T s = s_lo + (s_hi - s_lo) * std::min(h->distance_m / len, T(1));
+            T s = s_lo + (s_hi - s_lo) * std::min(h->distance_m * inv_len, T(1));
             const T lo = std::max(s_lo - (s_hi - s_lo), T(0)), hi = s_hi + (s_hi - s_lo);
             arc_offset<T> o = offset_along_arc(sin0, cos0, kappa, s);
-            // The error squares each step, so a step below sqrt(eps) of the scale leaves only rounding behind.
-            const T settled = std::sqrt(eps) * std::max(s_hi, T(1));
+            // After a step e the error left is about |kappa| e^2 / (2 |f'|) (the arc's curvature against the plane):
+            // stop once that is below rounding.
+            const T settled = eps * std::max(s_hi, T(1));
             for (int it = 0; it < 8; ++it) {
                 const T f = base + o.range_m * n_h + o.depth_m * n_d;
                 const T df = o.cos_incline * n_h + o.sin_incline * n_d;
@@ -159,7 +179,7 @@ template <Scene S, Real T>
                 const T step = next - s;
                 s = next;
                 o = offset_along_arc(sin0, cos0, kappa, s);
-                if (!(std::abs(step) > settled)) break;
+                if (!(k * step * step > T(2) * std::abs(df) * settled)) break;
             }
             arc_hit<T> out{*h, s, o};
             out.surface.point = world(o);

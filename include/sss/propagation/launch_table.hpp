@@ -137,9 +137,10 @@ private:
         suffix[6] = T(1);
         for (int m = 0; m < 6; ++m) prefix[m + 1] = prefix[m] * d[m];
         for (int m = 5; m >= 0; --m) suffix[m] = suffix[m + 1] * d[m];
-        static constexpr T denominator[6] = {T(-120), T(24), T(-12), T(12), T(-24), T(120)};
+        static constexpr T inverse_denominator[6] = {T(-1.0 / 120), T(1.0 / 24), T(-1.0 / 12), T(1.0 / 12), T(-1.0 / 24),
+                                                     T(1.0 / 120)};
         T weight[6];
-        for (int m = 0; m < 6; ++m) weight[m] = prefix[m] * suffix[m + 1] / denominator[m];
+        for (int m = 0; m < 6; ++m) weight[m] = prefix[m] * suffix[m + 1] * inverse_denominator[m];
         const T* v = values_.data() + j * fields;
         T r[fields] = {};
         for (std::size_t m = 0; m < 6; ++m)

@@ -28,7 +28,7 @@
 /// so w stays finite for a horizontal launch and for a hit at a turning point. For a vertical ray (xi = 0)
 /// q is the limit integral of c dz over the piece. Isovelocity: q = c s per piece, so S_AB = 1/s^2 for path
 /// length s. A piece that starts horizontally on a layer boundary (a ray grazing a change of gradient: a shadow
-/// boundary, where neighbouring rays part) gives an infinitely wide tube: S_AB = 0.
+/// boundary, where neighbouring rays part) gives an infinitely wide tube: S_AB = 0. (ray_tube_q computes q.)
 ///
 /// The echo needs the return leg's spreading S_BA, from 1 m off the hit back to the transducer. The tube
 /// formula for the reversed ray and xi c_A = cos(theta0), xi c_B = cos(theta_hit) give reciprocity
@@ -43,12 +43,15 @@
 
 namespace sss::propagation {
 
-/// The q of one piece of ray (m^2/s): its horizontal range range_m (m) over the Snell invariant xi_s_per_m
-/// (s/m); for a vertical ray (xi = 0), the integral of c dz: arc length times the mean of the end speeds, exact
-/// for a linear c(z).
+/// The q = dx / xi of one piece of ray (m^2/s), from depth change dz_m (m), the speeds c_a_mps, c_b_mps (m/s) and
+/// the signed sines sin_a, sin_b of the inclination at its ends: q = dz (c_a + c_b) / (sin_a + sin_b) when the piece
+/// does not turn (sin^2 phi = 1 - xi^2 c^2 makes dx = xi (c_a + c_b) dz / (sin_a + sin_b); no xi, so it holds
+/// for a vertical ray, where it is the integral of c dz), else range_m / xi_s_per_m (a turning ray is never
+/// near vertical, so xi is well away from 0 there).
 template <Real T>
-[[nodiscard]] inline T ray_tube_q(T range_m, T xi_s_per_m, T arc_m, T c_start_mps, T c_end_mps) noexcept {
-    return xi_s_per_m > T(0) ? range_m / xi_s_per_m : arc_m * (c_start_mps + c_end_mps) / T(2);
+[[nodiscard]] inline T ray_tube_q(T range_m, T xi_s_per_m, T dz_m, T c_a_mps, T c_b_mps, T sin_a, T sin_b) noexcept {
+    if (sin_a * sin_b > T(0)) return dz_m * (c_a_mps + c_b_mps) / (sin_a + sin_b);
+    return xi_s_per_m > T(0) ? range_m / xi_s_per_m : T(0);
 }
 
 /// Accumulates the sums of the file comment over the pieces of one ray. Plain data.
