@@ -54,6 +54,12 @@ template <class T>
 using policy_matrix = typename as_tuple<typename matrix_of<scattering_policies<T>, propagation_policies<T>, beam_policies<T>,
                                                            motion_policies<T>>::type>::type;
 
+// The part of the matrix with one propagation policy: the matrix test has one translation unit per propagation
+// policy (tests/foundation/test_policy_matrix_<name>.cpp); a new propagation policy adds one.
+template <class T, class Propagation>
+using policy_matrix_with = typename as_tuple<typename matrix_of<scattering_policies<T>, type_list<Propagation>,
+                                                                beam_policies<T>, motion_policies<T>>::type>::type;
+
 } // namespace sss_test
 
 namespace sss_test {

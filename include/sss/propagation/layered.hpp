@@ -283,7 +283,11 @@ private:
             // Where the arc surely stays in the layer and may meet geometry, look before stepping through the layer.
             T s_done = T(0);
             if (m.z >= chord_depth) {
-                const T stay = std::min(stay_length(layer, m.z, a), s_cap);
+                // (A few roundings of the depths past the bound, so that a surface lying exactly on the boundary is not
+                // missed: world and depth coordinates differ by rounding of their own size.)
+                const T slack = T(64) * std::numeric_limits<T>::epsilon() * (std::abs(m.z) + std::abs(p_.surface_z_m)) /
+                                std::max(std::abs(a.sin0), T(1e-3));
+                const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
                 if (stay > T(0)) {
                     if (auto h = intersect_arc(scene, frame, a.sin0, a.cos0, a.kappa, T(0), stay, p_.chord_tolerance_m,
                                                out.chords))
@@ -379,29 +383,25 @@ private:
         return true;
     }
 
-    /// A length of arc (m) the ray surely travels before it can leave the layer: the depth to the boundary ahead over
-    /// the largest sine of the inclination on the way (at one end: it changes monotonically until a turn), or the
-    /// depth to turn and come back past its start to the other boundary. 0 for a horizontal start.
+    /// A length of arc (m) the ray surely travels before it can leave the layer. When the boundary ahead can be
+    /// reached (Snell gives a real sine there, sin_b), exactly the arc length to it, s = 2 dz/(sin_a + sin_b)
+    /// atan(w)/w with w = kappa dz/(sin_a + sin_b) (ray_arc.hpp); when the ray turns first, the depth down to the turn
+    /// and back past its start to the other boundary. 0 for a horizontal start.
     [[nodiscard]] static T stay_length(const gradient_layer<T>& layer, T z, const arc_detail::arc_start<T>& a) noexcept {
-        const auto sine_at = [&](T depth) { // |sin phi| where the ray would reach `depth` (Snell); 1 if it cannot
-            const T c = a.xi * layer.speed_mps(depth);
-            return c < T(1) ? std::sqrt((T(1) - c) * (T(1) + c)) : T(1);
-        };
-        if (a.sin0 > T(0)) {
-            const T depth = layer.z_bottom_m - z;
-            const T ahead = std::isfinite(depth) ? depth / std::max(a.sin0, sine_at(layer.z_bottom_m)) : depth;
-            if (!(a.kappa > T(0))) return ahead;
-            const T turn = a.sin0 * a.sin0 / ((T(1) + a.cos0) * a.kappa); // depth to the turning point
-            return std::min(ahead, T(2) * turn + (z - layer.z_top_m));
+        if (a.sin0 == T(0)) return T(0);
+        const bool down = a.sin0 > T(0);
+        const T ahead = down ? layer.z_bottom_m : layer.z_top_m;
+        if (!std::isfinite(ahead)) return std::numeric_limits<T>::infinity(); // a zero-gradient half-space: straight on
+        const T dz = ahead - z;
+        const T c = a.xi * layer.speed_mps(ahead);
+        if (c < T(1)) {
+            const T sin_b = std::copysign(std::sqrt((T(1) - c) * (T(1) + c)), a.sin0);
+            const T sum = a.sin0 + sin_b;
+            return T(2) * dz / sum * arc_detail::atan_ratio(a.kappa * dz / sum);
         }
-        if (a.sin0 < T(0)) {
-            const T depth = z - layer.z_top_m;
-            const T ahead = std::isfinite(depth) ? depth / std::max(-a.sin0, sine_at(layer.z_top_m)) : depth;
-            if (!(a.kappa < T(0))) return ahead;
-            const T turn = a.sin0 * a.sin0 / ((T(1) + a.cos0) * -a.kappa);
-            return std::min(ahead, T(2) * turn + (layer.z_bottom_m - z));
-        }
-        return T(0);
+        // It turns before the boundary ahead: down to the turning depth and back up past its start at least.
+        const T turn = a.sin0 * a.sin0 / ((T(1) + a.cos0) * std::abs(a.kappa));
+        return T(2) * turn + (down ? z - layer.z_top_m : layer.z_bottom_m - z);
     }
 
     /// The ray launched down at inclination (sin_phi0, cos_phi0) from depth z_a, where it first reaches depth z_h
