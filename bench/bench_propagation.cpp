@@ -9,11 +9,13 @@
 //   thermocline   layered, 1500 m/s at the surface, 1499 at 44 m, 1479 at 54 m (a 20 m/s drop around the towfish),
 //                 then +0.0165 1/s (the policy matrix's water)
 //   fine          layered, a smooth thermocline (1490 - 10 tanh((z - 49)/3)) on knots every 0.1 m
-// Layered waters use Francois-Garrison absorption at 300 kHz and 1 mm chords.
+//   exact         the thermocline traced exactly all the way (launch_table = false)
+// Layered waters use Francois-Garrison absorption at 300 kHz and 1 mm chords, and the launch table unless stated.
 // Then whole pings (simulator: Lambert -27 dB, 300 kHz planar array 32 x 2 tilted 15 deg to -30 dB, 40 m range,
-// 20 kHz sampling, default ray density), straight against thermocline water.
+// 20 kHz sampling, default ray density), straight against thermocline water, with and without the launch table.
 // Before the benchmarks a summary prints the per-ray cost of each water and its ratio to straight rays, by its own
-// timing loop (best of five), for trace alone and for whole pings.
+// timing loop (best of five), for trace alone and for whole pings, and how far the launch table's results are from
+// exact tracing on the same rays.
 
 #include <benchmark/benchmark.h>
 
@@ -52,19 +54,20 @@ template <class T> std::vector<sss::ray<T>> bench_rays() {
     return rays;
 }
 
-template <class T> layered_params<T> water_params() {
+template <class T> layered_params<T> water_params(bool table = true) {
     layered_params<T> p;
     p.surface_z_m = T(60);
     p.frequency_hz = T(300000);
+    p.launch_table = table;
     return p;
 }
 
 template <class T> layered<T> uniform_water() {
     return layered<T>(sound_speed_profile<T>({T(0), T(20), T(44), T(54), T(200)}, std::vector<T>(5, T(1500))), water_params<T>());
 }
-template <class T> layered<T> thermocline_water() {
+template <class T> layered<T> thermocline_water(bool table = true) {
     return layered<T>(sound_speed_profile<T>({T(0), T(44), T(54), T(200)}, {T(1500), T(1499), T(1479), T(1481.409)}),
-                      water_params<T>());
+                      water_params<T>(table));
 }
 template <class T> layered<T> fine_water() {
     std::vector<T> d, c;
@@ -75,7 +78,7 @@ template <class T> layered<T> fine_water() {
     return layered<T>(sound_speed_profile<T>(d, c), water_params<T>());
 }
 
-enum class water { straight, uniform, thermocline, fine };
+enum class water { straight, uniform, thermocline, fine, exact };
 
 template <class P, class T> double trace_all(const P& p, const std::vector<sss::ray<T>>& rays) {
     const sss::scene::flat_seabed<T> seabed(T(0));
@@ -88,19 +91,22 @@ template <class P, class T> double trace_all(const P& p, const std::vector<sss::
 template <class T, water W> void propagation_trace(benchmark::State& state) {
     const auto rays = bench_rays<T>();
     const straight<T> iso({T(1500), T(60)});
-    const layered<T> lay = W == water::uniform ? uniform_water<T>() : W == water::fine ? fine_water<T>() : thermocline_water<T>();
+    const layered<T> lay = W == water::uniform ? uniform_water<T>() : W == water::fine ? fine_water<T>()
+                                                                    : thermocline_water<T>(W != water::exact);
     for (auto _ : state) {
         if constexpr (W == water::straight) benchmark::DoNotOptimize(trace_all(iso, rays));
         else benchmark::DoNotOptimize(trace_all(lay, rays));
     }
     state.SetItemsProcessed(state.iterations() * std::int64_t(ray_count));
     state.SetLabel(W == water::straight ? "straight" : W == water::uniform ? "layered, uniform" :
-                   W == water::thermocline ? "layered, thermocline" : "layered, 1000 knots");
+                   W == water::thermocline ? "layered, thermocline" : W == water::fine ? "layered, 1000 knots" :
+                   "layered, thermocline, exact");
 }
 BENCHMARK_TEMPLATE(propagation_trace, double, water::straight);
 BENCHMARK_TEMPLATE(propagation_trace, double, water::uniform);
 BENCHMARK_TEMPLATE(propagation_trace, double, water::thermocline);
 BENCHMARK_TEMPLATE(propagation_trace, double, water::fine);
+BENCHMARK_TEMPLATE(propagation_trace, double, water::exact);
 BENCHMARK_TEMPLATE(propagation_trace, float, water::straight);
 BENCHMARK_TEMPLATE(propagation_trace, float, water::thermocline);
 
@@ -130,19 +136,21 @@ template <class T, class P> std::size_t rays_per_ping(const ping_simulator<T, P>
     return n; // tubes; one more ray per along-track column and side than tubes, near enough
 }
 
-template <class T, bool Layered> void propagation_ping(benchmark::State& state) {
+template <class T, water W> void propagation_ping(benchmark::State& state) {
     const sss::scene::flat_seabed<T> seabed(T(0));
     const auto run = [&](const auto& sim) {
         std::size_t i = 0;
         for (auto _ : state) benchmark::DoNotOptimize(sim.ping(seabed, i++ % 16).starboard.data());
         state.SetItemsProcessed(state.iterations() * std::int64_t(rays_per_ping(sim)));
     };
-    if constexpr (Layered) run(make_pinger<T>(thermocline_water<T>()));
-    else run(make_pinger<T>(straight<T>({T(1500), T(60)})));
-    state.SetLabel(Layered ? "ping, layered thermocline" : "ping, straight");
+    if constexpr (W == water::straight) run(make_pinger<T>(straight<T>({T(1500), T(60)})));
+    else run(make_pinger<T>(thermocline_water<T>(W != water::exact)));
+    state.SetLabel(W == water::straight ? "ping, straight" : W == water::exact ? "ping, layered thermocline, exact"
+                                                                              : "ping, layered thermocline");
 }
-BENCHMARK_TEMPLATE(propagation_ping, double, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(propagation_ping, double, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(propagation_ping, double, water::straight)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(propagation_ping, double, water::thermocline)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(propagation_ping, double, water::exact)->Unit(benchmark::kMillisecond);
 
 // Best of five timings of f (seconds).
 template <class F> double best_of_five(F&& f) {
@@ -160,25 +168,46 @@ void print_summary() {
     double sink = 0;
     const double t_straight = best_of_five([&] { sink += trace_all(straight<double>({1500.0, 60.0}), rays); });
     std::printf("Per-ray trace cost, flat seabed 10 m below, slant ranges 10-60 m (%zu rays):\n", ray_count);
-    std::printf("  %-34s %8.1f ns\n", "straight", 1e9 * t_straight / double(ray_count));
+    std::printf("  %-42s %8.1f ns\n", "straight", 1e9 * t_straight / double(ray_count));
     const auto report = [&](const char* name, const layered<double>& w) {
         const double t = best_of_five([&] { sink += trace_all(w, rays); });
-        std::printf("  %-34s %8.1f ns   x%.1f straight\n", name, 1e9 * t / double(ray_count), t / t_straight);
+        std::printf("  %-42s %8.1f ns   x%.1f straight\n", name, 1e9 * t / double(ray_count), t / t_straight);
     };
     report("layered, uniform (5 knots)", uniform_water<double>());
     report("layered, thermocline", thermocline_water<double>());
     report("layered, smooth thermocline (1000 knots)", fine_water<double>());
+    report("layered, thermocline, exact (no table)", thermocline_water<double>(false));
+    {   // What the launch table costs in accuracy on these rays.
+        const auto table = thermocline_water<double>(true), exact = thermocline_water<double>(false);
+        const sss::scene::flat_seabed<double> seabed(0.0);
+        double worst_time = 0, worst_spreading = 0, worst_absorption = 0, worst_position = 0;
+        for (const auto& r : rays) {
+            const auto a = table.trace_path(r, seabed, 0.1), b = exact.trace_path(r, seabed, 0.1);
+            if (!a || !b) continue;
+            worst_time = std::max(worst_time, std::abs(a->result.time_s / b->result.time_s - 1));
+            worst_spreading = std::max(worst_spreading, std::abs(a->result.spreading / b->result.spreading - 1));
+            worst_absorption = std::max(worst_absorption, std::abs(a->result.absorption / b->result.absorption - 1));
+            worst_position = std::max(worst_position, double(glm::length(a->result.surface.point - b->result.surface.point)));
+        }
+        std::printf("  launch table against exact tracing (thermocline): worst relative difference in time %.1e, "
+                    "spreading %.1e, absorption %.1e; hit position %.1e m\n",
+                    worst_time, worst_spreading, worst_absorption, worst_position);
+    }
 
     const sss::scene::flat_seabed<double> seabed(0.0);
     const auto a = make_pinger<double>(straight<double>({1500.0, 60.0}));
-    const auto b = make_pinger<double>(thermocline_water<double>());
     const double pa = best_of_five([&] { sink += double(a.ping(seabed, 3).starboard[100]); });
-    const double pb = best_of_five([&] { sink += double(b.ping(seabed, 3).starboard[100]); });
-    const std::size_t na = rays_per_ping(a), nb = rays_per_ping(b);
+    const std::size_t na = rays_per_ping(a);
     std::printf("Whole pings (planar array, 40 m, Lambert; per ray = ping time / rays):\n");
-    std::printf("  %-34s %8.3f ms  %6zu rays  %6.1f ns/ray\n", "straight", 1e3 * pa, na, 1e9 * pa / double(na));
-    std::printf("  %-34s %8.3f ms  %6zu rays  %6.1f ns/ray   x%.2f straight per ray\n", "layered, thermocline", 1e3 * pb, nb,
-                1e9 * pb / double(nb), (pb / double(nb)) / (pa / double(na)));
+    std::printf("  %-38s %8.3f ms  %6zu rays  %6.1f ns/ray\n", "straight", 1e3 * pa, na, 1e9 * pa / double(na));
+    for (bool table : {true, false}) {
+        const auto b = make_pinger<double>(thermocline_water<double>(table));
+        const double pb = best_of_five([&] { sink += double(b.ping(seabed, 3).starboard[100]); });
+        const std::size_t nb = rays_per_ping(b);
+        std::printf("  %-38s %8.3f ms  %6zu rays  %6.1f ns/ray   x%.2f straight per ray\n",
+                    table ? "layered, thermocline" : "layered, thermocline, exact", 1e3 * pb, nb, 1e9 * pb / double(nb),
+                    (pb / double(nb)) / (pa / double(na)));
+    }
     std::printf("(checksum %g)\n\n", sink);
 }
 

@@ -6,11 +6,12 @@
 /// column into depression angles spaced evenly in nominal return time (sampling/launch_angles.hpp); each ray
 /// is propagated to the scene; its return power per unit depression angle is
 ///
-///     I = SL b(along, e) sigma(theta) S A_1^2 dOmega_col / (S_tube sin theta_g),  with S_tube = S,
+///     I = SL b(along, e) sigma(theta) S_out S_back A_1^2 dOmega_col / (S_out sin theta_g)
+///       = SL b sigma S_back A_1^2 dOmega_col / sin theta_g,
 ///
-/// i.e. source level x two-way beam weight x two-way loss (spreading S squared, absorption A_1 squared) x
-/// scattering cross section x footprint area (the ray tube's cross-section 1/S per steradian, spread over the
-/// seabed by 1/sin of the angle between ray and facet). Adjacent rays on the same surface form a tube whose
+/// i.e. source level x two-way beam weight x two-way loss (spreading out and back, absorption A_1 squared) x
+/// scattering cross section x footprint area (the outgoing ray tube's cross-section 1/S_out per steradian,
+/// spread over the facet by 1/sin of the angle between ray and facet). S_back is the propagation's `spreading`. Adjacent rays on the same surface form a tube whose
 /// energy, integrated by the trapezoid rule over depression, is spread evenly over the two-way times between
 /// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
 /// (receiver/time_sampler.hpp).

@@ -10,13 +10,16 @@
 /// curvature. A chord spanning arc length ds of a circle of curvature k = |kappa| has sagitta (the largest
 /// distance between arc and chord)
 ///     e = (1 - cos(k ds / 2)) / k  <=  k ds^2 / 8,
-/// so chords with ds <= sqrt(8 tol / k) keep every point of the arc within tol of a chord (chord_arc_length_m). A 1 mm tolerance in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives
-/// 2.5 m chords; under a 0.017 1/s gradient, 27 m.
+/// so chords with ds <= sqrt(8 tol / k) keep every point of the arc within tol of a chord (chord_arc_length_m).
+/// A 1 mm tolerance in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives 2.5 m chords; under a
+/// 0.017 1/s gradient, 27 m. Measured on a 3 deg ray in a 5.9 m/s-per-m thermocline: 33 chords over 45 m, the
+/// arc at most 0.94 mm from them (tests/propagation/test_layered.cpp).
 ///
 /// The scene's hit on a chord lies on the facet the chord met, within tol of the arc. The arc meets that facet's
 /// plane n . (X - H) = 0 (n the facet normal, H the chord's hit) where f(s) = n . (X(s) - H) vanishes; Newton's
-/// method, f'(s) = n . t(s) with t the unit tangent, converges from the chord's estimate in two or three steps
-/// (the start is within tol / sin(graze) of the root and the error squares each step). On a planar surface
+/// method, f'(s) = n . t(s) with t the unit tangent, converges from the chord's estimate in one to three steps
+/// (the start is within tol / sin(graze) of the root, and a step e leaves about |kappa| e^2 / (2 |f'|), so it
+/// stops once that is below rounding). On a planar surface
 /// (the flat seabed, a triangle) the refined point lies on the surface to rounding, so hit position and arc
 /// length are exact, not merely within tol; what tol still bounds is which facet is found: near an edge, or
 /// where the arc grazes a surface the chord passes above or below, the answer may differ by up to tol.

@@ -12,8 +12,12 @@
 ///
 /// `trace` is a member template over any `Scene`; the concept is checked with the flat seabed. Propagation knows
 /// the water, the scene knows the geometry: a curved-ray propagation hands the scene pieces of its path.
-/// The return path is the outgoing one reversed (monostatic, reciprocal water), so the two-way loss is the square
-/// of the one-way loss and the two-way time twice the one-way time.
+/// The return path is the outgoing one reversed (monostatic, reciprocal water): the two-way time is twice the
+/// one-way time and the two-way absorption the square of the one-way absorption. `spreading` is the return leg's:
+/// the intensity arriving back at the transducer relative to that 1 m from the hit. The simulator multiplies it by
+/// the footprint per steradian, 1/(spreading_out sin theta), and by the outgoing spreading; by energy conservation
+/// in the ray tube those two outgoing factors cancel, so the echo power is SL b sigma spreading absorption^2
+/// dOmega / sin theta exactly, in refracting water too. In isovelocity water spreading = 1/r^2 both ways.
 
 #include <concepts>
 #include <optional>
@@ -28,7 +32,7 @@ namespace sss {
 template <Real T> struct path {
     hit<T> surface{};      ///< where the path ends
     T time_s{};            ///< one-way travel time (s)
-    T spreading{};         ///< one-way spreading: intensity relative to that at 1 m (1/r^2 in isovelocity water)
+    T spreading{};         ///< return-leg spreading: intensity at the transducer relative to 1 m from the hit (1/r^2 isovelocity)
     T absorption{};        ///< one-way absorption: intensity ratio in (0, 1]
     vec3<T> arrival{};     ///< unit direction of travel where the path meets the surface (world)
 };

@@ -6,13 +6,13 @@
 /// depth z_H (the depth from which the scene's geometry begins) depends on its launch inclination phi0 alone. The
 /// table holds, for phi0 on a grid, the ray's state at z_H on its way down: horizontal range, time, path length,
 /// absorption (dB) and the two ray-tube sums (ray_tube.hpp); the inclination there follows exactly from Snell's
-/// law, cos(phi_H) = c(z_H) cos(phi0) / c(z_A). A ray looks its state up by four-point Lagrange interpolation and
+/// law, cos(phi_H) = c(z_H) cos(phi0) / c(z_A). A ray looks its state up by six-point Lagrange interpolation and
 /// is traced exactly from z_H on; what the table replaces is the stepping through the layers above the geometry.
 ///
 /// The grid is uniform in w = ln tan(phi0 / 2), so that nodes crowd towards grazing launches, where range changes
 /// fastest (in uniform water range ~ 1/phi0 ~ e^-w, and the tube sum K ~ e^-2w: the interpolation error is then
-/// the same fraction of each everywhere, about (h)^6/200 relative for grid step h times the sixth power of the
-/// rate, below 1e-11 here); tan(phi0/2) = sin(phi0) / (1 + cos(phi0)) needs no trigonometry from a ray direction.
+/// the same fraction of each everywhere, about 5e-3 (r h)^6 relative for grid step h and growth rate r, below
+/// 1e-11 here); tan(phi0/2) = sin(phi0) / (1 + cos(phi0)) needs no trigonometry from a ray direction.
 /// It spans phi0 from 1e-3 rad to the vertical with 64 nodes per unit of w (about 490), plus two nodes beyond each
 /// end (beyond the vertical by symmetry: range is odd in w there, everything else even). Each interval is validated
 /// when the table is built: the interpolation at its midpoint is compared with an exact trace, and an interval
