@@ -10,6 +10,7 @@
 #include <sss/scene/height_field.hpp>
 #include <sss/seabed/composite.hpp>
 
+#include "common/display.hpp"
 #include "common/png.hpp"
 
 #include <chrono>
@@ -87,14 +88,7 @@ int main(int argc, char** argv) try {
     const auto w = sim.render(seabed, 0, pings);
     const auto t2 = std::chrono::steady_clock::now();
 
-    // Display gain, then dB to 8 bits.
-    std::vector<double> shown(w.values.size());
-    for (std::size_t p = 0; p < w.pings; ++p)
-        for (std::size_t c = 0; c < w.width(); ++c) {
-            const std::size_t k = c < w.samples ? w.samples - 1 - c : c - w.samples;
-            const double r = (double(k) + 0.5) * w.dt_s * 750.0;
-            shown[p * w.width() + c] = double(w.at(p, c)) * r * r * r * std::pow(10.0, 2.0 * 30.0 * r / 1e4);
-        }
+    const std::vector<double> shown = sss_examples::range_compensated(w, 1500.0, 30.0);
     sss_examples::write_png_gray8(out, w.width(), w.pings, sss_examples::to_gray8_db(shown, 36.0));
     const auto t3 = std::chrono::steady_clock::now();
     auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };

@@ -16,6 +16,7 @@
 #include <sss/seabed/fractal.hpp>
 #include <sss/seabed/targets.hpp>
 
+#include "common/display.hpp"
 #include "common/png.hpp"
 
 #include <chrono>
@@ -80,13 +81,7 @@ int main(int argc, char** argv) try {
     const auto w = sim.render(world, 0, pings, 2);
     const auto t2 = std::chrono::steady_clock::now();
 
-    std::vector<double> shown(w.values.size());
-    for (std::size_t p = 0; p < w.pings; ++p)
-        for (std::size_t c = 0; c < w.width(); ++c) {
-            const std::size_t k = c < w.samples ? w.samples - 1 - c : c - w.samples;
-            const double r = (double(k) + 0.5) * w.dt_s * 750.0;
-            shown[p * w.width() + c] = double(w.at(p, c)) * r * r * r * std::pow(10.0, 2.0 * 30.0 * r / 1e4);
-        }
+    const std::vector<double> shown = sss_examples::range_compensated(w, 1500.0, 30.0);
     sss_examples::write_png_gray8(out, w.width(), w.pings, sss_examples::to_gray8_db(shown, 40.0));
     auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
     std::printf("sss mine: case at %.1f m ground range, %.1f m slant; %zu pings x 2 x %zu samples -> %s\n"

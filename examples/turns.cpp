@@ -22,6 +22,7 @@
 #include <sss/seabed/fractal.hpp>
 #include <sss/seabed/ripples.hpp>
 
+#include "common/display.hpp"
 #include "common/png.hpp"
 
 #include <algorithm>
@@ -120,13 +121,7 @@ turn_simulator make_simulator(sss::motion::perturbed<T> path) {
 }
 
 void write_figure(const std::string& file, const sss::waterfall<T>& w) {
-    std::vector<double> shown(w.values.size());
-    for (std::size_t p = 0; p < w.pings; ++p)
-        for (std::size_t c = 0; c < w.width(); ++c) {
-            const std::size_t k = c < w.samples ? w.samples - 1 - c : c - w.samples;
-            const double r = (double(k) + 0.5) * w.dt_s * 750.0;
-            shown[p * w.width() + c] = double(w.at(p, c)) * r * r * r * std::pow(10.0, 2.0 * absorption_db_km * r / 1e4);
-        }
+    const std::vector<double> shown = sss_examples::range_compensated(w, 1500.0, absorption_db_km);
     sss_examples::write_png_gray8(file, w.width(), w.pings, sss_examples::to_gray8_db(shown, 30.0));
 }
 
