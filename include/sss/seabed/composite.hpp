@@ -113,15 +113,15 @@ inline void gaussian_pass(std::vector<double>& v, std::size_t nx, std::size_t ny
 template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::size_t ny, T cell_m,
                                                            const level_partition<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "partition");
-    detail::require(!p.fractions.empty(), "partition.fractions", "needs at least one texture");
+    sss::detail::require(!p.fractions.empty(), "partition.fractions", "needs at least one texture");
     double total = 0.0;
     for (std::size_t k = 0; k < p.fractions.size(); ++k) {
-        detail::require_positive(p.fractions[k], "partition.fractions[" + std::to_string(k) + "]");
+        sss::detail::require_positive(p.fractions[k], "partition.fractions[" + std::to_string(k) + "]");
         total += static_cast<double>(p.fractions[k]);
     }
-    detail::require_positive(p.patch_scale_m, "partition.patch_scale_m");
-    detail::require_finite(p.boundary_gamma, "partition.boundary_gamma");
-    detail::require(p.boundary_gamma > T(2) && p.boundary_gamma < T(4), "partition.boundary_gamma",
+    sss::detail::require_positive(p.patch_scale_m, "partition.patch_scale_m");
+    sss::detail::require_finite(p.boundary_gamma, "partition.boundary_gamma");
+    sss::detail::require(p.boundary_gamma > T(2) && p.boundary_gamma < T(4), "partition.boundary_gamma",
                     "must lie in (2, 4)");
 
     const raster<double> f = impl::unit_fractal_field(nx, ny, cell_m, p.boundary_gamma, p.patch_scale_m, seed);
@@ -149,15 +149,15 @@ template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::
 template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::size_t ny, T cell_m,
                                                            const voronoi_partition<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "partition");
-    detail::require(!p.sites.empty(), "partition.sites", "needs at least one site");
+    sss::detail::require(!p.sites.empty(), "partition.sites", "needs at least one site");
     for (std::size_t k = 0; k < p.sites.size(); ++k) {
-        detail::require_finite(p.sites[k].x_m, "partition.sites[" + std::to_string(k) + "].x_m");
-        detail::require_finite(p.sites[k].y_m, "partition.sites[" + std::to_string(k) + "].y_m");
+        sss::detail::require_finite(p.sites[k].x_m, "partition.sites[" + std::to_string(k) + "].x_m");
+        sss::detail::require_finite(p.sites[k].y_m, "partition.sites[" + std::to_string(k) + "].y_m");
     }
-    detail::require_non_negative(p.warp_m, "partition.warp_m");
-    detail::require_positive(p.warp_scale_m, "partition.warp_scale_m");
-    detail::require_finite(p.warp_gamma, "partition.warp_gamma");
-    detail::require(p.warp_gamma > T(2) && p.warp_gamma < T(4), "partition.warp_gamma", "must lie in (2, 4)");
+    sss::detail::require_non_negative(p.warp_m, "partition.warp_m");
+    sss::detail::require_positive(p.warp_scale_m, "partition.warp_scale_m");
+    sss::detail::require_finite(p.warp_gamma, "partition.warp_gamma");
+    sss::detail::require(p.warp_gamma > T(2) && p.warp_gamma < T(4), "partition.warp_gamma", "must lie in (2, 4)");
 
     raster<double> wx, wy;
     if (p.warp_m > T(0)) {
@@ -197,17 +197,17 @@ template <Real T> [[nodiscard]] composite_seabed<T> compose(const region_raster<
     const std::size_t nx = texture_index.nx, ny = texture_index.ny;
     const T cell_m = texture_index.cell_m;
     require_grid(nx, ny, cell_m, "compose.texture_index");
-    detail::require(texture_index.values.size() == nx * ny, "compose.texture_index.values",
+    sss::detail::require(texture_index.values.size() == nx * ny, "compose.texture_index.values",
                     "size differs from nx * ny");
-    detail::require(!textures.empty(), "compose.textures", "needs at least one texture");
-    detail::require_non_negative(blend_m, "compose.blend_m");
+    sss::detail::require(!textures.empty(), "compose.textures", "needs at least one texture");
+    sss::detail::require_non_negative(blend_m, "compose.blend_m");
     for (std::uint32_t k : texture_index.values)
-        detail::require(k < textures.size(), "compose.texture_index",
+        sss::detail::require(k < textures.size(), "compose.texture_index",
                         "holds texture " + std::to_string(k) + " but only " + std::to_string(textures.size()) +
                             " are given");
     for (std::size_t k = 0; k < textures.size(); ++k) {
         const std::string who = "compose.textures[" + std::to_string(k) + "]";
-        detail::require_finite(textures[k].mean_height_m, who + ".mean_height_m");
+        sss::detail::require_finite(textures[k].mean_height_m, who + ".mean_height_m");
         validate(textures[k].roughness, who + ".roughness");
         for (std::size_t r = 0; r < textures[k].ripples.size(); ++r)
             validate(textures[k].ripples[r], cell_m, who + ".ripples[" + std::to_string(r) + "]");

@@ -53,7 +53,7 @@ public:
 
     /// \param n transform length (>= 1), any value
     explicit fft_plan(std::size_t n) : n_(n) {
-        detail::require(n >= 1, "fft_plan.n", "transform length must be >= 1");
+        sss::detail::require(n >= 1, "fft_plan.n", "transform length must be >= 1");
         if (is_power_of_two(n)) {
             init_radix2(n, twiddle_, bitrev_);
             return;
@@ -103,7 +103,7 @@ public:
 
     /// Transforms `data` in place, allocating scratch when needed.
     void execute(std::span<complex> data, fft_direction dir) const {
-        detail::require(data.size() == n_, "fft_plan.execute.data",
+        sss::detail::require(data.size() == n_, "fft_plan.execute.data",
                         "length " + std::to_string(data.size()) + " differs from the plan's " + std::to_string(n_));
         std::vector<complex> scratch(m_);
         execute(data.data(), dir, scratch.data());
@@ -162,9 +162,9 @@ inline void fft(std::span<std::complex<double>> data, fft_direction dir) { fft_p
 /// X(kx, ky) = sum_{ix, iy} x(ix, iy) exp(-+2 pi i (ix kx / nx + iy ky / ny)), unnormalised.
 /// Rows are transformed first, then columns in blocks of adjacent columns for cache locality.
 inline void fft_2d(std::span<std::complex<double>> data, std::size_t nx, std::size_t ny, fft_direction dir) {
-    detail::require(nx >= 1, "fft_2d.nx", "must be >= 1");
-    detail::require(ny >= 1, "fft_2d.ny", "must be >= 1");
-    detail::require(data.size() == nx * ny, "fft_2d.data",
+    sss::detail::require(nx >= 1, "fft_2d.nx", "must be >= 1");
+    sss::detail::require(ny >= 1, "fft_2d.ny", "must be >= 1");
+    sss::detail::require(data.size() == nx * ny, "fft_2d.data",
                     "length " + std::to_string(data.size()) + " differs from nx * ny = " + std::to_string(nx * ny));
     using complex = std::complex<double>;
     const fft_plan row_plan(nx);

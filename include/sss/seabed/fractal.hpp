@@ -67,9 +67,9 @@ template <Real T> struct fractal_params {
 /// Throws invalid_parameter naming the offending field (prefixed by `who`).
 template <Real T> void validate(const fractal_params<T>& p, const std::string& who) {
     validate(p.spectrum, who + ".spectrum");
-    detail::require_positive(p.anisotropy, who + ".anisotropy");
-    detail::require_finite(p.direction_rad, who + ".direction_rad");
-    detail::require(p.oversample >= 1 && p.oversample <= 64, who + ".oversample", "must lie in [1, 64]");
+    sss::detail::require_positive(p.anisotropy, who + ".anisotropy");
+    sss::detail::require_finite(p.direction_rad, who + ".direction_rad");
+    sss::detail::require(p.oversample >= 1 && p.oversample <= 64, who + ".oversample", "must lie in [1, 64]");
 }
 
 namespace impl {

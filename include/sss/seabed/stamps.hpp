@@ -83,48 +83,48 @@ template <Real T> struct scour {
 };
 
 template <Real T> void validate(const plate<T>& s, const std::string& who) {
-    detail::require_finite(s.center_x_m, who + ".center_x_m");
-    detail::require_finite(s.center_y_m, who + ".center_y_m");
-    detail::require_positive(s.length_m, who + ".length_m");
-    detail::require_positive(s.width_m, who + ".width_m");
-    detail::require_finite(s.heading_rad, who + ".heading_rad");
-    detail::require_finite(s.top_m, who + ".top_m");
+    sss::detail::require_finite(s.center_x_m, who + ".center_x_m");
+    sss::detail::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::detail::require_positive(s.length_m, who + ".length_m");
+    sss::detail::require_positive(s.width_m, who + ".width_m");
+    sss::detail::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::detail::require_finite(s.top_m, who + ".top_m");
 }
 
 template <Real T> void validate(const trench<T>& s, const std::string& who) {
-    detail::require_finite(s.x0_m, who + ".x0_m");
-    detail::require_finite(s.y0_m, who + ".y0_m");
-    detail::require_finite(s.x1_m, who + ".x1_m");
-    detail::require_finite(s.y1_m, who + ".y1_m");
-    detail::require_positive(s.width_m, who + ".width_m");
-    detail::require_non_negative(s.floor_width_m, who + ".floor_width_m");
-    detail::require(s.floor_width_m < s.width_m, who + ".floor_width_m", "must be < width_m");
-    detail::require_non_negative(s.depth_m, who + ".depth_m");
-    detail::require_non_negative(s.berm_height_m, who + ".berm_height_m");
-    detail::require_non_negative(s.berm_width_m, who + ".berm_width_m");
-    detail::require(s.berm_height_m == T(0) || s.berm_width_m > T(0), who + ".berm_width_m",
+    sss::detail::require_finite(s.x0_m, who + ".x0_m");
+    sss::detail::require_finite(s.y0_m, who + ".y0_m");
+    sss::detail::require_finite(s.x1_m, who + ".x1_m");
+    sss::detail::require_finite(s.y1_m, who + ".y1_m");
+    sss::detail::require_positive(s.width_m, who + ".width_m");
+    sss::detail::require_non_negative(s.floor_width_m, who + ".floor_width_m");
+    sss::detail::require(s.floor_width_m < s.width_m, who + ".floor_width_m", "must be < width_m");
+    sss::detail::require_non_negative(s.depth_m, who + ".depth_m");
+    sss::detail::require_non_negative(s.berm_height_m, who + ".berm_height_m");
+    sss::detail::require_non_negative(s.berm_width_m, who + ".berm_width_m");
+    sss::detail::require(s.berm_height_m == T(0) || s.berm_width_m > T(0), who + ".berm_width_m",
                     "must be > 0 when berm_height_m > 0");
 }
 
 template <Real T> void validate(const mound<T>& s, const std::string& who) {
-    detail::require_finite(s.center_x_m, who + ".center_x_m");
-    detail::require_finite(s.center_y_m, who + ".center_y_m");
-    detail::require_positive(s.radius_u_m, who + ".radius_u_m");
-    detail::require_positive(s.radius_v_m, who + ".radius_v_m");
-    detail::require_finite(s.heading_rad, who + ".heading_rad");
-    detail::require_non_negative(s.height_m, who + ".height_m");
+    sss::detail::require_finite(s.center_x_m, who + ".center_x_m");
+    sss::detail::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::detail::require_positive(s.radius_u_m, who + ".radius_u_m");
+    sss::detail::require_positive(s.radius_v_m, who + ".radius_v_m");
+    sss::detail::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::detail::require_non_negative(s.height_m, who + ".height_m");
 }
 
 template <Real T> void validate(const scour<T>& s, const std::string& who) {
-    detail::require_finite(s.center_x_m, who + ".center_x_m");
-    detail::require_finite(s.center_y_m, who + ".center_y_m");
-    detail::require_positive(s.radius_u_m, who + ".radius_u_m");
-    detail::require_positive(s.radius_v_m, who + ".radius_v_m");
-    detail::require_finite(s.heading_rad, who + ".heading_rad");
-    detail::require_non_negative(s.depth_m, who + ".depth_m");
-    detail::require_non_negative(s.rim_height_m, who + ".rim_height_m");
-    detail::require_non_negative(s.rim_width_m, who + ".rim_width_m");
-    detail::require(s.rim_height_m == T(0) || s.rim_width_m > T(0), who + ".rim_width_m",
+    sss::detail::require_finite(s.center_x_m, who + ".center_x_m");
+    sss::detail::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::detail::require_positive(s.radius_u_m, who + ".radius_u_m");
+    sss::detail::require_positive(s.radius_v_m, who + ".radius_v_m");
+    sss::detail::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::detail::require_non_negative(s.depth_m, who + ".depth_m");
+    sss::detail::require_non_negative(s.rim_height_m, who + ".rim_height_m");
+    sss::detail::require_non_negative(s.rim_width_m, who + ".rim_width_m");
+    sss::detail::require(s.rim_height_m == T(0) || s.rim_width_m > T(0), who + ".rim_width_m",
                     "must be > 0 when rim_height_m > 0");
 }
 
@@ -190,7 +190,7 @@ template <class Inside> double coverage(double x, double y, double cell, Inside&
 /// Throws unless h has a valid grid and nx * ny values.
 template <Real T> void require_raster(const raster<T>& h, const std::string& who) {
     require_grid(h.nx, h.ny, h.cell_m, who);
-    detail::require(h.values.size() == h.nx * h.ny, who + ".values", "size differs from nx * ny");
+    sss::detail::require(h.values.size() == h.nx * h.ny, who + ".values", "size differs from nx * ny");
 }
 
 } // namespace impl
@@ -324,7 +324,7 @@ template <Real T, class Inside> void label(region_raster<T>& regions, double cx,
 
 template <Real T> void require_same_grid(const raster<T>& h, const region_raster<T>& r) {
     require_raster(h, "stamp.h");
-    detail::require(h.nx == r.nx && h.ny == r.ny && h.cell_m == r.cell_m && r.values.size() == r.nx * r.ny,
+    sss::detail::require(h.nx == r.nx && h.ny == r.ny && h.cell_m == r.cell_m && r.values.size() == r.nx * r.ny,
                     "stamp.regions", "must have the height raster's grid");
 }
 
