@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -136,8 +138,14 @@ public:
             std::vector<std::thread> pool;
             pool.reserve(threads);
             std::exception_ptr failure;
+            std::mutex failure_lock;
             for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&, t] {
-                try { work(t); } catch (...) { failure = std::current_exception(); }
+                try {
+                    work(t);
+                } catch (...) {
+                    const std::lock_guard<std::mutex> hold(failure_lock);
+                    if (!failure) failure = std::current_exception();
+                }
             });
             for (auto& th : pool) th.join();
             if (failure) std::rethrow_exception(failure);
