@@ -22,6 +22,8 @@
 #include <cstddef>
 #include <exception>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -170,6 +172,8 @@ public:
         const std::size_t n_along = along_columns(ext, sd);
         const double a0 = ext.along_min_rad, a1 = ext.along_max_rad;
         std::vector<T> angles;
+        std::vector<ray<T>> rays;
+        std::vector<std::optional<path<T>>> paths;
         for (std::size_t j = 0; j < n_along; ++j) {
             const double lo = a0 + (a1 - a0) * double(j) / double(n_along);
             const double hi = a0 + (a1 - a0) * double(j + 1) / double(n_along);
@@ -178,12 +182,21 @@ public:
             const double column_sr = std::sin(hi) - std::sin(lo);
             depression_angles<T>(angles, sd, along, ext.depression_min_rad, ext.depression_max_rad, p.body_to_world,
                                  altitude, clearance, max_range_m, cd);
+            // The column's rays, traced together (sss::trace_all: a propagation and scene that share work among
+            // the rays of a column do so; others go ray by ray).
+            rays.clear();
+            for (const T e : angles)
+                if (!std::isnan(e)) rays.push_back(ray<T>{p.position, p.to_world(beam_direction(sd, along, e))});
+            paths.resize(rays.size());
+            trace_all(propagation_, std::span<const ray<T>>(rays), scene, t_max_one_way,
+                      std::span<std::optional<path<T>>>(paths));
             ray_end prev, prev_bounce;
             bool in_run = false;
+            std::size_t k = 0;
             for (const T e : angles) {
                 if (std::isnan(e)) { in_run = false; continue; }
                 ray_end bounce;
-                const ray_end cur = shoot(scene, p, sd, along, e, t_max_one_way, column_sr, bounce);
+                const ray_end cur = echo(scene, sd, along, e, paths[k++], t_max_one_way, column_sr, bounce);
                 if (in_run) {
                     const double de = std::abs(cur.e - prev.e);
                     emit_tube(prev, cur, de, visit);
@@ -251,24 +264,31 @@ private:
     template <Scene Sc>
     [[nodiscard]] ray_end shoot(const Sc& scene, const pose<T>& p, side sd, T along, T e, T t_max_one_way,
                                 double column_sr, ray_end& bounce) const {
+        const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
+        return echo(scene, sd, along, e, propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way),
+                    t_max_one_way, column_sr, bounce);
+    }
+
+    /// The echo of the ray launched at (along, e) that followed `traced` (none: it met nothing).
+    template <Scene Sc>
+    [[nodiscard]] ray_end echo(const Sc& scene, side sd, T along, T e, const std::optional<path<T>>& traced,
+                               T t_max_one_way, double column_sr, ray_end& bounce) const {
         ray_end r;
         r.e = bounce.e = double(e);
-        const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
-        const auto path = propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way);
-        if (!path) return r;
-        const hit<T>& h = path->surface;
-        const T sin_facet = -glm::dot(path->arrival, h.normal);
-        const T sin_graze = std::min(T(1), -glm::dot(path->arrival, h.shading_normal));
+        if (!traced) return r;
+        const hit<T>& h = traced->surface;
+        const T sin_facet = -glm::dot(traced->arrival, h.normal);
+        const T sin_graze = std::min(T(1), -glm::dot(traced->arrival, h.shading_normal));
         if (!(sin_facet > T(0)) || !(sin_graze > T(0))) return r;
         const T graze = std::asin(sin_graze);
         const double w = source_level_ * double(beam_.weight(sd, along, e)) * column_sr;
         const double sigma = double(scattering_.backscatter(graze, h.material));
-        const double loss = double(path->spreading) * double(path->absorption) * double(path->absorption);
+        const double loss = double(traced->spreading) * double(traced->absorption) * double(traced->absorption);
         r.valid = true;
-        r.t = 2.0 * double(path->time_s);
+        r.t = 2.0 * double(traced->time_s);
         r.power_per_rad = w * sigma * loss / double(sin_facet);
         r.surface = h;
-        if constexpr (bouncing) bounce_leg(scene, *path, graze, t_max_one_way, w, bounce);
+        if constexpr (bouncing) bounce_leg(scene, *traced, graze, t_max_one_way, w, bounce);
         return r;
     }
 

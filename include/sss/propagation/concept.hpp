@@ -18,9 +18,19 @@
 /// the footprint per steradian, 1/(spreading_out sin theta), and by the outgoing spreading; by energy conservation
 /// in the ray tube those two outgoing factors cancel, so the echo power is SL b sigma spreading absorption^2
 /// dOmega / sin theta exactly, in refracting water too. In isovelocity water spreading = 1/r^2 both ways.
+///
+/// Optional (`BatchPropagation`): a policy that can share work among the rays of one column (same origin, ordered
+/// by depression) also offers
+///
+/// | `p.trace_many(rays, scene, t_max_s, paths)` | `void` | paths[k] = p.trace(rays[k], scene, t_max_s), up to rounding |
+///
+/// with `rays` a `std::span<const ray<T>>` and `paths` a `std::span<std::optional<path<T>>>` of the same size.
+/// `sss::trace_all` calls it where it exists and falls back to one `trace` per ray.
 
 #include <concepts>
+#include <cstddef>
 #include <optional>
+#include <span>
 
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
@@ -44,5 +54,25 @@ concept Propagation = Real<typename P::value_type> &&
         { p.reference_speed_mps() } -> std::same_as<typename P::value_type>;
         { p.trace(r, s, t) } -> std::same_as<std::optional<path<typename P::value_type>>>;
     };
+
+/// A Propagation policy that traces many rays at once over scene type `Sc` (see the table above).
+template <class P, class Sc>
+concept BatchPropagation = Propagation<P> && Scene<Sc> &&
+    requires(const P& p, std::span<const ray<typename P::value_type>> rays, const Sc& s, typename P::value_type t,
+             std::span<std::optional<path<typename P::value_type>>> out) {
+        { p.trace_many(rays, s, t, out) };
+    };
+
+/// paths[k] = p.trace(rays[k], scene, t_max_s) for every k, through the policy's batch method when it has one.
+/// `paths` must hold at least rays.size() slots.
+template <Propagation P, Scene Sc>
+void trace_all(const P& p, std::span<const ray<typename P::value_type>> rays, const Sc& scene,
+               typename P::value_type t_max_s, std::span<std::optional<path<typename P::value_type>>> paths) {
+    if constexpr (BatchPropagation<P, Sc>) {
+        p.trace_many(rays, scene, t_max_s, paths.first(rays.size()));
+    } else {
+        for (std::size_t k = 0; k < rays.size(); ++k) paths[k] = p.trace(rays[k], scene, t_max_s);
+    }
+}
 
 } // namespace sss

@@ -6,7 +6,11 @@
 /// 10^(-alpha r / 10^4) with alpha in dB/km (Urick, Principles of Underwater Sound, 3rd ed., ch. 5).
 
 #include <cmath>
+#include <cstddef>
 #include <optional>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "sss/core/error.hpp"
 #include "sss/propagation/concept.hpp"
@@ -44,11 +48,32 @@ public:
                        r.direction};
     }
 
+    /// paths[k] = trace(rays[k], scene, t_max_s) for every k, the scene's hits found together (sss::intersect_all),
+    /// so a scene that shares work among the rays of a column (BatchScene) gets them all at once.
+    template <Scene S>
+    void trace_many(std::span<const ray<T>> rays, const S& scene, T t_max_s, std::span<std::optional<path<T>>> paths) const {
+        sss::detail::require(paths.size() == rays.size(), "straight.trace_many.paths",
+                             "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
+                                 std::to_string(paths.size()));
+        std::vector<std::optional<hit<T>>> hits(rays.size());
+        intersect_all(scene, rays, t_max_s * p_.sound_speed_mps, std::span<std::optional<hit<T>>>(hits));
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            if (!hits[k]) {
+                paths[k].reset();
+                continue;
+            }
+            const T range_m = hits[k]->distance_m;
+            paths[k].emplace(path<T>{*hits[k], range_m / p_.sound_speed_mps, T(1) / (range_m * range_m),
+                                     std::exp(-loss_per_m_ * range_m), rays[k].direction});
+        }
+    }
+
 private:
     straight_params<T> p_;
     T loss_per_m_{};
 };
 
 static_assert(Propagation<straight<float>> && Propagation<straight<double>>);
+static_assert(BatchPropagation<straight<double>, scene::flat_seabed<double>>);
 
 } // namespace sss::propagation

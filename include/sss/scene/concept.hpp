@@ -11,9 +11,20 @@
 ///
 /// `r` is a `ray<T>` with unit direction. `intersect` must be watertight: a ray never slips between two
 /// pieces of one surface. `seabed_height_m` and `top_m` only steer ray sampling (they never decide a hit).
+///
+/// Optional (`BatchScene`): a scene that can share work among many rays (the rays of one column of a ping share
+/// their origin and come ordered by depression) also offers
+///
+/// | `s.intersect_many(rays, t_max_m, hits)` | `void` | hits[k] = s.intersect(rays[k], t_max_m), up to rounding |
+///
+/// with `rays` a `std::span<const ray<T>>` and `hits` a `std::span<std::optional<hit<T>>>` of the same size.
+/// `sss::intersect_all` calls it where it exists and falls back to one `intersect` per ray, so callers need not
+/// ask.
 
 #include <concepts>
+#include <cstddef>
 #include <optional>
+#include <span>
 
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
@@ -27,5 +38,25 @@ concept Scene = Real<typename S::value_type> &&
         { s.seabed_height_m(t, t) } -> std::same_as<typename S::value_type>;
         { s.top_m() } -> std::same_as<typename S::value_type>;
     };
+
+/// A Scene that traces many rays at once (see the table above).
+template <class S>
+concept BatchScene = Scene<S> && requires(const S& s, std::span<const ray<typename S::value_type>> rays,
+                                          typename S::value_type t,
+                                          std::span<std::optional<hit<typename S::value_type>>> hits) {
+    { s.intersect_many(rays, t, hits) };
+};
+
+/// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.
+/// `hits` must hold at least rays.size() slots.
+template <Scene S>
+void intersect_all(const S& scene, std::span<const ray<typename S::value_type>> rays, typename S::value_type t_max_m,
+                   std::span<std::optional<hit<typename S::value_type>>> hits) {
+    if constexpr (BatchScene<S>) {
+        scene.intersect_many(rays, t_max_m, hits.first(rays.size()));
+    } else {
+        for (std::size_t k = 0; k < rays.size(); ++k) hits[k] = scene.intersect(rays[k], t_max_m);
+    }
+}
 
 } // namespace sss

@@ -10,9 +10,13 @@
 /// so that the simulator launches rays towards everything that can return an echo.
 
 #include <algorithm>
+#include <cstddef>
 #include <optional>
+#include <span>
+#include <string>
 #include <utility>
 
+#include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/concept.hpp"
@@ -37,6 +41,18 @@ public:
         if (objects_.empty()) return h;
         if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
         return h;
+    }
+
+    /// hits[k] = intersect(rays[k], t_max_m) for every k: the seabed's hits together (sss::intersect_all, so a
+    /// seabed that shares work among rays does), then the objects ray by ray up to each seabed hit.
+    void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
+        sss::detail::require(hits.size() == rays.size(), "scene.intersect_many.hits",
+                             "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
+                                 std::to_string(hits.size()));
+        intersect_all(seabed_, rays, t_max_m, hits);
+        if (objects_.empty()) return;
+        for (std::size_t k = 0; k < rays.size(); ++k)
+            if (auto o = objects_.intersect(rays[k], hits[k] ? hits[k]->distance_m : t_max_m)) hits[k] = *o;
     }
 
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return seabed_.seabed_height_m(x_m, y_m); }
