@@ -5,6 +5,10 @@
 //              20 deg depression, straight line), flat seabed z = 0, towfish 10 m up, 50 m range per side,
 //              20 kHz sampling, 100 us rectangular pulse, default ray density {8, 0, 1.0}; float and double.
 //   reference  the same but 100 m per side and ray_density{8, 2048}: 2 x 2048 x 8 rays per ping.
+//   relief     the reference ping over a rough height field (2048 x 2048 vertices at 0.25 m: swell, dunes, ripples
+//              and white noise, +-2.5 m), towfish 10 m above its mean; `columns` traces each column of rays
+//              together (the height field's intersect_many: wedge sweep), `one by one` hides intersect_many
+//              behind a wrapper so every ray is traced alone (the accelerated single-ray tracer).
 //   render     render() of 16 flat pings on 1 and 2 threads (wall clock).
 // Rays are counted by tracing one ping through a scene wrapper that counts intersection queries (straight
 // rays query the scene once per ray).
@@ -47,6 +51,7 @@
 #include <sss/propagation/straight.hpp>
 #include <sss/scattering/lambertian.hpp>
 #include <sss/scene/flat_seabed.hpp>
+#include <sss/scene/height_field.hpp>
 #include <sss/simulator.hpp>
 
 #include "../tests/support/compare.hpp"
@@ -127,6 +132,66 @@ template <class T> void pipeline_ping_reference(benchmark::State& state) {
 }
 BENCHMARK_TEMPLATE(pipeline_ping_reference, float);
 BENCHMARK_TEMPLATE(pipeline_ping_reference, double);
+
+/// The relief scene's heights: plane waves summed separably (sin(a + b) = sin a cos b + cos a sin b) plus white
+/// noise of +-0.05 m from a hash of the vertex index.
+template <class T> const sss::scene::height_field<T>& relief() {
+    static const sss::scene::height_field<T> hf = [] {
+        constexpr std::size_t n = 2048;
+        constexpr double cell = 0.25, pi = 3.141592653589793;
+        struct wave {
+            double amplitude_m, wavelength_m, direction_deg, phase;
+        };
+        const wave waves[] = {{1.5, 180, 20, 0.3}, {0.6, 47, 75, 1.1}, {0.25, 11, 140, 2.0}, {0.08, 1.3, 30, 0.5}};
+        std::vector<double> z(n * n, 0.0), sx(n), cx(n), sy(n), cy(n);
+        for (const wave& w : waves) {
+            const double k = 2 * pi / w.wavelength_m, dir = w.direction_deg * pi / 180;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double a = k * std::cos(dir) * double(i) * cell, b = k * std::sin(dir) * double(i) * cell + w.phase;
+                sx[i] = std::sin(a), cx[i] = std::cos(a), sy[i] = std::sin(b), cy[i] = std::cos(b);
+            }
+            for (std::size_t iy = 0; iy < n; ++iy)
+                for (std::size_t ix = 0; ix < n; ++ix) z[iy * n + ix] += w.amplitude_m * (sx[ix] * cy[iy] + cx[ix] * sy[iy]);
+        }
+        std::vector<T> h(n * n);
+        for (std::size_t i = 0; i < h.size(); ++i) {
+            std::uint64_t k = (i + 1) * 0x9E3779B97F4A7C15ull;
+            k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ull;
+            k = (k ^ (k >> 27)) * 0x94D049BB133111EBull;
+            h[i] = T(z[i] + 0.1 * (double((k ^ (k >> 31)) >> 11) * 0x1.0p-53 - 0.5));
+        }
+        return sss::scene::height_field<T>(n, n, T(cell), sss::vec2<T>{T(-256), T(-256)}, std::move(h));
+    }();
+    return hf;
+}
+
+/// A scene that hides its inner scene's batch method: every ray is traced alone.
+template <class Inner> struct one_by_one {
+    using value_type = typename Inner::value_type;
+    const Inner* inner;
+    [[nodiscard]] std::optional<sss::hit<value_type>> intersect(const sss::ray<value_type>& r, value_type t) const {
+        return inner->intersect(r, t);
+    }
+    [[nodiscard]] value_type seabed_height_m(value_type x, value_type y) const { return inner->seabed_height_m(x, y); }
+    [[nodiscard]] value_type top_m() const { return inner->top_m(); }
+};
+
+template <class T> void pipeline_ping_relief(benchmark::State& state) {
+    sss::receiver_params rx;
+    rx.max_range_m = 100.0;
+    sss::motion::straight_line_params<T> track;
+    track.start_m = sss::vec2<T>{T(0), T(-60)};
+    const auto sim = flat_simulator<T>(sss::scattering::lambertian<T>{}, sss::propagation::straight<T>{},
+                                       sss::beam::ideal_fan<T>{}, sss::motion::straight_line<T>(track), rx,
+                                       sss::ray_density{8, 2048, 1.0});
+    if (state.range(0) == 1)
+        run_pings(state, sim, relief<T>(), "relief 2048^2 at 0.25 m, 10 m altitude, 100 m/side, columns traced together");
+    else
+        run_pings(state, sim, one_by_one<sss::scene::height_field<T>>{&relief<T>()},
+                  "relief 2048^2 at 0.25 m, 10 m altitude, 100 m/side, rays traced one by one");
+}
+BENCHMARK_TEMPLATE(pipeline_ping_relief, float)->Arg(1)->Arg(0);
+BENCHMARK_TEMPLATE(pipeline_ping_relief, double)->Arg(1)->Arg(0);
 
 template <class T> void pipeline_render_flat(benchmark::State& state) {
     constexpr std::size_t pings = 16;
