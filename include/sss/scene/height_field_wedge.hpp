@@ -233,8 +233,9 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
             emit(k, static_cast<const grid_hit<T>*>(nullptr));
             continue;
         }
-        const T to_s = cell * slopes[k].inv_h; // distance per cell of rho
-        const T rho_hi = std::min(q.s_hi / to_s, ring_end);
+        const T to_s = cell * slopes[k].inv_h;  // distance per cell of rho
+        const T to_rho = T(1) / to_s;           // cells of rho per metre of distance
+        const T rho_hi = std::min(q.s_hi * to_rho, ring_end);
         while (static_cast<T>(shared) < rho_hi && clear(shared, tau)) ++shared;
         if (!(static_cast<T>(shared) < rho_hi)) {
             emit(k, static_cast<const grid_hit<T>*>(nullptr));
@@ -274,7 +275,7 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
             }
             if (o == detail::step_outcome::done) break;
             // Entering a new ring: jump when it and the next ones are clear for this ray.
-            const T rho = w.s / to_s;
+            const T rho = w.s * to_rho;
             const std::int32_t now = static_cast<std::int32_t>(rho);
             if (now > ring) {
                 ring = now;
