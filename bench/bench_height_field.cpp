@@ -7,9 +7,11 @@
 //   accelerated  intersect(): the maximum pyramid, one ray at a time,
 //   fans         intersect_many(): a ping's fans swept together,
 //   bilinear     a plain DDA over bilinear patches (a quadratic per cell), the alternative surface,
-// and the memory of the acceleration beyond the heights. Another tracer (for example Embree on the same
-// triangles) plugs in as one more `tracer` type: make_tracer builds it from the height field, and
-// trace(rays, t_max, hits) fills one optional hit per ray; register it with TRACE_BENCHMARKS.
+// and the memory of the acceleration beyond the heights. When the build finds Embree 3 (optional), the
+// same triangles and rays are also traced by Embree (rtcIntersect8 packets and rtcIntersect1), checked
+// against intersect() and timed against the fans. Another tracer plugs in as one more `tracer` type:
+// Tracer<T>{hf} builds it from the height field, and trace(rays, t_max, hits) fills one optional hit
+// per ray; register it with TRACE_BENCHMARKS (the Embree ones are float only and registered directly).
 
 #include <benchmark/benchmark.h>
 
@@ -22,6 +24,16 @@
 #include <vector>
 
 #include <sss/scene/height_field.hpp>
+
+#ifdef SSS_HAVE_EMBREE
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+#include <type_traits>
+#endif
 
 namespace {
 
@@ -222,6 +234,235 @@ TRACE_BENCHMARKS(accelerated_tracer);
 TRACE_BENCHMARKS(fan_tracer);
 TRACE_BENCHMARKS(bilinear_tracer);
 
+#ifdef SSS_HAVE_EMBREE
+// Embree 3 on the same triangles, float only (Embree is float); built when the build files find Embree
+// (they define SSS_HAVE_EMBREE). One triangle mesh over the grid's vertices at world (x, y, height), two
+// triangles per cell split along the diagonal from vertex (ix, iy) to (ix+1, iy+1) as in
+// height_field_surface.hpp, an index buffer over the shared vertex buffer. Build quality medium
+// (Embree's default binned-SAH builder for a static scene; high adds spatial splits, which buy little on
+// triangles this regular and compact, at more build time and memory). Scene flag robust: watertight
+// like intersect(); without it a few rays slip through shared edges (6 of the 64 pings' 2 M rays here)
+// and tracing is some 20 % faster. Memory is every byte Embree allocates, its own vertex and index
+// buffers included, summed by the device's memory monitor.
+class embree_scene {
+public:
+    explicit embree_scene(const height_field<float>& hf) : device_(rtcNewDevice(nullptr)) {
+        if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
+        rtcSetDeviceMemoryMonitorFunction(device_, &monitor, this);
+        const auto& g = hf.grid();
+        const auto nx = static_cast<unsigned>(g.nx), ny = static_cast<unsigned>(g.ny);
+        const std::size_t vertices = std::size_t(nx) * ny, triangles = 2 * std::size_t(nx - 1) * (ny - 1);
+        const auto start = std::chrono::steady_clock::now();
+        RTCGeometry mesh = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), vertices));
+        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), triangles));
+        if (!v || !t) throw std::runtime_error("Embree: geometry buffers not allocated");
+        for (unsigned iy = 0; iy < ny; ++iy)
+            for (unsigned ix = 0; ix < nx; ++ix, v += 3) {
+                v[0] = g.origin_m.x + static_cast<float>(ix) * g.cell_m;
+                v[1] = g.origin_m.y + static_cast<float>(iy) * g.cell_m;
+                v[2] = g.at(static_cast<std::int32_t>(ix), static_cast<std::int32_t>(iy));
+            }
+        for (unsigned iy = 0; iy + 1 < ny; ++iy)
+            for (unsigned ix = 0; ix + 1 < nx; ++ix, t += 6) {
+                const unsigned v00 = iy * nx + ix, v10 = v00 + 1, v01 = v00 + nx, v11 = v01 + 1;
+                t[0] = v00, t[1] = v10, t[2] = v11; // lower: a >= b
+                t[3] = v00, t[4] = v11, t[5] = v01; // upper: a < b
+            }
+        buffer_bytes_ = vertices * 3 * sizeof(float) + triangles * 3 * sizeof(unsigned);
+        rtcCommitGeometry(mesh);
+        scene_ = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        rtcAttachGeometry(scene_, mesh);
+        rtcReleaseGeometry(mesh);
+        rtcCommitScene(scene_);
+        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: scene build failed");
+        build_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        resident_bytes_ = bytes_.load();
+    }
+    embree_scene(const embree_scene&) = delete;
+    embree_scene& operator=(const embree_scene&) = delete;
+    ~embree_scene() {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+    }
+
+    [[nodiscard]] RTCScene scene() const noexcept { return scene_; }
+    /// Bytes Embree holds after the build (buffers, BVH and triangle blocks), its peak during the build,
+    /// the vertex and index buffers alone, and the build's wall time (s).
+    [[nodiscard]] std::int64_t resident_bytes() const noexcept { return resident_bytes_; }
+    [[nodiscard]] std::int64_t peak_bytes() const noexcept { return peak_bytes_.load(); }
+    [[nodiscard]] std::size_t buffer_bytes() const noexcept { return buffer_bytes_; }
+    [[nodiscard]] double build_s() const noexcept { return build_s_; }
+
+    // The hit Embree reports, in the tracers' form: distance, point, geometric normal (Ng normalised,
+    // upward), the same as the shading normal (Embree interpolates nothing here), material 0.
+    static std::optional<sss::hit<float>> to_hit(const ray<float>& r, unsigned geom_id, float t, float nx, float ny,
+                                                 float nz) noexcept {
+        if (geom_id == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+        sss::hit<float> h;
+        h.distance_m = t;
+        h.point = r.at(t);
+        const float s = (nz < 0 ? -1.0f : 1.0f) / std::sqrt(nx * nx + ny * ny + nz * nz);
+        h.normal = vec3<float>{nx * s, ny * s, nz * s};
+        h.shading_normal = h.normal;
+        return h;
+    }
+
+private:
+    static bool monitor(void* self, ssize_t bytes, bool /*post*/) {
+        auto& s = *static_cast<embree_scene*>(self);
+        const std::int64_t now = s.bytes_ += static_cast<std::int64_t>(bytes);
+        std::int64_t peak = s.peak_bytes_.load();
+        while (now > peak && !s.peak_bytes_.compare_exchange_weak(peak, now)) {
+        }
+        return true;
+    }
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    std::atomic<std::int64_t> bytes_{0}, peak_bytes_{0};
+    std::int64_t resident_bytes_ = 0;
+    std::size_t buffer_bytes_ = 0;
+    double build_s_ = 0;
+};
+
+const embree_scene& embree() {
+    static const embree_scene s(scene<float>());
+    return s;
+}
+
+// Packets of 8 consecutive rays of a fan (rtcIntersect8), and one ray at a time (rtcIntersect1).
+template <class T> struct embree_packet8_tracer {
+    static_assert(std::is_same_v<T, float>, "Embree traces float rays");
+    const height_field<T>& hf;
+    void trace(std::span<const ray<T>> rays, T t_max, std::span<std::optional<sss::hit<T>>> hits) const {
+        const RTCScene sc = embree().scene();
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        alignas(32) RTCRayHit8 q;
+        alignas(32) int valid[8];
+        for (std::size_t k0 = 0; k0 < rays.size(); k0 += 8) {
+            const std::size_t n = std::min<std::size_t>(8, rays.size() - k0);
+            for (std::size_t j = 0; j < 8; ++j) {
+                const ray<T>& r = rays[k0 + std::min(j, n - 1)];
+                valid[j] = j < n ? -1 : 0;
+                q.ray.org_x[j] = r.origin.x, q.ray.org_y[j] = r.origin.y, q.ray.org_z[j] = r.origin.z;
+                q.ray.dir_x[j] = r.direction.x, q.ray.dir_y[j] = r.direction.y, q.ray.dir_z[j] = r.direction.z;
+                q.ray.tnear[j] = 0, q.ray.tfar[j] = t_max, q.ray.time[j] = 0;
+                q.ray.mask[j] = ~0u, q.ray.id[j] = 0, q.ray.flags[j] = 0;
+                q.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+                q.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect8(valid, sc, &context, &q);
+            for (std::size_t j = 0; j < n; ++j)
+                hits[k0 + j] = embree_scene::to_hit(rays[k0 + j], q.hit.geomID[j], q.ray.tfar[j], q.hit.Ng_x[j],
+                                                    q.hit.Ng_y[j], q.hit.Ng_z[j]);
+        }
+    }
+    static const char* name() { return "Embree: same triangles, rtcIntersect8 (8 consecutive rays of a fan)"; }
+};
+template <class T> struct embree_single_tracer {
+    static_assert(std::is_same_v<T, float>, "Embree traces float rays");
+    const height_field<T>& hf;
+    void trace(std::span<const ray<T>> rays, T t_max, std::span<std::optional<sss::hit<T>>> hits) const {
+        const RTCScene sc = embree().scene();
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            const ray<T>& r = rays[k];
+            RTCRayHit q{};
+            q.ray.org_x = r.origin.x, q.ray.org_y = r.origin.y, q.ray.org_z = r.origin.z;
+            q.ray.dir_x = r.direction.x, q.ray.dir_y = r.direction.y, q.ray.dir_z = r.direction.z;
+            q.ray.tnear = 0, q.ray.tfar = t_max, q.ray.mask = ~0u;
+            q.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            q.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(sc, &context, &q);
+            hits[k] = embree_scene::to_hit(r, q.hit.geomID, q.ray.tfar, q.hit.Ng_x, q.hit.Ng_y, q.hit.Ng_z);
+        }
+    }
+    static const char* name() { return "Embree: same triangles, rtcIntersect1"; }
+};
+
+// trace_pings, with the memory counter holding Embree's bytes (all of them) over the heights' bytes.
+template <template <class> class Tracer, class T> void trace_pings_embree(benchmark::State& state) {
+    trace_pings<Tracer, T>(state);
+    state.counters["accel_bytes_per_height_byte"] =
+        double(embree().resident_bytes()) / double(scene<T>().height_bytes());
+}
+BENCHMARK_TEMPLATE(trace_pings_embree, embree_packet8_tracer, float)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime();
+BENCHMARK_TEMPLATE(trace_pings_embree, embree_single_tracer, float)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime();
+
+// Embree against hf.intersect on the first ping's rays: hit/miss disagreements, the worst relative
+// difference of the distances and, where both hit, how many geometric normals differ by more than
+// 1 mrad (a hit on a shared edge belongs to either triangle).
+template <template <class> class Tracer> std::string embree_agreement() {
+    const auto& hf = scene<float>();
+    const auto& rays = all_pings<float>()[0];
+    const float t_max = float(1.5 * range_m);
+    std::vector<std::optional<sss::hit<float>>> hits(rays.size());
+    Tracer<float>{hf}.trace(rays, t_max, hits);
+    std::size_t disagree = 0, both = 0, normals = 0;
+    double worst_rel = 0;
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        const auto ours = hf.intersect(rays[k], t_max);
+        if (bool(ours) != bool(hits[k])) {
+            ++disagree;
+            continue;
+        }
+        if (!ours) continue;
+        ++both;
+        worst_rel = std::max(worst_rel, std::abs(double(hits[k]->distance_m) - double(ours->distance_m)) /
+                                            double(ours->distance_m));
+        const double c = double(glm::dot(hits[k]->normal, ours->normal));
+        normals += std::acos(std::clamp(c, -1.0, 1.0)) > 1e-3 ? 1 : 0;
+    }
+    char worst[32];
+    std::snprintf(worst, sizeof worst, "%.2e", worst_rel);
+    return "worst |d - d_ours| / d_ours " + std::string(worst) + ", normals > 1 mrad apart on " +
+           std::to_string(normals) + " of " + std::to_string(both) + " hits, hit/miss disagreements " +
+           std::to_string(disagree) + " of " + std::to_string(rays.size());
+}
+
+// Rays/s (wall clock) of one tracer on the first 4 pings, best of 5 interleaved rounds, for the ratios
+// printed beside the benchmarks (one run, one clock).
+std::string embree_ratios() {
+    const auto& hf = scene<float>();
+    const auto& p = all_pings<float>();
+    const float t_max = float(1.5 * range_m);
+    std::vector<std::optional<sss::hit<float>>> hits(p[0].size());
+    auto time = [&](const auto& tracer) {
+        const auto start = std::chrono::steady_clock::now();
+        for (std::size_t k = 0; k < 4; ++k) tracer.trace(p[k], t_max, hits);
+        benchmark::DoNotOptimize(hits.data());
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    const fan_tracer<float> fans{hf};
+    const accelerated_tracer<float> one{hf};
+    const embree_packet8_tracer<float> e8{hf};
+    const embree_single_tracer<float> e1{hf};
+    double best[4] = {1e30, 1e30, 1e30, 1e30};
+    for (int round = 0; round < 5; ++round) {
+        best[0] = std::min(best[0], time(fans));
+        best[1] = std::min(best[1], time(e8));
+        best[2] = std::min(best[2], time(one));
+        best[3] = std::min(best[3], time(e1));
+    }
+    const double rays = 4.0 * double(p[0].size());
+    auto mrays = [&](int i) { return std::to_string(rays / best[i] * 1e-6); };
+    return "fans / Embree packets = " + std::to_string(best[1] / best[0]) + " (" + mrays(0) + " vs " + mrays(1) +
+           " M rays/s); accelerated / Embree single = " + std::to_string(best[3] / best[2]) + " (" + mrays(2) +
+           " vs " + mrays(3) + " M rays/s); float, best of 5 over 4 pings, wall clock";
+}
+#endif // SSS_HAVE_EMBREE
+
 // Building the height field: validation, bounds and the maximum pyramid (the heights are given).
 template <class T> void build_height_field(benchmark::State& state) {
     const std::vector<T> h(scene<T>().heights_m());
@@ -265,6 +506,18 @@ int main(int argc, char** argv) {
             " (total " + std::to_string(1 + double(hf.acceleration_bytes()) / double(hf.height_bytes())) +
             "x the heights)");
     benchmark::AddCustomContext("triangles vs bilinear", "centre-of-cell height gap " + surface_gap());
+#ifdef SSS_HAVE_EMBREE
+    const auto& e = embree();
+    const double heights = double(hf.height_bytes());
+    benchmark::AddCustomContext(
+        "Embree memory", "Embree / heights = " + std::to_string(double(e.resident_bytes()) / heights) +
+                             " (vertex and index buffers " + std::to_string(double(e.buffer_bytes()) / heights) +
+                             ", peak during the build " + std::to_string(double(e.peak_bytes()) / heights) +
+                             "); build " + std::to_string(e.build_s()) + " s, quality medium");
+    benchmark::AddCustomContext("Embree packets vs intersect", embree_agreement<embree_packet8_tracer>());
+    benchmark::AddCustomContext("Embree single vs intersect", embree_agreement<embree_single_tracer>());
+    benchmark::AddCustomContext("Embree ratio", embree_ratios());
+#endif
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     return 0;
