@@ -159,3 +159,38 @@ TEST_CASE("A wedge run ends where the rays leave the origin, turn the other way 
     run = sss::scene::detail::find_wedge_run(std::span<const ray<T>>(turned), 0, std::span(taus));
     CHECK(run.count == 61);
 }
+
+TEST_CASE_TEMPLATE("intersect_many on columns of a rolled, pitched towfish gives intersect's hits, every field", T, float,
+                   double) {
+    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10});
+    rng gen{5};
+    long compared = 0, hits = 0;
+    for (int p = 0; p < 12; ++p) {
+        const vec3<double> fish{gen.uniform(0, 80), gen.uniform(10, 60), double(hf.top_m()) + gen.uniform(1, 12)};
+        const double yaw = gen.uniform(0, 360) * deg, pitch = gen.uniform(-10, 10) * deg,
+                     roll = gen.uniform(-10, 10) * deg;
+        std::vector<ray<T>> rays;
+        for (int side : {-1, 1})
+            for (int a = 0; a < 4; ++a) {
+                const auto c = column<T>(fish, yaw, pitch, roll, side, (-0.5 + a / 3.0) * deg, 80 * deg, 2 * deg, 600);
+                rays.insert(rays.end(), c.begin(), c.end());
+            }
+        std::vector<std::optional<sss::hit<T>>> got(rays.size());
+        hf.intersect_many(rays, T(120), got);
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            const auto want = hf.intersect(rays[k], T(120));
+            ++compared;
+            REQUIRE(bool(got[k]) == bool(want));
+            if (!want) continue;
+            ++hits;
+            const double d = double(want->distance_m);
+            REQUIRE(std::abs(double(got[k]->distance_m) - d) <= 1e-6 * d);
+            REQUIRE(got[k]->label == want->label);
+            REQUIRE(got[k]->object == want->object);
+            REQUIRE(glm::length(vec3<double>(got[k]->point - want->point)) <= 1e-5 * (1 + d));
+            REQUIRE(glm::dot(vec3<double>(got[k]->normal), vec3<double>(want->normal)) >= 1 - 1e-5);
+            REQUIRE(glm::dot(vec3<double>(got[k]->shading_normal), vec3<double>(want->shading_normal)) >= 1 - 1e-5);
+        }
+    }
+    CHECK(hits > compared / 2);
+}

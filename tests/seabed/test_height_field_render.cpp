@@ -55,3 +55,62 @@ TEST_CASE_TEMPLATE("a flat height field matches the quadrature oracle as closely
         CHECK(e_grid.rms_db <= e_plane.rms_db + 0.01);
     }
 }
+
+namespace {
+/// The same scene without its batch method: the simulator then traces every ray alone.
+template <class Inner> struct one_ray_at_a_time {
+    using value_type = typename Inner::value_type;
+    const Inner* inner;
+    [[nodiscard]] std::optional<sss::hit<value_type>> intersect(const sss::ray<value_type>& r, value_type t) const {
+        return inner->intersect(r, t);
+    }
+    [[nodiscard]] value_type seabed_height_m(value_type x, value_type y) const { return inner->seabed_height_m(x, y); }
+    [[nodiscard]] value_type top_m() const { return inner->top_m(); }
+};
+} // namespace
+
+TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are traced together or ray by ray", T, float,
+                   double) {
+    sss::receiver_params rx;
+    rx.max_range_m = 40.0;
+    sss::motion::perturbed_params<T> tow;
+    tow.start_m = {T(1.7), T(-3.1)};
+    tow.heading_deg = T(-21);
+    tow.altitude_m = T(9);
+    tow.roll_deg = {T(4), T(6), T(90)};
+    tow.pitch_deg = {T(2), T(4), T(90)};
+    const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
+                         sss::motion::perturbed<T>>
+        sim({}, {}, {}, sss::motion::perturbed<T>{tow}, rx);
+    const std::size_t n = 241;
+    std::vector<T> h(n * n);
+    for (std::size_t iy = 0; iy < n; ++iy)
+        for (std::size_t ix = 0; ix < n; ++ix) {
+            const double x = 0.4 * double(ix), y = 0.4 * double(iy);
+            h[iy * n + ix] = T(1.5 * std::sin(0.09 * x + 0.04 * y) + 0.3 * std::sin(1.3 * x - 0.7 * y) +
+                               0.2 * std::sin(0.5 * y) * std::cos(2.2 * x));
+        }
+    const sss::scene::height_field<T> relief(n, n, T(0.4), {T(-46), T(-50)}, std::move(h));
+    static_assert(sss::BatchScene<sss::scene::height_field<T>>);
+    static_assert(!sss::BatchScene<one_ray_at_a_time<sss::scene::height_field<T>>>);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const auto together = sim.ping(relief, i);
+        const auto alone = sim.ping(one_ray_at_a_time<sss::scene::height_field<T>>{&relief}, i);
+        for (sss::side sd : {sss::side::port, sss::side::starboard}) {
+            const auto& a = sd == sss::side::port ? together.port : together.starboard;
+            const auto& b = sd == sss::side::port ? alone.port : alone.starboard;
+            REQUIRE(a.size() == b.size());
+            double peak = 0, worst = 0, total_a = 0, total_b = 0;
+            for (std::size_t k = 0; k < a.size(); ++k) peak = std::max(peak, double(b[k]));
+            for (std::size_t k = 0; k < a.size(); ++k) {
+                worst = std::max(worst, std::abs(double(a[k]) - double(b[k])));
+                total_a += double(a[k]);
+                total_b += double(b[k]);
+            }
+            INFO("ping " << i << ": worst difference " << worst / peak << " of the peak");
+            CHECK(peak > 0);
+            CHECK(worst <= 1e-3 * peak);
+            CHECK(std::abs(total_a - total_b) <= 1e-4 * total_b);
+        }
+    }
+}

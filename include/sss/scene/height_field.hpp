@@ -25,6 +25,7 @@
 #include "sss/core/ray.hpp"
 #include "sss/scene/concept.hpp"
 #include "sss/scene/height_field_fan.hpp"
+#include "sss/scene/height_field_wedge.hpp"
 #include "sss/scene/height_field_pyramid.hpp"
 #include "sss/scene/height_field_surface.hpp"
 #include "sss/scene/height_field_tracer.hpp"
@@ -123,31 +124,55 @@ public:
     /// Hits for many rays: hits[k] = intersect(rays[k], t_max_m), up to rounding. Runs of at least
     /// `min_fan_rays` consecutive rays that share their origin and horizontal heading (a sidescan fan at one
     /// along-track angle, ordered by depression either way) are traced together in one sweep along the
-    /// surface under them (height_field_fan.hpp), at a small cost per ray; other rays go one by one.
+    /// surface under them (height_field_fan.hpp), at a small cost per ray. Runs that share the origin but not
+    /// the vertical plane (a column of a rolled, pitched or conical beam: headings within
+    /// detail::wedge_max_spread_rad) go through the wedge sweep (height_field_wedge.hpp): an envelope per ring
+    /// of the wedge, then a short exact walk per ray. Other rays go one by one.
     /// Throws invalid_parameter unless hits.size() == rays.size().
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
         sss::detail::require(hits.size() == rays.size(), "height_field.intersect_many.hits",
                              "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
                                  std::to_string(hits.size()));
-        std::vector<detail::fan_slope<T>> slopes(rays.size());
+        // Working memory for one fan at a time (at most detail::max_fan_rays rays): the rays' slopes, and
+        // where the sweep found each ray coming down, turned into hits in a second pass over the fan.
+        fan_scratch scratch;
+        if (rays.size() >= min_fan_rays) scratch.resize(std::min(rays.size(), detail::max_fan_rays));
+        std::vector<detail::wedge_slope<T>> wedge_slopes; // the same for a wedge run, when one comes
         std::size_t i = 0;
         while (i < rays.size()) {
-            const detail::fan_run run = detail::find_fan_run(rays, i, std::span(slopes).subspan(i));
+            const detail::fan_run run = rays.size() - i >= min_fan_rays
+                                            ? detail::find_fan_run(rays, i, std::span(scratch.slopes))
+                                            : detail::fan_run{};
             if (run.count >= min_fan_rays) {
                 const auto fan = rays.subspan(i, run.count);
-                auto emit = [&](std::size_t k, const grid_hit<T>* g) {
-                    if (g)
-                        hits[i + k] = to_hit(fan[k], *g);
-                    else
-                        hits[i + k].reset();
-                };
-                if (trace_fan(grid_, bounds_, fan, std::span<const detail::fan_slope<T>>(slopes).subspan(i, run.count),
-                              run.steep_first, t_max_m, emit)) {
+                const auto fan_out = hits.subspan(i, run.count);
+                if (sweep_fan(grid_, bounds_, fan, std::span<const detail::fan_slope<T>>(scratch.slopes).first(run.count),
+                              run.steep_first, t_max_m, std::span(scratch.segment_of), std::span(scratch.segments),
+                              fan_batch, [&](std::size_t k_begin, std::size_t k_end) {
+                                  fan_hits(fan, scratch, t_max_m, fan_out, k_begin, k_end);
+                              })) {
                     i += run.count;
                     continue;
                 }
-                for (std::size_t k = 0; k < run.count; ++k, ++i) hits[i] = intersect(rays[i], t_max_m);
-                continue;
+            }
+            // Not one vertical plane (or too sparse a fan to sweep): a run that shares the origin and a thin wedge
+            // of headings goes through the wedge sweep, anything else ray by ray.
+            if (rays.size() - i >= min_fan_rays) {
+                if (wedge_slopes.empty()) wedge_slopes.resize(std::min(rays.size(), detail::max_fan_rays));
+                const detail::wedge_run<T> w = detail::find_wedge_run(rays, i, std::span(wedge_slopes));
+                if (w.count >= min_fan_rays) {
+                    const auto part = rays.subspan(i, w.count);
+                    trace_wedge(grid_, pyramid_, bounds_, part,
+                                std::span<const detail::wedge_slope<T>>(wedge_slopes).first(w.count), w, t_max_m,
+                                [&](std::size_t k, const grid_hit<T>* g) {
+                                    if (g)
+                                        hits[i + k] = to_hit(part[k], *g);
+                                    else
+                                        hits[i + k].reset();
+                                });
+                    i += w.count;
+                    continue;
+                }
             }
             hits[i] = intersect(rays[i], t_max_m);
             ++i;
@@ -202,23 +227,82 @@ private:
         return to_hit(r, *g);
     }
     [[nodiscard]] hit<T> to_hit(const ray<T>& r, const grid_hit<T>& g) const noexcept {
+        const vec3<T> p = r.at(g.distance_m);
+        const T a = (p.x - grid_.origin_m.x) * grid_.inv_cell_m - static_cast<T>(g.ix);
+        const T b = (p.y - grid_.origin_m.y) * grid_.inv_cell_m - static_cast<T>(g.iy);
+        return make_hit(r, g.distance_m, g.ix, g.iy, gradients_at(grid_, g.ix, g.iy, g.triangle, a, b));
+    }
+    /// The hit of ray r at distance s in cell (ix, iy) where the surface has gradients gr, every field.
+    [[nodiscard]] hit<T> make_hit(const ray<T>& r, T s, std::int32_t ix, std::int32_t iy,
+                                  const hit_gradients<T>& gr) const noexcept {
         hit<T> h;
-        h.distance_m = g.distance_m;
-        h.point = r.at(g.distance_m);
-        const T a = (h.point.x - grid_.origin_m.x) * grid_.inv_cell_m - static_cast<T>(g.ix);
-        const T b = (h.point.y - grid_.origin_m.y) * grid_.inv_cell_m - static_cast<T>(g.iy);
+        h.distance_m = s;
+        h.point = r.at(s);
         // Both normals from their gradients, sharing one division: n = (-gx, -gy, 1) / sqrt(1 + |g|^2).
-        const vec2<T> gt = triangle_gradient(grid_, g.ix, g.iy, g.triangle);
-        const vec2<T> gs = smooth_gradient(grid_, g.ix, g.iy, g.triangle, a, b);
+        const vec2<T> gt = gr.triangle, gs = gr.smooth;
         const T lt = std::sqrt(T(1) + gt.x * gt.x + gt.y * gt.y), ls = std::sqrt(T(1) + gs.x * gs.x + gs.y * gs.y);
         const T inv = T(1) / (lt * ls), it = inv * ls, is = inv * lt;
         h.normal = vec3<T>{-gt.x * it, -gt.y * it, it};
         h.shading_normal = vec3<T>{-gs.x * is, -gs.y * is, is};
-        const std::size_t c = grid_.cell_index(g.ix, g.iy);
+        const std::size_t c = grid_.cell_index(ix, iy);
         h.material = materials_.empty() ? 0u : materials_[c];
         h.object = no_object;
         h.label = regions_.empty() ? 0u : regions_[c];
         return h;
+    }
+
+    /// How many rays a fan's sweep settles before intersect_many turns them into hits.
+    static constexpr std::size_t fan_batch = 32;
+
+    /// What intersect_many keeps per fan ray: its slope, and the segment of the profile it comes down on.
+    struct fan_scratch {
+        std::vector<detail::fan_slope<T>> slopes;
+        std::vector<std::uint32_t> segment_of;
+        std::vector<detail::fan_segment<T>> segments;
+        void resize(std::size_t n) {
+            slopes.resize(n);
+            segment_of.resize(n);
+            segments.resize(n);
+        }
+    };
+
+    /// The hits of a swept fan, in batches: first the distance of every ray of the batch, then the
+    /// gradients under them, then the hits, so that the rays of a batch overlap in the pipeline instead of
+    /// waiting on each other's square roots and divisions.
+    void fan_hits(std::span<const ray<T>> fan, const fan_scratch& sc, T t_max_m, std::span<std::optional<hit<T>>> hits,
+                  std::size_t k_begin, std::size_t k_end) const noexcept {
+        constexpr std::size_t batch = 16;
+        const T inv_c = grid_.inv_cell_m;
+        for (std::size_t k0 = k_begin; k0 < k_end; k0 += batch) {
+            const std::size_t m = std::min(batch, k_end - k0);
+            T dist[batch];
+            hit_gradients<T> gr[batch];
+            const detail::fan_segment<T>* seg[batch];
+            for (std::size_t j = 0; j < m; ++j) {
+                const std::size_t k = k0 + j;
+                const std::uint32_t c = sc.segment_of[k];
+                seg[j] = c == detail::no_fan_segment ? nullptr : &sc.segments[c];
+                dist[j] = seg[j] ? detail::fan_distance(*seg[j], sc.slopes[k], t_max_m) : T(0);
+            }
+            for (std::size_t j = 0; j < m; ++j) {
+                if (!(dist[j] > T(0))) continue;
+                const vec3<T> p = fan[k0 + j].at(dist[j]);
+                const T a = (p.x - grid_.origin_m.x) * inv_c - static_cast<T>(seg[j]->ix);
+                const T b = (p.y - grid_.origin_m.y) * inv_c - static_cast<T>(seg[j]->iy);
+                gr[j] = gradients_at(grid_, seg[j]->ix, seg[j]->iy, seg[j]->triangle, a, b);
+            }
+            for (std::size_t j = 0; j < m; ++j) {
+                if (k0 + j + 2 * batch < hits.size()) { // the slots come from memory: ask for them ahead
+                    const auto* slot = reinterpret_cast<const unsigned char*>(&hits[k0 + j + 2 * batch]);
+                    detail::prefetch(slot);
+                    detail::prefetch(slot + sizeof(std::optional<hit<T>>) - 1);
+                }
+                if (dist[j] > T(0))
+                    hits[k0 + j].emplace(make_hit(fan[k0 + j], dist[j], seg[j]->ix, seg[j]->iy, gr[j]));
+                else
+                    hits[k0 + j].reset();
+            }
+        }
     }
 
     std::vector<T> heights_;

@@ -21,8 +21,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include "sss/core/ray.hpp"
 #include "sss/scene/height_field_tracer.hpp"
@@ -30,6 +32,15 @@
 namespace sss::scene {
 
 namespace detail {
+
+/// A hint to bring the cache line holding p closer (nothing where the compiler has no such hint).
+inline void prefetch(const void* p) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+}
 
 /// A fan ray's slope numbers: tau = tan(depression) = -dz / |(dx, dy)|, and inv_h = 1 / |(dx, dy)|, the
 /// distance along the ray per metre of horizontal travel.
@@ -44,9 +55,13 @@ struct fan_run {
     bool steep_first = true;
 };
 
-/// The longest run of rays from rays[first] on that share the origin (exactly) and the horizontal heading
-/// (to 8 ulps), are not within 0.06 deg of vertical, and are ordered by tau one way or the other; the
-/// slopes of its rays go to slopes[0 ... count - 1] (slopes.size() >= rays.size() - first).
+/// The most rays height_field::intersect_many sweeps as one fan (a longer run is swept in pieces): this
+/// bounds its working memory, and a piece this long already spreads the sweep's fixed cost thin.
+inline constexpr std::size_t max_fan_rays = 4096;
+
+/// The longest run of at most slopes.size() rays from rays[first] on that share the origin (exactly) and
+/// the horizontal heading (to 8 ulps), are not within 0.06 deg of vertical, and are ordered by tau one way
+/// or the other; the slopes of its rays go to slopes[0 ... count - 1].
 template <Real T> [[nodiscard]] inline fan_run find_fan_run(std::span<const ray<T>> rays, std::size_t first,
                                                             std::span<fan_slope<T>> slopes) noexcept {
     fan_run run;
@@ -57,11 +72,13 @@ template <Real T> [[nodiscard]] inline fan_run find_fan_run(std::span<const ray<
     const T tol = T(8) * std::numeric_limits<T>::epsilon();
     int order = 0; // 0 unknown, +1 tau non-increasing, -1 tau non-decreasing
     T tau_prev = -r0.direction.z * inv_h0;
-    if (!std::isfinite(tau_prev)) return run;
+    if (!std::isfinite(tau_prev) || slopes.empty()) return run;
     slopes[0] = fan_slope<T>{tau_prev, inv_h0};
     run.count = 1;
-    for (std::size_t j = first + 1; j < rays.size(); ++j) {
+    const std::size_t end = first + std::min(rays.size() - first, slopes.size());
+    for (std::size_t j = first + 1; j < end; ++j) {
         const ray<T>& r = rays[j];
+        if (j + 32 < rays.size()) prefetch(&rays[j + 32]); // rays arrive from memory: ask ahead
         if (!(r.origin == r0.origin)) break;
         const T inv_h = T(1) / std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
         if (!(inv_h <= T(1e3))) break;
@@ -86,14 +103,48 @@ template <Real T> [[nodiscard]] inline fan_run find_fan_run(std::span<const ray<
 
 } // namespace detail
 
-/// Traces the vertical fan `rays` with slopes `slopes` (as found by detail::find_fan_run; `steep_first`
-/// says whether tau does not increase along the span) limited to distance t_max_m, calling
-/// emit(k, const grid_hit<T>* h) once for every ray k (h null for a miss). Returns false, having emitted nothing, when the sweep does not apply
-/// (the origin is not above the surface where the sweep starts, or the fan is too sparse for its length to
-/// pay off): the caller then traces the rays one by one.
-template <Real T, class Emit>
-[[nodiscard]] bool trace_fan(const height_grid_view<T>& g, height_bounds<T> hb, std::span<const ray<T>> rays,
-                             std::span<const detail::fan_slope<T>> slopes, bool steep_first, T t_max_m, Emit&& emit) {
+namespace detail {
+
+/// A piece of a fan's profile on which rays come down: rho in [rho_a, rho_b] (m) inside cell (ix, iy), the
+/// profile's g = z0 - z_p at both ends (m), and the triangle holding the piece's midpoint.
+template <Real T> struct fan_segment {
+    T rho_a, g_a, rho_b, g_b;
+    std::int32_t ix, iy;
+    cell_triangle triangle;
+};
+
+/// What sweep_fan records for a ray that stays above the surface out to t_max.
+inline constexpr std::uint32_t no_fan_segment = std::numeric_limits<std::uint32_t>::max();
+
+/// The distance (m) at which the ray with slope `sl` crosses segment `sg`, on which its f = g - tau rho goes
+/// from > 0 to <= 0: the linear root, s = rho_hit / |(dx, dy)|; 0 when that is not in (0, t_max_m].
+template <Real T>
+[[nodiscard]] inline T fan_distance(const fan_segment<T>& sg, fan_slope<T> sl, T t_max_m) noexcept {
+    const T fb = sg.g_b - sl.tau * sg.rho_b;
+    const T fa = sg.g_a - sl.tau * sg.rho_a; // > 0: this ray, or a steeper one, was above at rho_a
+    const T r_hit = std::clamp(sg.rho_a + (sg.rho_b - sg.rho_a) * (fa / (fa - fb)), sg.rho_a, sg.rho_b);
+    const T s = r_hit * sl.inv_h;
+    return s > T(0) && s <= t_max_m ? s : T(0);
+}
+
+} // namespace detail
+
+/// The sweep of the vertical fan `rays` with slopes `slopes` (as found by detail::find_fan_run;
+/// `steep_first` says whether tau does not increase along the span) limited to distance t_max_m: for every
+/// ray k, segment_of[k] is the index in `segments` of the piece of the profile on which the ray comes down
+/// (its hit, if detail::fan_distance finds one within t_max_m), or detail::no_fan_segment when it stays
+/// above the surface to t_max_m; both spans hold rays.size() entries. As the sweep goes it calls
+/// resolved(k_begin, k_end) for the rays it has settled since the last call, k in [k_begin, k_end), at
+/// least `batch` of them each time but the last, so the caller can turn them into hits while the heights
+/// under them are still in cache; every ray comes in exactly one call, and the segments of all rays of a
+/// call stay valid until the sweep returns. Returns false, having settled nothing, when the sweep does not
+/// apply (the origin is not above the surface where the sweep starts, or the fan is too sparse for its
+/// length to pay off): the caller then traces the rays one by one.
+template <Real T, class Resolved>
+[[nodiscard]] bool sweep_fan(const height_grid_view<T>& g, height_bounds<T> hb, std::span<const ray<T>> rays,
+                             std::span<const detail::fan_slope<T>> slopes, bool steep_first, T t_max_m,
+                             std::span<std::uint32_t> segment_of, std::span<detail::fan_segment<T>> segments,
+                             std::size_t batch, Resolved&& resolved) {
     const std::size_t n = rays.size();
     if (n == 0) return true;
     auto index = [&](std::size_t i) { return steep_first ? i : n - 1 - i; };
@@ -117,7 +168,8 @@ template <Real T, class Emit>
             any = false;
     }
     if (!any || !(rho_start <= rho_end)) {
-        for (std::size_t i = 0; i < n; ++i) emit(index(i), static_cast<const grid_hit<T>*>(nullptr));
+        std::fill_n(segment_of.begin(), n, detail::no_fan_segment);
+        resolved(std::size_t(0), n);
         return true;
     }
     if ((std::abs(q.du) + std::abs(q.dv)) * (rho_end - rho_start) > T(32) * static_cast<T>(n)) return false;
@@ -127,59 +179,115 @@ template <Real T, class Emit>
     w.f = detail::f_at(g, q, rho_start);
     if (!(w.f - tau_max * rho_start > T(0))) return false; // the steepest ray starts on or below the surface
 
+    // At each breakpoint (rho, g_rho), with [w.s, rho] the segment behind it: every ray not yet settled
+    // whose f is <= 0 there comes down on that segment; the first one that is still above stops the visit,
+    // unless it is above out to t_max_m (then it misses, and so on). Rays are settled in order of
+    // decreasing tau: i counts them, k is the index of the next one.
     struct sweep {
-        std::span<const detail::fan_slope<T>> slopes;
+        const detail::fan_slope<T>* slopes;
+        std::uint32_t* segment_of;
+        detail::fan_segment<T>* segments;
         const detail::grid_ray<T>& q;
+        Resolved& resolved;
         T t_max_m;
-        Emit& emit;
+        std::size_t n, batch;
         bool steep_first;
-        std::size_t i = 0, n = 0;
-        T tau{}, inv_h{};
+        std::size_t i = 0, reported = 0, count = 0;
+        std::ptrdiff_t k = 0;
 
-        [[nodiscard]] std::size_t index(std::size_t k) const noexcept { return steep_first ? k : n - 1 - k; }
-        void load() {
-            if (i >= n) return;
-            tau = slopes[index(i)].tau;
-            inv_h = slopes[index(i)].inv_h;
+        // The heights the walk and the hits will want a few cells further on, asked for now: along the
+        // profile every cell is a new row or column, which would otherwise come from memory on demand.
+        const height_grid_view<T>& g;
+        T lookahead; // rho per 8 cells (m)
+        std::int32_t ahead_ix = -1, ahead_iy = -1;
+        void fetch_ahead(T rho) noexcept {
+            const T r = rho + lookahead;
+            const std::int32_t ix = detail::cell_of(q.u0 + q.du * r, g.nx - 2), iy = detail::cell_of(q.v0 + q.dv * r, g.ny - 2);
+            if (ix == ahead_ix && iy == ahead_iy) return;
+            ahead_ix = ix;
+            ahead_iy = iy;
+            const std::int32_t x0 = std::max(ix - 1, 0), x1 = std::min(ix + 2, g.nx - 1);
+            for (std::int32_t y = std::max(iy - 1, 0); y <= std::min(iy + 2, g.ny - 1); ++y) {
+                detail::prefetch(&g.heights[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x0)]);
+                detail::prefetch(&g.heights[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x1)]);
+            }
+        }
+        void report() {
+            if (steep_first)
+                resolved(reported, i);
+            else
+                resolved(n - i, n - reported);
+            reported = i;
         }
         bool operator()(detail::walk_state<T>& w, T rho, T g_rho) {
+            fetch_ahead(rho);
+            const std::ptrdiff_t step = steep_first ? 1 : -1;
+            std::uint32_t seg = detail::no_fan_segment;
             while (i < n) {
-                const T fb = g_rho - tau * rho;
-                if (!(fb > T(0))) {
-                    const T fa = w.f - tau * w.s; // > 0: this ray, or a steeper one, was above at w.s
-                    const T r_hit = std::clamp(w.s + (rho - w.s) * (fa / (fa - fb)), w.s, rho);
-                    const T s = r_hit * inv_h;
-                    if (s > T(0) && s <= t_max_m) {
+                const detail::fan_slope<T> sl = slopes[k];
+                if (!(g_rho - sl.tau * rho > T(0))) {
+                    if (seg == detail::no_fan_segment) {
                         const T mid = T(0.5) * (w.s + rho);
-                        grid_hit<T> h;
-                        h.distance_m = s;
-                        h.ix = w.ix;
-                        h.iy = w.iy;
-                        h.triangle = triangle_of((q.u0 + q.du * mid) - static_cast<T>(w.ix),
-                                                 (q.v0 + q.dv * mid) - static_cast<T>(w.iy));
-                        emit(index(i), &h);
-                    } else {
-                        emit(index(i), static_cast<const grid_hit<T>*>(nullptr));
+                        seg = static_cast<std::uint32_t>(count++);
+                        segments[seg] = detail::fan_segment<T>{
+                            w.s, w.f, rho, g_rho, w.ix, w.iy,
+                            triangle_of((q.u0 + q.du * mid) - static_cast<T>(w.ix),
+                                        (q.v0 + q.dv * mid) - static_cast<T>(w.iy))};
                     }
-                } else if (rho * inv_h > t_max_m) {
-                    emit(index(i), static_cast<const grid_hit<T>*>(nullptr)); // above the surface all the way to t_max
+                    segment_of[k] = seg;
+                } else if (rho * sl.inv_h > t_max_m) {
+                    segment_of[k] = detail::no_fan_segment; // above the surface all the way to t_max
                 } else {
-                    return false;
+                    break;
                 }
                 ++i;
-                load();
+                k += step;
             }
-            return true;
+            if (i - reported >= batch || i == n) report();
+            return i == n;
         }
-    } visit{slopes, q, t_max_m, emit, steep_first, 0, n, T(0), T(0)};
-    visit.load();
+    } visit{slopes.data(), segment_of.data(), segments.data(), q, resolved, t_max_m, n, std::max<std::size_t>(batch, 1),
+            steep_first, 0, 0, 0, 0, g, T(8) / std::max(std::abs(q.du), std::abs(q.dv))};
+    visit.k = steep_first ? 0 : static_cast<std::ptrdiff_t>(n) - 1;
 
     for (;;) {
         const detail::step_outcome o = detail::cell_step(g, q, w, visit);
         if (o != detail::step_outcome::next) break;
     }
-    for (; visit.i < n; ++visit.i) emit(index(visit.i), static_cast<const grid_hit<T>*>(nullptr));
+    if (visit.i < n) {
+        for (; visit.i < n; ++visit.i, visit.k += steep_first ? 1 : -1)
+            segment_of[static_cast<std::size_t>(visit.k)] = detail::no_fan_segment;
+        visit.report();
+    }
     return true;
+}
+
+/// Traces the vertical fan `rays` with slopes `slopes` (as found by detail::find_fan_run; `steep_first`
+/// says whether tau does not increase along the span) limited to distance t_max_m, calling
+/// emit(k, const grid_hit<T>* h) once for every ray k (h null for a miss): sweep_fan, then each ray's root.
+/// Returns false, having emitted nothing, when the sweep does not apply (see sweep_fan): the caller then
+/// traces the rays one by one.
+template <Real T, class Emit>
+[[nodiscard]] bool trace_fan(const height_grid_view<T>& g, height_bounds<T> hb, std::span<const ray<T>> rays,
+                             std::span<const detail::fan_slope<T>> slopes, bool steep_first, T t_max_m, Emit&& emit) {
+    const std::size_t n = rays.size();
+    std::vector<std::uint32_t> segment_of(n);
+    std::vector<detail::fan_segment<T>> segments(n);
+    return sweep_fan(g, hb, rays, slopes, steep_first, t_max_m, std::span(segment_of), std::span(segments), 1,
+                     [&](std::size_t k_begin, std::size_t k_end) {
+                         for (std::size_t k = k_begin; k < k_end; ++k) {
+                             const std::uint32_t c = segment_of[k];
+                             const T s = c == detail::no_fan_segment
+                                             ? T(0)
+                                             : detail::fan_distance(segments[c], slopes[k], t_max_m);
+                             if (s > T(0)) {
+                                 const grid_hit<T> h{s, segments[c].ix, segments[c].iy, segments[c].triangle};
+                                 emit(k, &h);
+                             } else {
+                                 emit(k, static_cast<const grid_hit<T>*>(nullptr));
+                             }
+                         }
+                     });
 }
 
 } // namespace sss::scene

@@ -172,4 +172,48 @@ template <Real T> [[nodiscard]] inline vec3<T> smooth_normal(const height_grid_v
     return normal_from_gradient(smooth_gradient(g, ix, iy, tri, a, b));
 }
 
+/// Both gradients a hit needs (m per m): its triangle's (`triangle`) and the smooth one at its point
+/// (`smooth`), equal to the last bit to triangle_gradient(g, ix, iy, tri) and smooth_gradient(g, ix, iy,
+/// tri, a, b). Inside the grid the heights around the cell are loaded once for both, and the triangle
+/// picks offsets rather than branches (which triangle a hit lands in is a coin toss, and a mispredicted
+/// branch costs more than the whole computation).
+template <Real T> struct hit_gradients {
+    vec2<T> triangle; ///< gradient of the triangle (m per m)
+    vec2<T> smooth;   ///< interpolated vertex gradient at the point (m per m)
+};
+
+namespace detail {
+template <Real T> [[nodiscard]] hit_gradients<T> gradients_at_border(const height_grid_view<T>& g, std::int32_t ix,
+                                                                     std::int32_t iy, cell_triangle tri, T a,
+                                                                     T b) noexcept {
+    return {triangle_gradient(g, ix, iy, tri), smooth_gradient(g, ix, iy, tri, a, b)};
+}
+} // namespace detail
+
+template <Real T> [[nodiscard]] inline hit_gradients<T> gradients_at(const height_grid_view<T>& g, std::int32_t ix,
+                                                                     std::int32_t iy, cell_triangle tri, T a,
+                                                                     T b) noexcept {
+    if (!(ix >= 1 && iy >= 1 && ix + 2 <= g.nx - 1 && iy + 2 <= g.ny - 1))
+        return detail::gradients_at_border(g, ix, iy, tri, a, b);
+    const std::ptrdiff_t nx = g.nx;
+    const std::ptrdiff_t lower = tri == cell_triangle::lower ? 1 : 0;
+    const T* p = g.heights + static_cast<std::ptrdiff_t>(iy) * nx + ix; // vertex (ix, iy)
+    const T inv_c = g.inv_cell_m;
+    // The triangle: lower (h10 - h00, h11 - h10), upper (h11 - h01, h01 - h00).
+    const T* px = p + (1 - lower) * nx; // lower: h00, h10; upper: h01, h11
+    const T* py = p + lower;            // lower: h10, h11; upper: h00, h01
+    const vec2<T> gt{(px[1] - px[0]) * inv_c, (py[nx] - py[0]) * inv_c};
+    // The smooth gradient, as in smooth_gradient: weights of (0,0), the own corner and (1,1).
+    a = std::clamp(a, T(0), T(1));
+    b = std::clamp(b, T(0), T(1));
+    const T ab[2] = {b, a};
+    const T lo = std::min(a, b), hi = ab[lower];
+    const T w00 = T(1) - hi, w_side = hi - lo, w11 = lo;
+    const T* ps = p + lower + (1 - lower) * nx; // the own corner: (1, 0) or (0, 1)
+    const vec2<T> d00{p[1] - p[-1], p[nx] - p[-nx]};
+    const vec2<T> ds{ps[1] - ps[-1], ps[nx] - ps[-nx]};
+    const vec2<T> d11{p[nx + 2] - p[nx], p[2 * nx + 1] - p[1]};
+    return {gt, (d00 * w00 + ds * w_side + d11 * w11) * (T(0.5) * inv_c)};
+}
+
 } // namespace sss::scene

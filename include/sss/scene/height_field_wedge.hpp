@@ -65,8 +65,8 @@ template <Real T> struct wedge_run {
 /// Largest spread of headings (rad) in one wedge run: at 400 cells from the origin the wedge is then 4 cells wide.
 inline constexpr double wedge_max_spread_rad = 0.01;
 
-/// The longest wedge run from rays[first]; the slopes of its rays go to slopes[0 ... count - 1] (slopes.size() >=
-/// rays.size() - first).
+/// The longest wedge run from rays[first] of at most slopes.size() rays (at least 1); the slopes of its rays go to
+/// slopes[0 ... count - 1].
 template <Real T>
 [[nodiscard]] inline wedge_run<T> find_wedge_run(std::span<const ray<T>> rays, std::size_t first,
                                                  std::span<wedge_slope<T>> slopes) noexcept {
@@ -80,7 +80,7 @@ template <Real T>
     T tau_prev = -r0.direction.z * inv_h0;
     slopes[0] = wedge_slope<T>{tau_prev, inv_h0};
     run.count = 1;
-    for (std::size_t j = first + 1; j < rays.size(); ++j) {
+    for (std::size_t j = first + 1; j < rays.size() && run.count < slopes.size(); ++j) {
         const ray<T>& r = rays[j];
         if (!(r.origin == r0.origin)) break;
         const T inv_h = T(1) / std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
