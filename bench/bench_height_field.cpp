@@ -6,6 +6,8 @@
 //   reference    intersect_reference(): every cell along the ray,
 //   accelerated  intersect(): the maximum pyramid, one ray at a time,
 //   fans         intersect_many(): a ping's fans swept together,
+// and, on the same pings with cone columns (a beam's along-track columns, whose headings vary with depression),
+// accelerated against intersect_many (which then takes its wedge sweep, height_field_wedge.hpp),
 //   bilinear     a plain DDA over bilinear patches (a quadratic per cell), the alternative surface,
 // and the memory of the acceleration beyond the heights. When the build finds Embree 3 (optional), the
 // same triangles and rays are also traced by Embree (rtcIntersect8 packets and rtcIntersect1), checked
@@ -91,8 +93,10 @@ template <class T> const height_field<T>& scene() {
 }
 
 // One ping from (x, y, altitude) heading +x: starboard then port, each 8 fans of 2048 rays ordered by
-// slant range (steep first).
-template <class T> std::vector<ray<T>> ping_rays(double x, double y) {
+// slant range (steep first). Fans are vertical planes at azimuths +-0.5 deg off the beam; with `cones`,
+// each along-track angle a is instead a cone about the array axis, as a beam's columns are (body direction
+// (sin a, s cos a cos e, cos a sin e): the rays share the origin but their headings vary with depression).
+template <class T> std::vector<ray<T>> ping_rays(double x, double y, bool cones = false) {
     std::vector<ray<T>> rays;
     rays.reserve(2 * along_track_angles * rays_per_fan);
     const double r_min = altitude_m / std::sin(60 * pi / 180);
@@ -102,21 +106,27 @@ template <class T> std::vector<ray<T>> ping_rays(double x, double y) {
             for (int i = 0; i < rays_per_fan; ++i) {
                 const double slant = r_min + (double(i) + 0.5) / rays_per_fan * (range_m - r_min);
                 const double dep = std::asin(altitude_m / slant);
-                const vec3<double> d{std::cos(dep) * std::sin(along), side * std::cos(dep) * std::cos(along),
-                                     -std::sin(dep)};
+                const vec3<double> d =
+                    cones ? vec3<double>{std::sin(along), side * std::cos(along) * std::cos(dep),
+                                         -std::cos(along) * std::sin(dep)}
+                          : vec3<double>{std::cos(dep) * std::sin(along), side * std::cos(dep) * std::cos(along),
+                                         -std::sin(dep)};
                 rays.push_back(ray<T>{vec3<T>{T(x), T(y), T(altitude_m)}, vec3<T>(d)});
             }
         }
     return rays;
 }
 
-template <class T> const std::vector<std::vector<ray<T>>>& all_pings() {
-    static const auto p = [] {
+template <class T> const std::vector<std::vector<ray<T>>>& all_pings(bool cones = false) {
+    static const auto make = [](bool c) {
         std::vector<std::vector<ray<T>>> v;
-        for (int k = 0; k < pings; ++k) v.push_back(ping_rays<T>(150 + 11.5 * k, 512 + 37.0 * (k % 7)));
+        for (int k = 0; k < pings; ++k) v.push_back(ping_rays<T>(150 + 11.5 * k, 512 + 37.0 * (k % 7), c));
         return v;
-    }();
-    return p;
+    };
+    static const auto fans = make(false);
+    if (!cones) return fans;
+    static const auto cone_pings = make(true);
+    return cone_pings;
 }
 
 // The tracers: trace(rays, t_max, hits).
@@ -206,9 +216,9 @@ template <class T> struct bilinear_tracer {
     }
 };
 
-template <template <class> class Tracer, class T> void trace_pings(benchmark::State& state) {
+template <template <class> class Tracer, class T, bool cones = false> void trace_pings(benchmark::State& state) {
     const height_field<T>& hf = scene<T>();
-    const auto& p = all_pings<T>();
+    const auto& p = all_pings<T>(cones);
     const Tracer<T> tracer{hf};
     std::vector<std::optional<sss::hit<T>>> hits(p[0].size());
     std::size_t k = 0, rays = 0, hit_count = 0;
@@ -220,7 +230,7 @@ template <template <class> class Tracer, class T> void trace_pings(benchmark::St
         k = (k + 1) % p.size();
     }
     state.SetItemsProcessed(std::int64_t(rays));
-    state.SetLabel(Tracer<T>::name());
+    state.SetLabel(std::string(Tracer<T>::name()) + (cones ? " (cone columns)" : ""));
     state.counters["hit_fraction"] = double(hit_count) / double(std::max<std::size_t>(rays, 1));
     state.counters["accel_bytes_per_height_byte"] = double(hf.acceleration_bytes()) / double(hf.height_bytes());
 }
@@ -233,6 +243,11 @@ TRACE_BENCHMARKS(reference_tracer);
 TRACE_BENCHMARKS(accelerated_tracer);
 TRACE_BENCHMARKS(fan_tracer);
 TRACE_BENCHMARKS(bilinear_tracer);
+// The same pings with cone columns (as a beam's): intersect_many's wedge sweep against one ray at a time.
+BENCHMARK_TEMPLATE(trace_pings, accelerated_tracer, float, true)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+BENCHMARK_TEMPLATE(trace_pings, fan_tracer, float, true)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+BENCHMARK_TEMPLATE(trace_pings, accelerated_tracer, double, true)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+BENCHMARK_TEMPLATE(trace_pings, fan_tracer, double, true)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
 #ifdef SSS_HAVE_EMBREE
 // Embree 3 on the same triangles, float only (Embree is float); built when the build files find Embree
