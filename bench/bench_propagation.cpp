@@ -10,20 +10,26 @@
 //                 then +0.0165 1/s (the policy matrix's water)
 //   fine          layered, a smooth thermocline (1490 - 10 tanh((z - 49)/3)) on knots every 0.1 m
 //   exact         the thermocline traced exactly all the way (launch_table = false)
+// and the thermocline once more through trace_many (all rays in one call, the batch method the simulator uses).
 // Layered waters use Francois-Garrison absorption at 300 kHz and 1 mm chords, and the launch table unless stated.
 // Then whole pings (simulator: Lambert -27 dB, 300 kHz planar array 32 x 2 tilted 15 deg to -30 dB, 40 m range,
 // 20 kHz sampling, default ray density), straight against thermocline water, with and without the launch table.
 // Before the benchmarks a summary prints the per-ray cost of each water and its ratio to straight rays, by its own
-// timing loop (best of five), for trace alone and for whole pings, and how far the launch table's results are from
-// exact tracing on the same rays.
+// timing loop, for trace alone and for whole pings, and how far the launch table's results are from exact tracing on
+// the same rays. The machines this runs on are shared and their speed drifts, so the summary times processor time
+// (std::clock), not wall time, takes the best of many rounds, and interleaves the rows (every round times each of
+// them once): the ratios compare timings taken under the same conditions.
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <chrono>
+#include <array>
+#include <ctime>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include <sss/beam/planar_array.hpp>
@@ -85,6 +91,17 @@ template <class P, class T> double trace_all(const P& p, const std::vector<sss::
     double sum = 0;
     for (const auto& r : rays)
         if (const auto h = p.trace(r, seabed, T(0.1))) sum += double(h->time_s);
+    return sum;
+}
+
+// The same through the batch method (BatchPropagation), all rays at once.
+template <class P, class T> double trace_batch(const P& p, const std::vector<sss::ray<T>>& rays) {
+    const sss::scene::flat_seabed<T> seabed(T(0));
+    std::vector<std::optional<sss::path<T>>> paths(rays.size());
+    p.trace_many(std::span<const sss::ray<T>>(rays), seabed, T(0.1), std::span<std::optional<sss::path<T>>>(paths));
+    double sum = 0;
+    for (const auto& h : paths)
+        if (h) sum += double(h->time_s);
     return sum;
 }
 
@@ -152,37 +169,46 @@ BENCHMARK_TEMPLATE(propagation_ping, double, water::straight)->Unit(benchmark::k
 BENCHMARK_TEMPLATE(propagation_ping, double, water::thermocline)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(propagation_ping, double, water::exact)->Unit(benchmark::kMillisecond);
 
-// Best of five timings of f (seconds).
-template <class F> double best_of_five(F&& f) {
-    double best = 1e30;
-    for (int k = 0; k < 5; ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
-        f();
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+// Processor seconds taken by f.
+template <class F> double seconds(F&& f) {
+    const std::clock_t t0 = std::clock();
+    f();
+    return double(std::clock() - t0) / double(CLOCKS_PER_SEC);
+}
+
+// Best of `rounds` timings of each of fs (seconds), the rounds interleaving them.
+template <class... F> std::array<double, sizeof...(F)> best_interleaved(int rounds, F&&... fs) {
+    std::array<double, sizeof...(F)> best;
+    best.fill(1e30);
+    for (int k = 0; k < rounds; ++k) {
+        std::size_t i = 0;
+        ((best[i] = std::min(best[i], seconds(fs)), ++i), ...);
     }
     return best;
 }
 
 void print_summary() {
+    constexpr int rounds = 15, ping_rounds = 31;
     const auto rays = bench_rays<double>();
     double sink = 0;
-    const double t_straight = best_of_five([&] { sink += trace_all(straight<double>({1500.0, 60.0}), rays); });
-    std::printf("Per-ray trace cost, flat seabed 10 m below, slant ranges 10-60 m (%zu rays):\n", ray_count);
-    std::printf("  %-42s %8.1f ns\n", "straight", 1e9 * t_straight / double(ray_count));
-    const auto report = [&](const char* name, const layered<double>& w) {
-        const double t = best_of_five([&] { sink += trace_all(w, rays); });
-        std::printf("  %-42s %8.1f ns   x%.1f straight\n", name, 1e9 * t / double(ray_count), t / t_straight);
-    };
-    report("layered, uniform (5 knots)", uniform_water<double>());
-    report("layered, thermocline", thermocline_water<double>());
-    report("layered, smooth thermocline (1000 knots)", fine_water<double>());
-    report("layered, thermocline, exact (no table)", thermocline_water<double>(false));
+    const straight<double> iso({1500.0, 60.0});
+    const auto uniform = uniform_water<double>(), thermo = thermocline_water<double>(), fine = fine_water<double>(),
+               exact = thermocline_water<double>(false);
+    const auto t = best_interleaved(
+        rounds, [&] { sink += trace_all(iso, rays); }, [&] { sink += trace_all(uniform, rays); },
+        [&] { sink += trace_all(thermo, rays); }, [&] { sink += trace_batch(thermo, rays); },
+        [&] { sink += trace_all(fine, rays); }, [&] { sink += trace_all(exact, rays); });
+    std::printf("Per-ray trace cost, flat seabed 10 m below, slant ranges 10-60 m (%zu rays, best of %d):\n", ray_count, rounds);
+    std::printf("  %-42s %8.1f ns\n", "straight", 1e9 * t[0] / double(ray_count));
+    const char* names[] = {"layered, uniform (5 knots)", "layered, thermocline", "layered, thermocline, trace_many",
+                           "layered, smooth thermocline (1000 knots)", "layered, thermocline, exact (no table)"};
+    for (std::size_t k = 1; k < t.size(); ++k)
+        std::printf("  %-42s %8.1f ns   x%.1f straight\n", names[k - 1], 1e9 * t[k] / double(ray_count), t[k] / t[0]);
     {   // What the launch table costs in accuracy on these rays.
-        const auto table = thermocline_water<double>(true), exact = thermocline_water<double>(false);
         const sss::scene::flat_seabed<double> seabed(0.0);
         double worst_time = 0, worst_spreading = 0, worst_absorption = 0, worst_position = 0;
         for (const auto& r : rays) {
-            const auto a = table.trace_path(r, seabed, 0.1), b = exact.trace_path(r, seabed, 0.1);
+            const auto a = thermo.trace_path(r, seabed, 0.1), b = exact.trace_path(r, seabed, 0.1);
             if (!a || !b) continue;
             worst_time = std::max(worst_time, std::abs(a->result.time_s / b->result.time_s - 1));
             worst_spreading = std::max(worst_spreading, std::abs(a->result.spreading / b->result.spreading - 1));
@@ -196,18 +222,18 @@ void print_summary() {
 
     const sss::scene::flat_seabed<double> seabed(0.0);
     const auto a = make_pinger<double>(straight<double>({1500.0, 60.0}));
-    const double pa = best_of_five([&] { sink += double(a.ping(seabed, 3).starboard[100]); });
-    const std::size_t na = rays_per_ping(a);
-    std::printf("Whole pings (planar array, 40 m, Lambert; per ray = ping time / rays):\n");
-    std::printf("  %-38s %8.3f ms  %6zu rays  %6.1f ns/ray\n", "straight", 1e3 * pa, na, 1e9 * pa / double(na));
-    for (bool table : {true, false}) {
-        const auto b = make_pinger<double>(thermocline_water<double>(table));
-        const double pb = best_of_five([&] { sink += double(b.ping(seabed, 3).starboard[100]); });
-        const std::size_t nb = rays_per_ping(b);
-        std::printf("  %-38s %8.3f ms  %6zu rays  %6.1f ns/ray   x%.2f straight per ray\n",
-                    table ? "layered, thermocline" : "layered, thermocline, exact", 1e3 * pb, nb, 1e9 * pb / double(nb),
-                    (pb / double(nb)) / (pa / double(na)));
-    }
+    const auto b = make_pinger<double>(thermocline_water<double>(true));
+    const auto c = make_pinger<double>(thermocline_water<double>(false));
+    const auto p = best_interleaved(
+        ping_rounds, [&] { sink += double(a.ping(seabed, 3).starboard[100]); },
+        [&] { sink += double(b.ping(seabed, 3).starboard[100]); }, [&] { sink += double(c.ping(seabed, 3).starboard[100]); });
+    const double n[] = {double(rays_per_ping(a)), double(rays_per_ping(b)), double(rays_per_ping(c))};
+    std::printf("Whole pings (planar array, 40 m, Lambert; per ray = ping time / rays; best of %d):\n", ping_rounds);
+    std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray\n", "straight", 1e3 * p[0], n[0], 1e9 * p[0] / n[0]);
+    for (std::size_t k = 1; k < 3; ++k)
+        std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray   x%.2f straight per ray\n",
+                    k == 1 ? "layered, thermocline" : "layered, thermocline, exact", 1e3 * p[k], n[k], 1e9 * p[k] / n[k],
+                    (p[k] / n[k]) / (p[0] / n[0]));
     std::printf("(checksum %g)\n\n", sink);
 }
 

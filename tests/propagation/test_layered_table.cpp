@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -161,8 +162,9 @@ TEST_CASE("a launch-table result depends on the ray alone: not on the rays befor
     const auto r = launch<double>(10.0, 17 * deg, 0.4);
     const auto first = water.trace(r, seabed, 0.2);
     REQUIRE(first);
-    // Rays from other depths (the table is rebuilt for each), then the same ray again.
-    for (double z : {9.0, 11.0, 10.5}) (void)water.trace(launch<double>(z, 30 * deg, 0.0), seabed, 0.2);
+    // Rays from other depths (a table is built for each, more of them than a thread keeps, so that the first is
+    // rebuilt), then the same ray again.
+    for (double z : {9.0, 11.0, 10.5, 9.5, 12.0}) (void)water.trace(launch<double>(z, 30 * deg, 0.0), seabed, 0.2);
     const auto again = water.trace(r, seabed, 0.2);
     REQUIRE(again);
     CHECK(again->time_s == first->time_s);
@@ -174,6 +176,46 @@ TEST_CASE("a launch-table result depends on the ray alone: not on the rays befor
     double from_thread = 0;
     std::thread([&] { from_thread = water.trace(r, seabed, 0.2)->time_s; }).join();
     CHECK(from_thread == first->time_s);
+}
+
+TEST_CASE_TEMPLATE("trace_many gives every ray exactly what trace gives it: table or not, hit or miss, mixed origins", T,
+                   float, double) {
+    static_assert(BatchPropagation<layered<T>, scene::flat_seabed<T>>);
+    const sound_speed_profile<T> profile({T(0), T(44), T(54), T(200)}, {T(1500), T(1499), T(1479), T(1481.409)});
+    const scene::flat_seabed<T> seabed(T(0));
+    const slope_scene<T> slope;
+    std::vector<ray<T>> rays;
+    // A column from one origin, upward to vertical (upward, horizontal and 0.02 deg: no table), then rays from other
+    // origins in between (the start is worked out again for each change of origin).
+    for (int i = 0; i <= 40; ++i) rays.push_back(launch<T>(T(10), (-10.0 + 2.5 * i) * deg, 0.3));
+    rays.push_back(launch<T>(T(10), 0.02 * deg, 0.3));
+    for (double z : {11.0, 11.0, 10.0, 25.0}) rays.push_back(launch<T>(T(z), 25 * deg, 0.1 * z));
+    for (const bool table : {true, false}) {
+        const layered<T> water(profile, params(T(60), table));
+        for (const T t_max : {T(0.2), T(0.012)}) { // the short time limit loses the longer paths
+            std::vector<std::optional<path<T>>> batch(rays.size()), batch_slope(rays.size());
+            trace_all(water, std::span<const ray<T>>(rays), seabed, t_max, std::span<std::optional<path<T>>>(batch));
+            water.trace_many(std::span<const ray<T>>(rays), slope, t_max, std::span<std::optional<path<T>>>(batch_slope));
+            int hits = 0, misses = 0;
+            for (std::size_t k = 0; k < rays.size(); ++k) {
+                for (const bool tilted : {false, true}) {
+                    const auto one = tilted ? water.trace(rays[k], slope, t_max) : water.trace(rays[k], seabed, t_max);
+                    const auto& many = tilted ? batch_slope[k] : batch[k];
+                    REQUIRE(one.has_value() == many.has_value());
+                    if (!one) { ++misses; continue; }
+                    ++hits;
+                    CHECK(one->time_s == many->time_s);
+                    CHECK(one->spreading == many->spreading);
+                    CHECK(one->absorption == many->absorption);
+                    CHECK(one->surface.point == many->surface.point);
+                    CHECK(one->surface.distance_m == many->surface.distance_m);
+                    CHECK(one->arrival == many->arrival);
+                }
+            }
+            CHECK(hits > 20);
+            CHECK(misses > 5);
+        }
+    }
 }
 
 TEST_CASE("the launch table interpolates smooth ray families to 1e-11 and marks the intervals it cannot") {

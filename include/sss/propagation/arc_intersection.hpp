@@ -19,7 +19,8 @@
 /// plane n . (X - H) = 0 (n the facet normal, H the chord's hit) where f(s) = n . (X(s) - H) vanishes; Newton's
 /// method, f'(s) = n . t(s) with t the unit tangent, converges from the chord's estimate in one to three steps
 /// (the start is within tol / sin(graze) of the root, and a step e leaves about |kappa| e^2 / (2 |f'|), so it
-/// stops once that is below rounding). On a planar surface
+/// stops once that is below rounding; the arc's offset after that last step follows from the one before by its
+/// Taylor series to second order, exact to rounding for such a step). On a planar surface
 /// (the flat seabed, a triangle) the refined point lies on the surface to rounding, so hit position and arc
 /// length are exact, not merely within tol; what tol still bounds is which facet is found: near an edge, or
 /// where the arc grazes a surface the chord passes above or below, the answer may differ by up to tol.
@@ -51,6 +52,7 @@ template <Real T> struct arc_offset {
     T sin_incline{}; ///< sine of the inclination below horizontal there
     T cos_incline{}; ///< its cosine (>= 0)
     T sin_half{};    ///< sine of half the turn since the start, sin(kappa s / 2)
+    T cos_half{1};   ///< its cosine (>= 0: an arc in one layer turns by at most pi)
 };
 
 /// sin(h)/h and cos(h): by their Taylor series, exact to rounding, when |h| <= 1/8 (to h^4 and h^6 below 1e-3, to
@@ -86,7 +88,25 @@ template <Real T>
     const T sin_mean = sin_phi0 * ch - cos_phi0 * sh; // sin(phi0 - h)
     const T cos_mean = cos_phi0 * ch + sin_phi0 * sh; // cos(phi0 - h)
     // phi = phi0 - 2h: rotate the mean direction by h once more.
-    return {chord * cos_mean, chord * sin_mean, sin_mean * ch - cos_mean * sh, cos_mean * ch + sin_mean * sh, sh};
+    return {chord * cos_mean, chord * sin_mean, sin_mean * ch - cos_mean * sh, cos_mean * ch + sin_mean * sh, sh, ch};
+}
+
+/// The offset at arc length s + step_m from the offset o at s, by the Taylor series of the arc to second order in
+/// the step: position error about kappa^2 step^3 / 6 (m), inclination error about (kappa step)^3 / 6 (rad). For steps
+/// where those are below rounding (a settled Newton step); offset_along_arc otherwise.
+template <Real T> [[nodiscard]] inline arc_offset<T> advance_offset(const arc_offset<T>& o, T kappa_per_m, T step_m) noexcept {
+    const T d = kappa_per_m * step_m;  // turn over the step (rad): phi falls by d
+    const T c2 = T(1) - T(0.5) * d * d; // cos d to second order
+    arc_offset<T> out;
+    out.range_m = o.range_m + step_m * (o.cos_incline + T(0.5) * d * o.sin_incline);
+    out.depth_m = o.depth_m + step_m * (o.sin_incline - T(0.5) * d * o.cos_incline);
+    out.sin_incline = o.sin_incline * c2 - o.cos_incline * d;
+    out.cos_incline = o.cos_incline * c2 + o.sin_incline * d;
+    // Half the turn since the arc's start grows by d/2.
+    const T half = T(0.5) * d, c_half = T(1) - T(0.5) * half * half;
+    out.sin_half = o.sin_half * c_half + o.cos_half * half;
+    out.cos_half = o.cos_half * c_half - o.sin_half * half;
+    return out;
 }
 
 /// An arc length (m) a chord may span on a circle of curvature |curvature_per_m| (1/m) with the arc staying within
@@ -106,14 +126,17 @@ template <Real T> struct arc_hit {
 };
 
 /// The first hit of the scene along an arc between arc lengths s_begin_m and s_end_m (m), found through chords of
-/// sagitta at most tolerance_m (m) and refined onto the arc (file comment). The arc starts at inclination phi0,
-/// given as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to
-/// scene.intersect. s_end_m may be +infinity only for a straight arc (zero curvature).
-template <Scene S, Real T>
-[[nodiscard]] std::optional<arc_hit<T>> intersect_arc(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0,
-                                                      T kappa_per_m, T s_begin_m, T s_end_m, T tolerance_m,
-                                                      std::size_t& chords) {
-    if (!(s_end_m > s_begin_m)) return std::nullopt;
+/// sagitta at most tolerance_m (m) and refined onto the arc (file comment), handed to
+/// `on_hit(const hit<T>& scene_hit, const vec3<T>& point, T arc_m, const arc_offset<T>& at)`: the scene's hit on the
+/// chord, the point on the arc it refines to, its arc length from the arc's start and the arc's offset there. Returns
+/// whether there was a hit (on_hit called once) or not (not called). The arc starts at inclination phi0, given as
+/// (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to scene.intersect.
+/// s_end_m may be +infinity only for a straight arc (zero curvature). (The callback lets a caller build its result
+/// from the scene's hit where it lies, with no intermediate copy: a hit is about a hundred bytes.)
+template <Scene S, Real T, class OnHit>
+bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0, T kappa_per_m, T s_begin_m,
+                   T s_end_m, T tolerance_m, std::size_t& chords, OnHit&& on_hit) {
+    if (!(s_end_m > s_begin_m)) return false;
     const T sin0 = sin_phi0, cos0 = cos_phi0, kappa = kappa_per_m;
     const vec3<T> down{T(0), T(0), T(-1)};
     const auto world = [&](const arc_offset<T>& o) { return frame.start + frame.horizontal * o.range_m + down * o.depth_m; };
@@ -124,18 +147,22 @@ template <Scene S, Real T>
         const ray<T> chord{world(o), frame.horizontal * cos0 + down * sin0};
         ++chords;
         const auto h = scene.intersect(chord, s_end_m - s_begin_m);
-        if (!h) return std::nullopt;
-        arc_hit<T> out{*h, s_begin_m + h->distance_m, offset_along_arc(sin0, cos0, kappa, s_begin_m + h->distance_m)};
-        out.surface.distance_m = out.arc_m;
-        return out;
+        if (!h) return false;
+        const T arc_m = s_begin_m + h->distance_m;
+        on_hit(*h, h->point, arc_m, offset_along_arc(sin0, cos0, kappa, arc_m));
+        return true;
     }
 
     const T span = s_end_m - s_begin_m;
-    // Chords per metre of arc: the reciprocal of chord_arc_length_m, without its divisions.
+    // Chords: ceil(span / chord_arc_length_m), without its square root and divisions when one chord will do
+    // (k span^2 <= 8 tol and k span <= pi).
     const T k = std::abs(kappa);
-    const T rate = std::max(std::sqrt(k / (T(8) * tolerance_m)), k / pi_v<T>);
-    const T pieces = std::min(std::ceil(span * rate), T(1 << 20));
-    const std::size_t n = pieces > T(1) ? static_cast<std::size_t>(pieces) : 1;
+    std::size_t n = 1;
+    if (k * span * span > T(8) * tolerance_m || k * span > pi_v<T>) {
+        const T rate = std::max(std::sqrt(k / (T(8) * tolerance_m)), k / pi_v<T>); // chords per metre
+        const T pieces = std::min(std::ceil(span * rate), T(1 << 20));
+        n = pieces > T(1) ? static_cast<std::size_t>(pieces) : 1;
+    }
     const T ds = n == 1 ? span : span / static_cast<T>(n);
     vec3<T> p = s_begin_m == T(0) ? frame.start : world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
     for (std::size_t k_chord = 0; k_chord < n; ++k_chord) {
@@ -145,8 +172,9 @@ template <Scene S, Real T>
         T len;
         if (s_lo == T(0)) { // from the arc's start the chord runs along the mean inclination: no normalising
             T sinc_h, ch;
-            sinc_cos(kappa * s_hi / T(2), sinc_h, ch);
-            const T sh = kappa * s_hi / T(2) * sinc_h;
+            const T half = kappa * s_hi * T(0.5);
+            sinc_cos(half, sinc_h, ch);
+            const T sh = half * sinc_h;
             dir = frame.horizontal * (cos0 * ch + sin0 * sh) + down * (sin0 * ch - cos0 * sh);
             len = s_hi * sinc_h;
             q = p + dir * len;
@@ -157,7 +185,6 @@ template <Scene S, Real T>
             dir = d * (T(1) / len);
         }
         if (!(len > T(0))) { p = q; continue; }
-        const T inv_len = T(1) / len;
         // A hit exactly on a chord joint must not slip between the two chords: reach a few roundings past the end.
         const T scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::max(std::abs(p.z), len));
         ++chords;
@@ -168,11 +195,16 @@ template <Scene S, Real T>
             const T n_h = glm::dot(n_hat, frame.horizontal);
             const T n_d = -n_hat.z; // n . (downward unit)
             const T base = glm::dot(n_hat, frame.start - h->point);
-            T s = s_lo + (s_hi - s_lo) * std::min(h->distance_m * inv_len, T(1));
+            // The start: as far along the arc as the hit is along the chord (chord and arc lengths differ by the
+            // factor sinc(kappa ds / 2), within k tol of 1: far less than the sagitta the first step removes).
+            T s = s_lo + std::min(h->distance_m, s_hi - s_lo);
             const T lo = std::max(s_lo - (s_hi - s_lo), T(0)), hi = s_hi + (s_hi - s_lo);
             arc_offset<T> o = offset_along_arc(sin0, cos0, kappa, s);
             // After a step e the error left is about |kappa| e^2 / (2 |f'|) (the arc's curvature against the plane):
-            // stop once that is below rounding.
+            // stop once that is below rounding. The arc's offset at the last, settled step follows from the one
+            // before by its Taylor series to second order (advance_offset): a settled step has (kappa e)^2 <=
+            // 2 kappa max(s_hi, 1) eps, at most about 2 pi eps (an arc turns by at most pi in one layer), so the
+            // remainder, kappa^2 e^3 / 6 in position and (kappa e)^3 / 6 in inclination, is below rounding too.
             const T settled = eps * std::max(s_hi, T(1));
             for (int it = 0; it < 8; ++it) {
                 const T f = base + o.range_m * n_h + o.depth_m * n_d;
@@ -181,17 +213,33 @@ template <Scene S, Real T>
                 const T next = std::clamp(s - f / df, lo, hi);
                 const T step = next - s;
                 s = next;
+                if (!(k * step * step > T(2) * std::abs(df) * settled)) {
+                    o = advance_offset(o, kappa, step);
+                    break;
+                }
                 o = offset_along_arc(sin0, cos0, kappa, s);
-                if (!(k * step * step > T(2) * std::abs(df) * settled)) break;
             }
-            arc_hit<T> out{*h, s, o};
-            out.surface.point = world(o);
-            out.surface.distance_m = s;
-            return out;
+            on_hit(*h, world(o), s, o);
+            return true;
         }
         p = q;
     }
-    return std::nullopt;
+    return false;
+}
+
+/// As visit_arc_hit, returning the hit (surface.distance_m: the arc length from the arc's start), nullopt if none.
+template <Scene S, Real T>
+[[nodiscard]] std::optional<arc_hit<T>> intersect_arc(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0,
+                                                      T kappa_per_m, T s_begin_m, T s_end_m, T tolerance_m,
+                                                      std::size_t& chords) {
+    std::optional<arc_hit<T>> out;
+    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, chords,
+                  [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at) {
+                      out.emplace(h, arc_m, at);
+                      out->surface.point = point;
+                      out->surface.distance_m = arc_m;
+                  });
+    return out;
 }
 
 /// As above for a ray_arc (its start inclination, speed and gradient give sin phi0, cos phi0 and kappa).

@@ -14,9 +14,10 @@
 /// (arc_intersection.hpp): on planar facets the hit point, path length and time are exact to rounding.
 /// Time and horizontal range are sums of the arcs' closed forms; the arrival direction is the bent ray's
 /// tangent at the hit, so grazing angles come out right. An arc that starts where geometry may be is first
-/// handed to the scene over the length it surely stays in its layer (stay_length: exact when it reaches the
-/// boundary ahead without turning), before the layer's exit is worked out: over a flat seabed that is the whole
-/// of the last piece, which then costs no layer step.
+/// handed to the scene over at most one chord of the length it surely stays in its layer with no trigonometry
+/// (depth changes no faster than arc length: the distance to the nearer boundary), then over the rest of the
+/// length it surely stays (stay_length: exact when it reaches the boundary ahead without turning), before the
+/// layer's exit is worked out: over a flat seabed the first chord holds the hit, which then costs one chord.
 ///
 /// Absorption. alpha(z) (dB/km) from Francois & Garrison (1982) or Ainslie & McColm (1998) (absorption.hpp),
 /// with the water's temperature, salinity and pH held constant and the depth varying along the path, is
@@ -25,7 +26,9 @@
 /// Ainslie-McColm's exponentials have scales of 6 and 17 km), so the rule's error is far below rounding on
 /// sonar paths and about 1e-11 relative on a 1000 m vertical arc (tests/propagation/test_layered.cpp). A last
 /// piece within 1 m of depth and 0.1 mm of sagitta (the usual one after the launch table) takes the midpoint
-/// rule, off by below 1e-8 of that piece's own share.
+/// rule, off by below 1e-8 of that piece's own share (its midpoint depth from the depth change and the sagitta,
+/// dz/2 + kappa s^2 cos(phi0)/8, to 1e-7 m), and the one exponential that turns dB into a ratio becomes a series
+/// when that piece is all that follows the table (below 1e-3 nepers: remainder below 1e-17).
 /// The formula is chosen at run time (`absorption_formula`): the switch costs one predictable branch per
 /// evaluation, three per arc, against about ten transcendental functions per arc for the ray itself, and it keeps
 /// `layered<T>` a template of T alone, as the policy machinery (rebinding a policy to another scalar type)
@@ -35,14 +38,20 @@
 ///
 /// Launch table (launch_table.hpp, on by default). All rays of a ping leave one point, and above the scene's
 /// top_m the water alone decides their paths: a per-thread table over launch angle, built for the current source
-/// depth and scene top (about a thousand exact descents, a fraction of a millisecond) and validated interval by
-/// interval against exact tracing (to 1e-10 relative in double, 64 epsilons in float), gives each ray its state
-/// where the geometry begins, from where it is traced exactly. A result depends only on the ray, the scene's top
-/// and the water (the table is a function of them, not of which rays came before or of the thread). Against exact
-/// tracing all the way, range, time, spreading and absorption differ by at most 1.2e-10 relative over five waters
-/// and two scenes (tests/propagation/test_layered_table.cpp; 2e-5 in float). Rays the table does not cover
-/// (upward, grazing below 1e-3 rad, or in an interval that failed validation) are traced exactly. Turn it off
+/// depth and scene top (about a thousand exact descents, a fraction of a millisecond; a thread keeps its last four)
+/// and validated interval by interval against exact tracing (to 1e-10 relative in double, 64 epsilons in float),
+/// gives each ray its state where the geometry begins (absorption also as a ratio, so that no exponential is
+/// left), from where it is traced exactly. A result depends only on the ray, the scene's top and the water (the
+/// table is a function of them, not of which rays came before or of the thread). Against exact tracing all the
+/// way, range, time, spreading and absorption differ by at most 1.2e-10 relative over five waters and two scenes
+/// (tests/propagation/test_layered_table.cpp; 2e-5 in float). Rays the table does not cover (upward, grazing
+/// below 1e-3 rad, or in an interval that failed validation) are traced exactly. Turn it off
 /// (`launch_table = false`) for rays from ever-changing origins, where it would be rebuilt for nearly every ray.
+///
+/// Batches (`trace_many`, the BatchPropagation method). The rays of a column share their origin: the table and
+/// the depths it depends on are found once per origin, and the rays are launched (table lookups) sixteen at a time
+/// before they are followed, so that the lookups' latencies overlap. Each ray takes exactly the steps `trace`
+/// takes: the results are the same bit for bit.
 ///
 /// Spreading (ray_tube.hpp). `path::spreading` is the return leg's S_BA: intensity back at the transducer
 /// relative to that 1 m off the hit. The echo of a footprint needs exactly that one: the outgoing tube S_AB
@@ -50,18 +59,25 @@
 /// S_BA = (c_hit/c_source)^2 S_AB by reciprocity. In isovelocity water both are 1/r^2. S_AB itself is in
 /// `layered_path::outgoing_spreading`.
 ///
-/// Cost (bench/bench_propagation.cpp, flat seabed 10 m below the towfish, ranges 10-60 m, double, one core):
-/// straight rays about 25 ns each; layered rays about 190-260 ns with the launch table (five knots, a thermocline,
-/// or a thousand knots) and about 830 ns traced exactly through the thermocline; whole pings of a 300 kHz planar
-/// array take about 1.9 times the straight-ray time per ray (2.5 times tracing exactly).
+/// Cost (bench/bench_propagation.cpp, flat seabed 10 m below the towfish, ranges 10-60 m, double, one core, best
+/// of interleaved rounds on a shared machine, so good to 10-20%): straight rays about 25 ns each; layered rays with
+/// the launch table about 140-220 ns (five knots, a thermocline or a thousand knots; the thermocline through
+/// trace_many 135-200 ns), and 630-830 ns traced exactly through the thermocline. Of a thermocline ray with the
+/// table (one `trace`, rays in scrambled order): about 45 ns the launch (direction, logarithm, the table's seven
+/// quintics, Snell), 95 ns the one chord and its refinement onto the arc (the arc's set-up and the scene's intersect
+/// included), 35 ns time, spreading and absorption at the hit. Whole pings of a 300 kHz planar array (40 m,
+/// Lambert): 1.36-1.41 times the straight-ray time per ray with the table (2.9-3.2 times tracing exactly); the rest
+/// of a ping's time per ray, about 230 ns (beam pattern, scattering, time sampling), is the same for both.
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -142,68 +158,130 @@ public:
     /// Throws sss::invalid_parameter ("ray.origin") for a ray starting above the sea surface.
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace(const ray<T>& r, const S& scene, T t_max_s) const {
-        auto p = trace_path(r, scene, t_max_s);
-        if (!p) return std::nullopt;
-        return p->result;
+        std::optional<path<T>> out;
+        march m;
+        vec3<T> hdir;
+        const trace_start st = start_for(r.origin.z, scene);
+        if (launch(r, t_max_s, st, m, hdir)) (void)follow(m, r, hdir, scene, t_max_s, st.chord_depth, out, nullptr);
+        return out;
+    }
+
+    /// paths[k] = trace(rays[k], scene, t_max_s) for every k, bit for bit (the BatchPropagation method). The rays of a
+    /// column share their origin, so the launch table and the depths it depends on are found once per origin depth
+    /// rather than once per ray; and the rays are launched a block at a time, so that the table lookups, independent
+    /// of one another, overlap. `paths` must hold at least rays.size() slots.
+    template <Scene S>
+    void trace_many(std::span<const ray<T>> rays, const S& scene, T t_max_s, std::span<std::optional<path<T>>> paths) const {
+        constexpr std::size_t block = 16;
+        std::optional<trace_start> st;
+        march m[block];
+        vec3<T> hdir[block];
+        T chord_depth[block];
+        bool alive[block];
+        for (std::size_t first = 0; first < rays.size(); first += block) {
+            const std::size_t count = std::min(block, rays.size() - first);
+            for (std::size_t i = 0; i < count; ++i) {
+                const ray<T>& r = rays[first + i];
+                if (!st || st->origin_z != r.origin.z) st = start_for(r.origin.z, scene);
+                alive[i] = launch(r, t_max_s, *st, m[i], hdir[i]);
+                chord_depth[i] = st->chord_depth;
+            }
+            for (std::size_t i = 0; i < count; ++i) {
+                std::optional<path<T>>& slot = paths[first + i];
+                slot.reset();
+                if (alive[i]) (void)follow(m[i], rays[first + i], hdir[i], scene, t_max_s, chord_depth[i], slot, nullptr);
+            }
+        }
     }
 
     /// As `trace`, with the details of the path.
     template <Scene S>
     [[nodiscard]] std::optional<layered_path<T>> trace_path(const ray<T>& r, const S& scene, T t_max_s) const {
-        constexpr T eps = std::numeric_limits<T>::epsilon();
-        const T depth0 = p_.surface_z_m - r.origin.z;
-        if (!(depth0 >= T(0)))
-            throw invalid_parameter("ray.origin", "lies above the sea surface (world z " + std::to_string(r.origin.z) +
-                                                      " > layered.surface_z_m " + std::to_string(p_.surface_z_m) + ")");
-        if (!(t_max_s > T(0))) return std::nullopt;
-
-        const T hlen = std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
-        const T inv_h = T(1) / hlen;
-        const vec3<T> hdir = hlen > T(0) ? vec3<T>{r.direction.x * inv_h, r.direction.y * inv_h, T(0)}
-                                         : vec3<T>{T(1), T(0), T(0)};
-        // Launch inclination (+ down) as its sine and cosine; the angle itself only when an arc needs it.
-        const T inv_len = T(1) / std::sqrt(hlen * hlen + r.direction.z * r.direction.z);
-        const T sin0 = -r.direction.z * inv_len, cos0 = hlen * inv_len;
-
-        // Geometry lies at depths >= top_depth; chords start a margin above it.
-        const T top_depth = p_.surface_z_m - scene.top_m();
-        const T margin = std::max(p_.chord_tolerance_m, T(64) * eps * (std::abs(p_.surface_z_m) + std::abs(scene.top_m())));
-        const T chord_depth = top_depth - margin;
-
+        std::optional<path<T>> result;
         march m;
-        m.layer = profile_.layer_index(depth0, sin0 < T(0) ? vertical_direction::up : vertical_direction::down);
-        layered_path<T> out;
-        out.source_speed_mps = layers_[m.layer].speed_mps(depth0);
-        m.tube = ray_tube<T>{out.source_speed_mps, sin0};
-        m.z = depth0;
-        m.sin_phi = sin0;
-        m.cos_phi = cos0;
-        m.phi_known = false;
-
-        if (p_.launch_table && sin0 > T(0) && chord_depth > depth0 && std::isfinite(chord_depth)) {
-            if (const auto d = table_for(depth0, chord_depth).lookup(sin0, cos0)) {
-                // Resume at the table's depth; the inclination there follows from Snell's law.
-                m.layer = profile_.layer_index(chord_depth, vertical_direction::down);
-                m.z = chord_depth;
-                const T c = std::min(cos0 / out.source_speed_mps * layers_[m.layer].speed_mps(chord_depth), T(1));
-                m.cos_phi = c;
-                m.sin_phi = std::sqrt((T(1) - c) * (T(1) + c));
-                m.phi_known = false;
-                m.t = d->time_s;
-                m.x = d->range_m;
-                m.s = d->path_m;
-                m.absorption_db = d->absorption_db;
-                m.tube.q_sum = d->q_sum;
-                m.tube.k_sum = d->k_sum;
-                m.tube.started = true;
-                if (!(m.t <= t_max_s)) return std::nullopt;
-            }
-        }
-        if (!follow(m, r, hdir, scene, t_max_s, chord_depth, out)) return std::nullopt;
-        return out;
+        vec3<T> hdir;
+        details d{};
+        const trace_start st = start_for(r.origin.z, scene);
+        if (!launch(r, t_max_s, st, m, hdir) || !follow(m, r, hdir, scene, t_max_s, st.chord_depth, result, &d))
+            return std::nullopt;
+        return layered_path<T>{*result, d.outgoing_spreading, m.tube.source_speed_mps, d.hit_speed_mps, d.range_m,
+                               d.path_length_m, m.arcs, m.chords};
     }
 
 private:
+    /// What every ray from one origin depth over one scene shares: the depth from which chords are handed to the
+    /// scene, and the launch table to it (null where none applies).
+    struct trace_start;
+    struct march;
+
+    /// The shared start of rays from world z origin_z (throws for an origin above the sea surface).
+    template <Scene S> [[nodiscard]] trace_start start_for(T origin_z, const S& scene) const {
+        constexpr T eps = std::numeric_limits<T>::epsilon();
+        trace_start st;
+        st.origin_z = origin_z;
+        st.depth0 = p_.surface_z_m - origin_z;
+        if (!(st.depth0 >= T(0)))
+            throw invalid_parameter("ray.origin", "lies above the sea surface (world z " + std::to_string(origin_z) +
+                                                      " > layered.surface_z_m " + std::to_string(p_.surface_z_m) + ")");
+        // Geometry lies at depths >= top_depth; chords start a margin above it.
+        const T top = scene.top_m();
+        const T top_depth = p_.surface_z_m - top;
+        const T margin = std::max(p_.chord_tolerance_m, T(64) * eps * (std::abs(p_.surface_z_m) + std::abs(top)));
+        st.chord_depth = top_depth - margin;
+        if (p_.launch_table && st.chord_depth > st.depth0 && std::isfinite(st.chord_depth))
+            st.table = &table_for(st.depth0, st.chord_depth);
+        return st;
+    }
+
+    /// The first part of a trace: the ray `r` set up where its first arc starts, at the source or, through the launch
+    /// table, at the depth where chords begin (into m, its horizontal direction into hdir); false when it runs out of
+    /// time before that. Every field of m is set here (march has no default values, so that nothing is zeroed twice).
+    [[nodiscard]] bool launch(const ray<T>& r, T t_max_s, const trace_start& st, march& m, vec3<T>& hdir) const noexcept {
+        if (!(t_max_s > T(0))) return false;
+        const T depth0 = st.depth0;
+        const T h2 = r.direction.x * r.direction.x + r.direction.y * r.direction.y;
+        const T hlen = std::sqrt(h2);
+        const T inv_h = T(1) / hlen;
+        hdir = hlen > T(0) ? vec3<T>{r.direction.x * inv_h, r.direction.y * inv_h, T(0)} : vec3<T>{T(1), T(0), T(0)};
+        // Launch inclination (+ down) as its sine and cosine; the angle itself only when an arc needs it.
+        const T inv_len = T(1) / std::sqrt(h2 + r.direction.z * r.direction.z);
+        const T sin0 = -r.direction.z * inv_len, cos0 = hlen * inv_len;
+
+        m.z = depth0;
+        m.phi = T(0);
+        m.sin_phi = sin0;
+        m.cos_phi = cos0;
+        m.phi_known = false;
+        m.t = m.x = m.s = m.absorption_db = T(0);
+        m.absorption_ratio = T(1);
+        m.arcs = m.chords = 0;
+        T source_speed_mps;
+        if (st.table && sin0 > T(0)) {
+            const table_entry& e = *st.table;
+            source_speed_mps = e.source_speed_mps;
+            if (const auto d = e.table->lookup(sin0, cos0)) {
+                // Resume at the table's depth; the inclination there follows from Snell's law.
+                m.layer = e.resume_layer;
+                m.z = st.chord_depth;
+                const T c = std::min(cos0 * e.speed_ratio, T(1));
+                m.cos_phi = c;
+                m.sin_phi = std::sqrt((T(1) - c) * (T(1) + c));
+                m.t = d->time_s;
+                m.x = d->range_m;
+                m.s = d->path_m;
+                m.absorption_ratio = d->absorption;
+                m.tube = ray_tube<T>{e.source_speed_mps, sin0, d->q_sum, d->k_sum, true};
+                return m.t <= t_max_s;
+            }
+            m.layer = e.source_layer;
+        } else {
+            m.layer = profile_.layer_index(depth0, sin0 < T(0) ? vertical_direction::up : vertical_direction::down);
+            source_speed_mps = layers_[m.layer].speed_mps(depth0);
+        }
+        m.tube = ray_tube<T>{source_speed_mps, sin0};
+        return true;
+    }
+
     static const layered_params<T>& validated(const layered_params<T>& p) {
         sss::detail::require_finite(p.surface_z_m, "layered.surface_z_m");
         sss::detail::require_positive(p.frequency_hz, "layered.frequency_hz");
@@ -216,20 +294,28 @@ private:
         return p;
     }
 
-    /// Where a ray stands between arcs.
+    /// Where a ray stands between arcs. No default values: launch and descend set every field.
     struct march {
-        std::size_t layer = 0;
-        T z{}, phi{}, sin_phi{}, cos_phi{}; ///< depth (m) and inclination (rad, + down; phi stale unless phi_known)
-        bool phi_known = true;
-        T t{}, x{}, s{}, absorption_db{};    ///< time (s), range (m), path (m), absorption (dB) so far
-        ray_tube<T> tube{};
+        std::size_t layer;
+        T z, phi, sin_phi, cos_phi; ///< depth (m) and inclination (rad, + down; phi stale unless phi_known)
+        bool phi_known;
+        T t, x, s;                  ///< time (s), range (m), path (m) so far
+        T absorption_ratio;         ///< absorption (intensity ratio) up to where absorption_db starts counting
+        T absorption_db;            ///< absorption (dB) since then
+        ray_tube<T> tube;           ///< its source_speed_mps is c at the source
+        std::size_t arcs, chords;   ///< layer arcs followed, calls to the scene's intersect
     };
 
-    /// Follows the ray from `m` arc by arc until it meets the scene (true, `out` filled in), leaves the water or runs
-    /// out of time (false).
+    /// What trace_path reports beyond the path.
+    struct details {
+        T outgoing_spreading, hit_speed_mps, range_m, path_length_m;
+    };
+
+    /// Follows the ray from `m` arc by arc until it meets the scene (true, the path in `out` and, when `more` is not
+    /// null, the details in *more), leaves the water or runs out of time (false, `out` untouched).
     template <Scene S>
     [[nodiscard]] bool follow(march& m, const ray<T>& r, const vec3<T>& hdir, const S& scene, T t_max_s, T chord_depth,
-                              layered_path<T>& out) const {
+                              std::optional<path<T>>& out, details* more) const {
         constexpr T inf = std::numeric_limits<T>::infinity();
         constexpr std::size_t max_arcs = std::size_t(1) << 24;
         int zero_steps = 0;
@@ -241,12 +327,17 @@ private:
                 m.cos_phi = T(1);
                 m.phi_known = true;
             }
-            ++out.arcs;
+            ++m.arcs;
             const T g = zero_steps >= 2 ? T(0) : layer.gradient_per_s;
             const T c0 = layer.speed_mps(m.z);
             const T xi = m.cos_phi / c0;
             arc_detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, g, xi, xi * g};
             const arc_frame<T> frame{vec3<T>{r.origin.x + hdir.x * m.x, r.origin.y + hdir.y * m.x, p_.surface_z_m - m.z}, hdir};
+            // A hit on this arc ends the trace: the path, if the hit comes in time.
+            bool in_time = false;
+            const auto done = [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at) {
+                in_time = finish(m, a, h, point, arc_m, at, layer, hdir, t_max_s, out, more);
+            };
             // Path length the time left allows in this layer (c is largest at one of its bounds).
             const T c_max = g == T(0) ? c0 : std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m));
             const T s_cap = c_max * (t_max_s - m.t);
@@ -254,15 +345,26 @@ private:
             // Where the arc surely stays in the layer and may meet geometry, look before stepping through the layer.
             T s_done = T(0);
             if (m.z >= chord_depth) {
+                // First at most one chord's worth, with no trigonometry: depth changes no faster than arc length, so
+                // the arc stays in the layer over at least the distance to its nearer boundary. Where the scene is
+                // near (the usual case after the launch table) that is where the hit is. Not when that distance is
+                // below a sixteenth of a chord (a thin layer): the chord would hardly ever meet anything.
+                T first = std::min(std::min(m.z - layer.z_top_m, layer.z_bottom_m - m.z), s_cap);
+                const T k_first2 = std::abs(a.kappa) * first * first; // 8 x the sagitta of one chord over `first`
+                if (a.kappa != T(0) && first > T(0) && T(256) * k_first2 >= T(8) * p_.chord_tolerance_m) {
+                    if (k_first2 > T(8) * p_.chord_tolerance_m) first = chord_arc_length_m(a.kappa, p_.chord_tolerance_m);
+                    if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, T(0), first, p_.chord_tolerance_m, m.chords, done))
+                        return in_time;
+                    s_done = first;
+                }
                 // (A few roundings of the depths past the bound, so that a surface lying exactly on the boundary is not
                 // missed: world and depth coordinates differ by rounding of their own size.)
                 const T slack = T(64) * std::numeric_limits<T>::epsilon() * (std::abs(m.z) + std::abs(p_.surface_z_m)) /
                                 std::max(std::abs(a.sin0), T(1e-3));
                 const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
-                if (stay > T(0)) {
-                    if (auto h = intersect_arc(scene, frame, a.sin0, a.cos0, a.kappa, T(0), stay, p_.chord_tolerance_m,
-                                               out.chords))
-                        return finish(m, a, *h, layer, hdir, t_max_s, out);
+                if (stay > s_done) {
+                    if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, s_done, stay, p_.chord_tolerance_m, m.chords, done))
+                        return in_time;
                     s_done = stay;
                 }
             }
@@ -284,9 +386,9 @@ private:
             const T s_end = std::min(arc.length_m, s_cap);
             if (s_done < s_end) {
                 if (const auto s_begin = chord_start(st, a.kappa, chord_depth, s_end)) {
-                    if (auto h = intersect_arc(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
-                                               p_.chord_tolerance_m, out.chords))
-                        return finish(m, a, *h, layer, hdir, t_max_s, out);
+                    if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
+                                      p_.chord_tolerance_m, m.chords, done))
+                        return in_time;
                 }
             }
             if (st.boundary == layer_exit::none || !(arc.length_m <= s_cap)) return false;
@@ -320,10 +422,11 @@ private:
         m.phi_known = true;
     }
 
-    /// The path to a hit on the current arc, into `out`; false if the hit comes after t_max_s.
-    [[nodiscard]] bool finish(const march& m, const arc_detail::arc_start<T>& a, const arc_hit<T>& h,
-                              const gradient_layer<T>& layer, const vec3<T>& hdir, T t_max_s, layered_path<T>& out) const {
-        const arc_offset<T>& o = h.at;
+    /// The path to a hit on the current arc, into `out` (and the details into *more when not null); false if the hit
+    /// comes after t_max_s.
+    [[nodiscard]] bool finish(const march& m, const arc_detail::arc_start<T>& a, const hit<T>& h, const vec3<T>& point,
+                              T arc_m, const arc_offset<T>& o, const gradient_layer<T>& layer, const vec3<T>& hdir,
+                              T t_max_s, std::optional<path<T>>& out, details* more) const {
         T dt;
         if (a.cos0 > T(0)) {
             dt = arc_detail::arc_time(a, o.range_m, o.cos_incline, o.sin_half * o.sin_half);
@@ -333,24 +436,34 @@ private:
         }
         const T t_hit = m.t + dt;
         if (!(t_hit <= t_max_s)) return false;
-        out.hit_speed_mps = layer.speed_mps(a.z0 + o.depth_m);
-        const T q = ray_tube_q(o.range_m, a.xi, o.depth_m, a.c0, out.hit_speed_mps, a.sin0, o.sin_incline);
-        out.outgoing_spreading = m.tube.outgoing_spreading(q, a.sin0, o.sin_incline);
-        const T ratio = out.hit_speed_mps / out.source_speed_mps;
+        const T c_hit = layer.speed_mps(a.z0 + o.depth_m);
+        const T q = ray_tube_q(o.range_m, a.xi, o.depth_m, a.c0, c_hit, a.sin0, o.sin_incline);
+        // S_AB = c_A^2 / (Q w) and S_BA = c_B^2 / (Q w) (ray_tube.hpp), with one division.
+        const T inv_qw = m.tube.inverse_qw(q, a.sin0, o.sin_incline);
+        const T c_source = m.tube.source_speed_mps;
+        const T s_ab = c_source * c_source * inv_qw;
+        const T s_ba = c_hit * c_hit * inv_qw;
+        const bool finite = std::isfinite(s_ab) && std::isfinite(s_ba);
         // A last piece within a metre of depth and a tenth of a millimetre of sagitta (the usual one after the launch
         // table) needs only the midpoint rule: its depth is then linear in arc length to 1e-4 m, and alpha's own
-        // curvature over 1 m of depth is 1e-8 relative, so the rule is off by below 1e-8 of that piece's share.
-        const bool short_piece = std::abs(o.depth_m) < T(1) && std::abs(a.kappa) * h.arc_m * h.arc_m < T(8e-4);
+        // curvature over 1 m of depth is 1e-8 relative, so the rule is off by below 1e-8 of that piece's share. Its
+        // midpoint depth is dz/2 + kappa s^2 cos(phi0)/8, to O(kappa^2 s^3) (below 1e-7 m there).
+        const T kss = a.kappa * arc_m * arc_m;
+        const bool short_piece = std::abs(o.depth_m) < T(1) && std::abs(kss) < T(8e-4);
         const T absorption_db =
-            m.absorption_db + (short_piece ? midpoint_absorption_db(a, h.arc_m) : arc_absorption_db(a, h.arc_m));
-        out.range_m = m.x + o.range_m;
-        out.path_length_m = m.s + h.arc_m;
-        out.result.surface = h.surface;
-        out.result.surface.distance_m = out.path_length_m;
-        out.result.time_s = t_hit;
-        out.result.spreading = out.outgoing_spreading * ratio * ratio;
-        out.result.absorption = std::exp(-ln10_v<T> / T(10) * absorption_db);
-        out.result.arrival = hdir * o.cos_incline + vec3<T>{T(0), T(0), -o.sin_incline};
+            m.absorption_db +
+            (short_piece ? absorption_db_per_km(std::max(a.z0 + T(0.5) * o.depth_m + T(0.125) * kss * a.cos0, T(0))) *
+                               arc_m * T(1e-3)
+                         : arc_absorption_db(a, arc_m));
+        // exp(-x) by its series where x < 1e-3 (remainder x^5/120 < 1e-17): the last piece after the launch table.
+        const T x = T(0.1) * ln10_v<T> * absorption_db;
+        const T decay = x < T(1e-3) ? T(1) - x * (T(1) - x * (T(0.5) - x * (T(1.0 / 6) - x * T(1.0 / 24)))) : std::exp(-x);
+        const T path_length = m.s + arc_m;
+        out.emplace(h, t_hit, finite ? s_ba : T(0), m.absorption_ratio * decay,
+                    hdir * o.cos_incline + vec3<T>{T(0), T(0), -o.sin_incline});
+        out->surface.point = point;
+        out->surface.distance_m = path_length;
+        if (more) *more = details{finite ? s_ab : T(0), c_hit, m.x + o.range_m, path_length};
         return true;
     }
 
@@ -384,6 +497,10 @@ private:
         m.sin_phi = sin_phi0;
         m.cos_phi = cos_phi0;
         m.phi = std::atan2(sin_phi0, cos_phi0);
+        m.phi_known = true;
+        m.t = m.x = m.s = m.absorption_db = T(0);
+        m.absorption_ratio = T(1);
+        m.arcs = m.chords = 0;
         m.tube = ray_tube<T>{layers_[m.layer].speed_mps(z_a), sin_phi0};
         for (std::size_t n = 0; n <= layers_.size(); ++n) {
             gradient_layer<T> layer = layers_[std::min(m.layer, layers_.size() - 1)];
@@ -395,28 +512,53 @@ private:
             const layer_step<T> st = step_through_layer(layer, m.z, m.phi, vertical_direction::down);
             if (st.boundary != layer_exit::bottom || !(st.exit.incline_rad > T(0))) return std::nullopt;
             advance(m, a, st, layer);
-            if (m.z >= z_h) return descent_state<T>{m.x, m.t, m.s, m.absorption_db, m.tube.q_sum, m.tube.k_sum};
+            if (m.z >= z_h) return descent_state<T>{m.x, m.t, m.s, m.absorption_db, m.tube.q_sum, m.tube.k_sum, T(0)};
             ++m.layer;
         }
         return std::nullopt;
     }
 
+    /// A launch table and what a ray resuming from it needs: all functions of the water, z_a and z_h alone.
+    struct table_entry {
+        std::uint64_t owner = 0;
+        T z_a{}, z_h{};
+        std::optional<launch_table<T>> table;
+        std::size_t source_layer = 0; ///< the layer of a ray leaving z_a downwards
+        std::size_t resume_layer = 0; ///< the layer of a ray going down at z_h
+        T source_speed_mps{};         ///< c(z_a)
+        T speed_ratio{};              ///< c(z_h) / c(z_a): cos(phi_H) = cos(phi0) c(z_h) / c(z_a) (Snell)
+    };
+
+    struct trace_start {
+        T origin_z{}, depth0{}, chord_depth{};
+        const table_entry* table = nullptr;
+    };
+
     /// This thread's launch table for source depth z_a and table depth z_h, built when either (or the water) changes.
-    [[nodiscard]] const launch_table<T>& table_for(T z_a, T z_h) const {
-        struct entry {
-            std::uint64_t owner = 0;
-            T z_a{}, z_h{};
-            std::optional<launch_table<T>> table;
-        };
-        thread_local entry cache;
-        if (cache.owner != id_ || cache.z_a != z_a || cache.z_h != z_h || !cache.table) {
-            const T tolerance = std::max(T(1e-10), T(64) * std::numeric_limits<T>::epsilon());
-            cache.table.emplace([&](T s, T c) { return descend(z_a, z_h, s, c); }, tolerance);
-            cache.owner = id_;
-            cache.z_a = z_a;
-            cache.z_h = z_h;
-        }
-        return *cache.table;
+    /// A thread keeps the last four (tables of waters or depths used in turn, as when a program alternates two
+    /// waters, are then not rebuilt at every switch: a build costs about a thousand exact descents).
+    [[nodiscard]] const table_entry& table_for(T z_a, T z_h) const {
+        constexpr std::size_t kept = 4;
+        thread_local std::array<table_entry, kept> cache;
+        thread_local std::size_t last = 0, oldest = 0;
+        const auto holds = [&](const table_entry& e) { return e.owner == id_ && e.z_a == z_a && e.z_h == z_h && e.table; };
+        if (holds(cache[last])) return cache[last];
+        for (std::size_t i = 0; i < kept; ++i)
+            if (holds(cache[i])) return cache[last = i];
+        table_entry& e = cache[oldest];
+        last = oldest;
+        oldest = (oldest + 1) % kept;
+        e.owner = 0; // not valid until built (the build may throw std::bad_alloc)
+        const T tolerance = std::max(T(1e-10), T(64) * std::numeric_limits<T>::epsilon());
+        e.table.emplace([&](T sn, T cs) { return descend(z_a, z_h, sn, cs); }, tolerance);
+        e.owner = id_;
+        e.z_a = z_a;
+        e.z_h = z_h;
+        e.source_layer = profile_.layer_index(z_a, vertical_direction::down);
+        e.resume_layer = profile_.layer_index(z_h, vertical_direction::down);
+        e.source_speed_mps = layers_[e.source_layer].speed_mps(z_a);
+        e.speed_ratio = layers_[e.resume_layer].speed_mps(z_h) / e.source_speed_mps;
+        return e;
     }
 
     /// Arc length from which the arc may meet geometry (it is at depth >= chord_depth there), or nullopt when it
@@ -450,15 +592,8 @@ private:
         const auto alpha = [&](T s) {
             return absorption_db_per_km(std::max(a.z0 + offset_along_arc(a.sin0, a.cos0, a.kappa, s).depth_m, T(0)));
         };
-        const T mean = (T(5) * (alpha(half - off) + alpha(half + off)) + T(8) * alpha(half)) / T(18);
-        return mean * len_m / T(1000);
-    }
-
-    /// As arc_absorption_db, by the one-point (midpoint) rule.
-    [[nodiscard]] T midpoint_absorption_db(const arc_detail::arc_start<T>& a, T len_m) const noexcept {
-        if (!(len_m > T(0))) return T(0);
-        const T z = a.z0 + offset_along_arc(a.sin0, a.cos0, a.kappa, len_m / T(2)).depth_m;
-        return absorption_db_per_km(std::max(z, T(0))) * len_m / T(1000);
+        const T mean = (T(5) * (alpha(half - off) + alpha(half + off)) + T(8) * alpha(half)) * T(1.0 / 18);
+        return mean * len_m * T(1e-3);
     }
 
     /// depth / integral_0^depth dz/c over the water column down to the deepest knot.

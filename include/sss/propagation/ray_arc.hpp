@@ -99,19 +99,19 @@ namespace arc_detail {
 
 /// sin(u)/u, exact at 0.
 template <Real T> [[nodiscard]] inline T sinc(T u) noexcept {
-    return std::abs(u) < T(1e-4) ? T(1) - u * u / T(6) : std::sin(u) / u;
+    return std::abs(u) < T(1e-4) ? T(1) - u * u * T(1.0 / 6) : std::sin(u) / u;
 }
 /// atan(w)/w, exact at 0.
 template <Real T> [[nodiscard]] inline T atan_ratio(T w) noexcept {
-    return std::abs(w) < T(1e-4) ? T(1) - w * w / T(3) : std::atan(w) / w;
+    return std::abs(w) < T(1e-4) ? T(1) - w * w * T(1.0 / 3) : std::atan(w) / w;
 }
 /// atanh(u)/u, exact at 0.
 template <Real T> [[nodiscard]] inline T atanh_ratio(T u) noexcept {
-    return std::abs(u) < T(1e-4) ? T(1) + u * u / T(3) : std::atanh(u) / u;
+    return std::abs(u) < T(1e-4) ? T(1) + u * u * T(1.0 / 3) : std::atanh(u) / u;
 }
 /// log(1 + e)/e, exact at 0.
 template <Real T> [[nodiscard]] inline T log1p_ratio(T e) noexcept {
-    return std::abs(e) < T(1e-4) ? T(1) - e / T(2) + e * e / T(3) : std::log1p(e) / e;
+    return std::abs(e) < T(1e-4) ? T(1) - e * T(0.5) + e * e * T(1.0 / 3) : std::log1p(e) / e;
 }
 
 /// Start of an arc in the form the formulas want.

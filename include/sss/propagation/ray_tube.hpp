@@ -72,6 +72,15 @@ template <Real T> struct ray_tube {
         started = true;
     }
 
+    /// 1/(Q w) at a hit inside the current piece (arguments as for outgoing_spreading): S_AB = c_A^2/(Q w) and, by
+    /// reciprocity, S_BA = c_B^2/(Q w) with c_B the speed at the hit; one division for both. Not finite where Q w
+    /// vanishes or is undefined, where outgoing_spreading gives 0 (callers do the same).
+    [[nodiscard]] T inverse_qw(T q_last, T sin_start, T sin_hit) const noexcept {
+        // w = |sin_hit K + q_last sin_launch / sin_start|, the division folded into the one that inverts Q w.
+        if (!started) return T(1) / ((q_sum + q_last) * std::abs(sin_hit * k_sum + q_last));
+        return std::abs(sin_start) / ((q_sum + q_last) * std::abs(sin_hit * k_sum * sin_start + q_last * sin_launch));
+    }
+
     /// S_AB at a hit inside the current piece, which has q = q_last so far, started at sin phi = sin_start and
     /// reaches the hit at sin phi = sin_hit: intensity relative to that at 1 m from the source. 0 where the tube
     /// is infinitely wide (see the file comment).
