@@ -14,6 +14,7 @@
 // Layered waters use Francois-Garrison absorption at 300 kHz and 1 mm chords, and the launch table unless stated.
 // Then whole pings (simulator: Lambert -27 dB, 300 kHz planar array 32 x 2 tilted 15 deg to -30 dB, 40 m range,
 // 20 kHz sampling, default ray density), straight against thermocline water, with and without the launch table.
+// The two pingers are also timed over rough relief (a height field), where the straight trace itself costs more.
 // Before the benchmarks a summary prints the per-ray cost of each water and its ratio to straight rays, by its own
 // timing loop, for trace alone and for whole pings, and how far the launch table's results are from exact tracing on
 // the same rays. The machines this runs on are shared and their speed drifts, so the summary times processor time
@@ -38,6 +39,7 @@
 #include <sss/propagation/straight.hpp>
 #include <sss/scattering/lambertian.hpp>
 #include <sss/scene/flat_seabed.hpp>
+#include <sss/scene/height_field.hpp>
 #include <sss/simulator.hpp>
 
 namespace {
@@ -85,6 +87,23 @@ template <class T> layered<T> fine_water() {
 }
 
 enum class water { straight, uniform, thermocline, fine, exact };
+
+/// Rough relief under the pingers' track: 641 x 641 vertices at 0.25 m around the origin, swell and ripples of
+/// +-1.6 m about z = 0.
+const sss::scene::height_field<double>& relief() {
+    static const sss::scene::height_field<double> hf = [] {
+        constexpr std::size_t n = 641;
+        std::vector<double> h(n * n);
+        for (std::size_t iy = 0; iy < n; ++iy)
+            for (std::size_t ix = 0; ix < n; ++ix) {
+                const double x = 0.25 * double(ix), y = 0.25 * double(iy);
+                h[iy * n + ix] = 1.2 * std::sin(0.07 * x + 0.03 * y) + 0.3 * std::sin(0.8 * x - 0.5 * y) +
+                                 0.1 * std::sin(4.1 * x + 1.7 * y);
+            }
+        return sss::scene::height_field<double>(n, n, 0.25, {-80.0, -80.0}, std::move(h));
+    }();
+    return hf;
+}
 
 template <class P, class T> double trace_all(const P& p, const std::vector<sss::ray<T>>& rays) {
     const sss::scene::flat_seabed<T> seabed(T(0));
@@ -234,6 +253,18 @@ void print_summary() {
         std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray   x%.2f straight per ray\n",
                     k == 1 ? "layered, thermocline" : "layered, thermocline, exact", 1e3 * p[k], n[k], 1e9 * p[k] / n[k],
                     (p[k] / n[k]) / (p[0] / n[0]));
+
+    // The same pings over rough relief, where the straight trace is no longer nearly free: the seabed is a height
+    // field (its columns traced together by straight rays, chord by chord by layered ones).
+    const auto& hf = relief();
+    const auto q = best_interleaved(
+        ping_rounds / 2, [&] { sink += double(a.ping(hf, 3).starboard[100]); },
+        [&] { sink += double(b.ping(hf, 3).starboard[100]); });
+    std::printf("Whole pings over relief (height field 641 x 641 at 0.25 m, +-1.6 m; same pingers, best of %d):\n",
+                ping_rounds / 2);
+    std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray\n", "straight", 1e3 * q[0], n[0], 1e9 * q[0] / n[0]);
+    std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray   x%.2f straight per ray\n", "layered, thermocline",
+                1e3 * q[1], n[1], 1e9 * q[1] / n[1], (q[1] / n[1]) / (q[0] / n[0]));
     std::printf("(checksum %g)\n\n", sink);
 }
 
