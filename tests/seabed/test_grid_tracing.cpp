@@ -7,42 +7,25 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "sss/scene/height_field.hpp"
+#include "support/grid_relief.hpp"
 
 using sss::ray;
 using sss::vec2;
 using sss::vec3;
 using lvec3 = glm::vec<3, long double>;
 using sss::scene::height_field;
+using sss_test::make_ray;
+using sss_test::rng;
+using sss_test::rough_field;
 
 namespace {
 
-struct rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-    vec3<double> direction() { // uniform on the sphere
-        const double z = uniform(-1, 1), phi = uniform(0, 6.283185307179586), r = std::sqrt(1 - z * z);
-        return {r * std::cos(phi), r * std::sin(phi), z};
-    }
-};
-
 constexpr double deg = 3.141592653589793 / 180;
-
-template <class T> ray<T> make_ray(vec3<double> o, vec3<double> d) {
-    return ray<T>{vec3<T>(o), vec3<T>(glm::normalize(d))};
-}
 
 // A plane z = a + bx x + by y sampled on a grid.
 struct plane {
@@ -57,25 +40,6 @@ template <class T> height_field<T> plane_field(std::size_t nx, std::size_t ny, d
         for (std::size_t ix = 0; ix < nx; ++ix)
             h[iy * nx + ix] = T(p.at(o.x + double(ix) * cell, o.y + double(iy) * cell));
     return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h));
-}
-
-// A rough surface with steep slopes, white noise, a flat plateau (exact ties) and a 1.5 m cliff; every
-// cell gets its own region id, so a hit's label names its cell.
-template <class T> height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o) {
-    std::vector<T> h(nx * ny);
-    rng noise{42};
-    for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix) {
-            const double x = double(ix) * cell, y = double(iy) * cell;
-            double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
-                       0.12 * std::sin(2.1 * y + 0.4 * x) + 0.1 * (noise.uniform() - 0.5);
-            z = std::min(z, 1.1);                               // plateau: many vertices at exactly 1.1
-            if (x + 0.5 * y > 60 && x + 0.5 * y < 75) z -= 1.5; // a trench with vertical-ish walls
-            h[iy * nx + ix] = T(z);
-        }
-    std::vector<std::uint32_t> regions((nx - 1) * (ny - 1));
-    for (std::size_t c = 0; c < regions.size(); ++c) regions[c] = std::uint32_t(c);
-    return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h), {}, std::move(regions));
 }
 
 template <class T> double eps() { return double(std::numeric_limits<T>::epsilon()); }
@@ -225,7 +189,7 @@ TEST_CASE_TEMPLATE("A ray from below the surface is not stopped on its way out, 
 
 TEST_CASE_TEMPLATE("A vertical ray hits at the surface's height, on vertices, edges and inside triangles", T, float,
                    double) {
-    const auto hf = rough_field<T>(130, 97, 0.25, {-3, 4});
+    const auto hf = rough_field<T>(130, 97, 0.25, {-3, 4}, 42);
     const auto& g = hf.grid();
     rng gen{5};
     for (int k = 0; k < 20000; ++k) {
@@ -262,7 +226,7 @@ TEST_CASE_TEMPLATE("Rays along grid lines and diagonals find the first crossing 
                    float, double) {
     // Along a grid line or a diagonal the surface is linear between consecutive vertices; the expected
     // hit comes from walking those vertices in long double.
-    const auto hf = rough_field<T>(161, 121, 0.25, {0, 0});
+    const auto hf = rough_field<T>(161, 121, 0.25, {0, 0}, 42);
     const auto& g = hf.grid();
     rng gen{9};
     int checked = 0;

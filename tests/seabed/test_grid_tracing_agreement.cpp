@@ -4,60 +4,23 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "sss/scene/height_field.hpp"
+#include "support/grid_relief.hpp"
 
 using sss::ray;
-using sss::vec2;
 using sss::vec3;
 using sss::scene::height_field;
+using sss_test::make_ray;
+using sss_test::rng;
+using sss_test::rough_field;
 
 namespace {
 
-struct rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-    vec3<double> direction() { // uniform on the sphere
-        const double z = uniform(-1, 1), phi = uniform(0, 6.283185307179586), r = std::sqrt(1 - z * z);
-        return {r * std::cos(phi), r * std::sin(phi), z};
-    }
-};
-
 constexpr double deg = 3.141592653589793 / 180;
-
-template <class T> ray<T> make_ray(vec3<double> o, vec3<double> d) {
-    return ray<T>{vec3<T>(o), vec3<T>(glm::normalize(d))};
-}
-
-// A rough surface with steep slopes, white noise, a flat plateau (exact ties) and a 1.5 m cliff; every
-// cell gets its own region id, so a hit's label names its cell.
-template <class T> height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o) {
-    std::vector<T> h(nx * ny);
-    rng noise{42};
-    for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix) {
-            const double x = double(ix) * cell, y = double(iy) * cell;
-            double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
-                       0.12 * std::sin(2.1 * y + 0.4 * x) + 0.1 * (noise.uniform() - 0.5);
-            z = std::min(z, 1.1);                               // plateau: many vertices at exactly 1.1
-            if (x + 0.5 * y > 60 && x + 0.5 * y < 75) z -= 1.5; // a trench with vertical-ish walls
-            h[iy * nx + ix] = T(z);
-        }
-    std::vector<std::uint32_t> regions((nx - 1) * (ny - 1));
-    for (std::size_t c = 0; c < regions.size(); ++c) regions[c] = std::uint32_t(c);
-    return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h), {}, std::move(regions));
-}
 
 } // namespace
 
@@ -65,7 +28,7 @@ TEST_CASE_TEMPLATE("The accelerated and the reference traversal find the same ce
                    float, double) {
     // A 601 x 411 rough field (600 x 410 cells: partial pyramid blocks), random rays of every kind and
     // sidescan fans. The region id of a hit is its cell index, so equal labels mean equal cells.
-    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10});
+    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10}, 42);
     rng gen{17};
     const long n = std::is_same_v<T, double> ? 600000 : 150000;
     long hits = 0, compared = 0;
@@ -108,7 +71,7 @@ TEST_CASE_TEMPLATE("The accelerated and the reference traversal find the same ce
 
 TEST_CASE("Fans traced together give the one-by-one hits, to rounding") {
     using T = double;
-    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10});
+    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10}, 42);
     rng gen{23};
     long compared = 0, boundary = 0;
     for (int p = 0; p < 40; ++p) {
@@ -155,7 +118,7 @@ TEST_CASE("Fans traced together give the one-by-one hits, to rounding") {
 TEST_CASE("In float, fans and single rays differ only where a ray grazes the surface within float rounding") {
     // Float rounding decides near-tangent touches differently in the two formulations; any difference
     // must be such a touch, as judged in double on the same heights.
-    const auto hf = rough_field<float>(601, 411, 0.25, {-20, 10});
+    const auto hf = rough_field<float>(601, 411, 0.25, {-20, 10}, 42);
     const height_field<double> hd(601, 411, 0.25, {-20, 10},
                                   std::vector<double>(hf.heights_m().begin(), hf.heights_m().end()));
     rng gen{29};

@@ -4,7 +4,6 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
@@ -12,52 +11,23 @@
 #include <vector>
 
 #include "sss/scene/height_field.hpp"
+#include "support/grid_relief.hpp"
 
 using sss::ray;
-using sss::vec2;
 using sss::vec3;
 using sss::scene::height_field;
+using sss_test::rng;
+using sss_test::rolling_field;
 
 namespace {
 
-struct rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-};
-
 constexpr double deg = 3.141592653589793 / 180;
-
-// Rough terrain with noise; cell c has region c and material c % 5, so label and material name the cell.
-template <class T> height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell) {
-    std::vector<T> h(nx * ny);
-    rng noise{7};
-    for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix) {
-            const double x = double(ix) * cell, y = double(iy) * cell;
-            h[iy * nx + ix] = T(1.1 * std::sin(0.13 * x + 0.04 * y) + 0.3 * std::sin(0.8 * x - 0.7 * y + 1) +
-                                0.1 * (noise.uniform() - 0.5));
-        }
-    std::vector<std::uint32_t> materials((nx - 1) * (ny - 1)), regions(materials.size());
-    for (std::size_t c = 0; c < regions.size(); ++c) {
-        regions[c] = std::uint32_t(c);
-        materials[c] = std::uint32_t(c % 5);
-    }
-    return height_field<T>(nx, ny, T(cell), vec2<T>{T(-10), T(-5)}, std::move(h), std::move(materials),
-                           std::move(regions));
-}
 
 } // namespace
 
 TEST_CASE_TEMPLATE("Every field of a fan-swept hit is the hit of the same ray traced alone, to rounding", T, float,
                    double) {
-    const auto hf = rough_field<T>(801, 801, 0.25);
+    const auto hf = rolling_field<T>(801, 801, 0.25, {-10, -5}, 7);
     constexpr bool is_double = std::is_same_v<T, double>;
     const double rel = is_double ? 1e-9 : 2e-4; // distance and point, relative to the distance
     const double smooth_tol = is_double ? 1e-7 : 2e-3;
@@ -132,7 +102,7 @@ TEST_CASE_TEMPLATE("Every field of a fan-swept hit is the hit of the same ray tr
 }
 
 TEST_CASE_TEMPLATE("trace_fan reports the distances and cells intersect_many turns into hits", T, float, double) {
-    const auto hf = rough_field<T>(401, 401, 0.25);
+    const auto hf = rolling_field<T>(401, 401, 0.25, {-10, -5}, 7);
     const vec3<double> fish{50, 40, double(hf.top_m()) + 6};
     std::vector<ray<T>> rays;
     for (int i = 0; i < 3000; ++i) {

@@ -12,25 +12,15 @@
 #include <vector>
 
 #include "sss/scene/height_field.hpp"
+#include "support/grid_relief.hpp"
 
 using sss::ray;
 using sss::vec2;
 using sss::vec3;
 using sss::scene::height_field;
+using sss_test::rng;
 
 namespace {
-
-struct rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-};
 
 constexpr double deg = 3.141592653589793 / 180;
 constexpr std::size_t n_side = 513; // vertices per side: 512 x 512 cells of 0.25 m (128 m)
@@ -118,16 +108,12 @@ template <class T> tally plane_rays(long n, std::uint64_t seed) {
 }
 
 template <class T> tally rough_rays(long n, std::uint64_t seed) {
-    std::vector<T> h(n_side * n_side);
     rng noise{seed + 1};
-    for (std::size_t iy = 0; iy < n_side; ++iy)
-        for (std::size_t ix = 0; ix < n_side; ++ix) {
-            const double x = double(ix) * cell, y = double(iy) * cell;
-            double z =
-                1.0 * std::sin(0.2 * x + 0.1 * y) + 0.3 * std::sin(1.1 * x - 0.7 * y) + 0.15 * (noise.uniform() - 0.5);
-            z = std::min(z, 0.9); // flat plateaus: exact ties
-            h[iy * n_side + ix] = T(z);
-        }
+    const auto h = sss_test::sample_heights<T>(n_side, n_side, cell, [&noise](double x, double y) {
+        const double z =
+            1.0 * std::sin(0.2 * x + 0.1 * y) + 0.3 * std::sin(1.1 * x - 0.7 * y) + 0.15 * (noise.uniform() - 0.5);
+        return std::min(z, 0.9); // flat plateaus: exact ties
+    });
     const height_field<T> hf(n_side, n_side, T(cell), vec2<T>{T(0), T(0)}, h);
     const double top = double(hf.top_m());
     const double margin = std::is_same_v<T, float> ? 1e-4 : 1e-9;

@@ -2,56 +2,26 @@
 // vertical plane (a cone about the array axis, tilted by roll and pitch), give the single-ray tracer's hits.
 #include <doctest/doctest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "sss/core/pose.hpp"
 #include "sss/scene/height_field.hpp"
 #include "sss/scene/height_field_wedge.hpp"
+#include "support/grid_relief.hpp"
 
 using sss::ray;
-using sss::vec2;
 using sss::vec3;
 using sss::scene::height_field;
+using sss_test::rng;
+using sss_test::rough_field;
 
 namespace {
 
-struct rng {
-    std::uint64_t s;
-    std::uint64_t next() {
-        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-};
-
 constexpr double deg = 3.141592653589793 / 180;
-
-// Rough relief with a plateau (exact ties), a trench and white noise; each cell's region id is its index, so equal
-// labels mean equal cells.
-template <class T> height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o) {
-    std::vector<T> h(nx * ny);
-    rng noise{7};
-    for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix) {
-            const double x = double(ix) * cell, y = double(iy) * cell;
-            double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
-                       0.12 * std::sin(2.1 * y + 0.4 * x) + 0.1 * (noise.uniform() - 0.5);
-            z = std::min(z, 1.1);
-            if (x + 0.5 * y > 60 && x + 0.5 * y < 75) z -= 1.5;
-            h[iy * nx + ix] = T(z);
-        }
-    std::vector<std::uint32_t> regions((nx - 1) * (ny - 1));
-    for (std::size_t c = 0; c < regions.size(); ++c) regions[c] = std::uint32_t(c);
-    return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h), {}, std::move(regions));
-}
 
 // One column of a sidescan beam from a towfish with the given attitude: body direction (sin a, s cos a cos e,
 // cos a sin e) (FRD) for depressions e from e0 to e1, in that order.
@@ -102,7 +72,7 @@ std::vector<std::optional<sss::hit<T>>> trace_wedges(const height_field<T>& hf, 
 
 TEST_CASE_TEMPLATE("Columns of a tilted cone traced as wedges give the reference hits: same cell, same distance", T,
                    float, double) {
-    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10});
+    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
     rng gen{31};
     long compared = 0, hits = 0, in_runs = 0, cell_differs = 0;
     for (int p = 0; p < 24; ++p) {
@@ -162,7 +132,7 @@ TEST_CASE("A wedge run ends where the rays leave the origin, turn the other way 
 
 TEST_CASE_TEMPLATE("intersect_many on columns of a rolled, pitched towfish gives intersect's hits, every field", T, float,
                    double) {
-    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10});
+    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
     rng gen{5};
     long compared = 0, hits = 0;
     for (int p = 0; p < 12; ++p) {
