@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <utility>
 
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
@@ -32,7 +33,9 @@ public:
         if (!(dz < T(0)) || !(above > T(0))) return std::nullopt;
         const T s = above / -dz;
         if (!(s <= t_max_m)) return std::nullopt;
-        hit<T> h;
+        // Built in place in the returned optional (no copy of the record through the stack).
+        std::optional<hit<T>> out(std::in_place);
+        hit<T>& h = *out;
         h.distance_m = s;
         h.point = vec3<T>{r.origin.x + r.direction.x * s, r.origin.y + r.direction.y * s, height_m_};
         h.normal = vec3<T>{T(0), T(0), T(1)};
@@ -40,7 +43,7 @@ public:
         h.material = material_;
         h.object = no_object;
         h.label = region_;
-        return h;
+        return out;
     }
 
     [[nodiscard]] T seabed_height_m(T, T) const noexcept { return height_m_; }
