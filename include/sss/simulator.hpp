@@ -3,8 +3,9 @@
 /// The simulator: composes scattering, propagation, beam and motion policies into sidescan pings.
 ///
 /// Per ping and side: motion gives the pose; the beam's volume is cut into along-track columns and each
-/// column into depression angles spaced evenly in nominal return time (sampling/launch_angles.hpp); each ray
-/// is propagated to the scene; its return power per unit depression angle is
+/// column into depression angles spaced evenly in nominal return time (sampling/launch_angles.hpp); each
+/// column's rays are propagated to the scene together (sss::trace_all: a propagation policy or scene with a batch
+/// method shares work among them, others go ray by ray); each ray's return power per unit depression angle is
 ///
 ///     I = SL b(along, e) sigma(theta) S_out S_back A_1^2 dOmega_col / (S_out sin theta_g)
 ///       = SL b sigma S_back A_1^2 dOmega_col / sin theta_g,
