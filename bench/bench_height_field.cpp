@@ -27,6 +27,8 @@
 
 #include <sss/scene/height_field.hpp>
 
+#include "support/rough_relief.hpp"
+
 #ifdef SSS_HAVE_EMBREE
 #include <embree3/rtcore.h>
 
@@ -53,42 +55,8 @@ constexpr int along_track_angles = 8;
 constexpr int pings = 64;
 constexpr double pi = 3.141592653589793;
 
-// Heights of the rough surface: summed plane waves (evaluated separably: sin(a + b) = sin a cos b +
-// cos a sin b) plus white noise from a hash of the vertex index, +-0.05 m.
-template <class T> std::vector<T> rough_heights() {
-    struct wave {
-        double amplitude_m, wavelength_m, direction_deg, phase;
-    };
-    const wave waves[] = {{1.5, 180, 20, 0.3}, {0.6, 47, 75, 1.1}, {0.25, 11, 140, 2.0}, {0.08, 1.3, 30, 0.5}};
-    std::vector<double> z(grid_n * grid_n, 0.0);
-    std::vector<double> sx(grid_n), cx(grid_n), sy(grid_n), cy(grid_n);
-    for (const wave& w : waves) {
-        const double k = 2 * pi / w.wavelength_m, dir = w.direction_deg * pi / 180;
-        for (std::size_t i = 0; i < grid_n; ++i) {
-            const double a = k * std::cos(dir) * double(i) * cell_m,
-                         b = k * std::sin(dir) * double(i) * cell_m + w.phase;
-            sx[i] = std::sin(a);
-            cx[i] = std::cos(a);
-            sy[i] = std::sin(b);
-            cy[i] = std::cos(b);
-        }
-        for (std::size_t iy = 0; iy < grid_n; ++iy)
-            for (std::size_t ix = 0; ix < grid_n; ++ix)
-                z[iy * grid_n + ix] += w.amplitude_m * (sx[ix] * cy[iy] + cx[ix] * sy[iy]);
-    }
-    std::vector<T> h(grid_n * grid_n);
-    for (std::size_t i = 0; i < h.size(); ++i) {
-        std::uint64_t k = (i + 1) * 0x9E3779B97F4A7C15ull;
-        k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ull;
-        k = (k ^ (k >> 27)) * 0x94D049BB133111EBull;
-        k ^= k >> 31;
-        h[i] = T(z[i] + 0.1 * (double(k >> 11) * 0x1.0p-53 - 0.5));
-    }
-    return h;
-}
-
 template <class T> const height_field<T>& scene() {
-    static const height_field<T> hf(grid_n, grid_n, T(cell_m), vec2<T>{T(0), T(0)}, rough_heights<T>());
+    static const height_field<T> hf(grid_n, grid_n, T(cell_m), vec2<T>{T(0), T(0)}, sss_bench::rough_heights<T>(grid_n, cell_m));
     return hf;
 }
 

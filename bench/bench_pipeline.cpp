@@ -56,6 +56,7 @@
 
 #include "../tests/support/compare.hpp"
 #include "../tests/support/flat_seabed_oracle.hpp"
+#include "support/rough_relief.hpp"
 
 namespace {
 
@@ -133,35 +134,11 @@ template <class T> void pipeline_ping_reference(benchmark::State& state) {
 BENCHMARK_TEMPLATE(pipeline_ping_reference, float);
 BENCHMARK_TEMPLATE(pipeline_ping_reference, double);
 
-/// The relief scene's heights: plane waves summed separably (sin(a + b) = sin a cos b + cos a sin b) plus white
-/// noise of +-0.05 m from a hash of the vertex index.
+/// The relief scene: the benchmarks' rough seabed (support/rough_relief.hpp), 2048 x 2048 vertices at 0.25 m
+/// centred on the origin.
 template <class T> const sss::scene::height_field<T>& relief() {
-    static const sss::scene::height_field<T> hf = [] {
-        constexpr std::size_t n = 2048;
-        constexpr double cell = 0.25, pi = 3.141592653589793;
-        struct wave {
-            double amplitude_m, wavelength_m, direction_deg, phase;
-        };
-        const wave waves[] = {{1.5, 180, 20, 0.3}, {0.6, 47, 75, 1.1}, {0.25, 11, 140, 2.0}, {0.08, 1.3, 30, 0.5}};
-        std::vector<double> z(n * n, 0.0), sx(n), cx(n), sy(n), cy(n);
-        for (const wave& w : waves) {
-            const double k = 2 * pi / w.wavelength_m, dir = w.direction_deg * pi / 180;
-            for (std::size_t i = 0; i < n; ++i) {
-                const double a = k * std::cos(dir) * double(i) * cell, b = k * std::sin(dir) * double(i) * cell + w.phase;
-                sx[i] = std::sin(a), cx[i] = std::cos(a), sy[i] = std::sin(b), cy[i] = std::cos(b);
-            }
-            for (std::size_t iy = 0; iy < n; ++iy)
-                for (std::size_t ix = 0; ix < n; ++ix) z[iy * n + ix] += w.amplitude_m * (sx[ix] * cy[iy] + cx[ix] * sy[iy]);
-        }
-        std::vector<T> h(n * n);
-        for (std::size_t i = 0; i < h.size(); ++i) {
-            std::uint64_t k = (i + 1) * 0x9E3779B97F4A7C15ull;
-            k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ull;
-            k = (k ^ (k >> 27)) * 0x94D049BB133111EBull;
-            h[i] = T(z[i] + 0.1 * (double((k ^ (k >> 31)) >> 11) * 0x1.0p-53 - 0.5));
-        }
-        return sss::scene::height_field<T>(n, n, T(cell), sss::vec2<T>{T(-256), T(-256)}, std::move(h));
-    }();
+    static const sss::scene::height_field<T> hf(2048, 2048, T(0.25), sss::vec2<T>{T(-256), T(-256)},
+                                                sss_bench::rough_heights<T>(2048, 0.25));
     return hf;
 }
 
