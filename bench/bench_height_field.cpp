@@ -56,7 +56,7 @@ constexpr int pings = 64;
 constexpr double pi = 3.141592653589793;
 
 template <class T> const height_field<T>& scene() {
-    static const height_field<T> hf(grid_n, grid_n, T(cell_m), vec2<T>{T(0), T(0)}, sss_bench::rough_heights<T>(grid_n, cell_m));
+    static const height_field<T> hf({.nx = grid_n, .ny = grid_n, .cell_m = T(cell_m), .origin_m = vec2<T>{T(0), T(0)}, .heights_m = sss_bench::rough_heights<T>(grid_n, cell_m)});
     return hf;
 }
 
@@ -450,7 +450,7 @@ std::string embree_ratios() {
 template <class T> void build_height_field(benchmark::State& state) {
     const std::vector<T> h(scene<T>().heights_m());
     for (auto _ : state) {
-        height_field<T> hf(grid_n, grid_n, T(cell_m), vec2<T>{T(0), T(0)}, h);
+        height_field<T> hf({.nx = grid_n, .ny = grid_n, .cell_m = T(cell_m), .origin_m = vec2<T>{T(0), T(0)}, .heights_m = h});
         benchmark::DoNotOptimize(hf.top_m());
     }
     state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(h.size()));

@@ -56,7 +56,7 @@ template <class T> const sc::height_field<T>& rough_seabed() {
                 s = (s ^ (s >> 31)) * 0xBF58476D1CE4E5B9ull;
                 h[iy * grid_n + ix] = T(z + 0.05 * (double(s >> 11) * 0x1.0p-53 - 0.5));
             }
-        return sc::height_field<T>(grid_n, grid_n, T(cell_m), vec2<T>{T(-128), T(-128)}, std::move(h));
+        return sc::height_field<T>({.nx = grid_n, .ny = grid_n, .cell_m = T(cell_m), .origin_m = vec2<T>{T(-128), T(-128)}, .heights_m = std::move(h)});
     }();
     return hf;
 }

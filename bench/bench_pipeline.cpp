@@ -137,8 +137,7 @@ BENCHMARK_TEMPLATE(pipeline_ping_reference, double);
 /// The relief scene: the benchmarks' rough seabed (support/rough_relief.hpp), 2048 x 2048 vertices at 0.25 m
 /// centred on the origin.
 template <class T> const sss::scene::height_field<T>& relief() {
-    static const sss::scene::height_field<T> hf(2048, 2048, T(0.25), sss::vec2<T>{T(-256), T(-256)},
-                                                sss_bench::rough_heights<T>(2048, 0.25));
+    static const sss::scene::height_field<T> hf({.nx = 2048, .ny = 2048, .cell_m = T(0.25), .origin_m = sss::vec2<T>{T(-256), T(-256)}, .heights_m = sss_bench::rough_heights<T>(2048, 0.25)});
     return hf;
 }
 

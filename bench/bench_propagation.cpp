@@ -100,7 +100,7 @@ const sss::scene::height_field<double>& relief() {
                 h[iy * n + ix] = 1.2 * std::sin(0.07 * x + 0.03 * y) + 0.3 * std::sin(0.8 * x - 0.5 * y) +
                                  0.1 * std::sin(4.1 * x + 1.7 * y);
             }
-        return sss::scene::height_field<double>(n, n, 0.25, {-80.0, -80.0}, std::move(h));
+        return sss::scene::height_field<double>({.nx = n, .ny = n, .cell_m = 0.25, .origin_m = {-80.0, -80.0}, .heights_m = std::move(h)});
     }();
     return hf;
 }

@@ -73,7 +73,9 @@ void jackson_bistatic_direct(benchmark::State& state) {
 BENCHMARK(jackson_bistatic_direct);
 
 template <class T> void jackson_policy_backscatter(benchmark::State& state) {
-    const jackson<T> s(T(100e3), T(1500), {sediment_preset<T>(sediment::medium_sand), sediment_preset<T>(sediment::clay)});
+    const jackson<T> s({.frequency_hz = T(100e3),
+                        .sound_speed_mps = T(1500),
+                        .materials = {sediment_preset<T>(sediment::medium_sand), sediment_preset<T>(sediment::clay)}});
     const auto g = grazing_sweep<T>();
     std::size_t i = 0;
     for (auto _ : state) {
@@ -86,7 +88,7 @@ BENCHMARK_TEMPLATE(jackson_policy_backscatter, float);
 BENCHMARK_TEMPLATE(jackson_policy_backscatter, double);
 
 template <class T> void jackson_policy_bistatic(benchmark::State& state) {
-    const jackson<T> s(T(100e3), T(1500), sediment_preset<T>(sediment::medium_sand));
+    const jackson<T> s({.frequency_hz = T(100e3), .sound_speed_mps = T(1500), .materials = {sediment_preset<T>(sediment::medium_sand)}});
     const auto g = grazing_sweep<T>();
     std::size_t i = 0;
     for (auto _ : state) {

@@ -53,14 +53,13 @@ int main(int argc, char** argv) try {
     std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
     for (std::size_t iy = 0; iy + 1 < ny; ++iy)
         for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];
-    const sss::scene::height_field<T> seabed(nx, ny, cell, {T(0), T(0)}, bed.height.values, material, material);
+    const sss::scene::height_field<T> seabed({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {T(0), T(0)}, .heights_m = bed.height.values, .materials = material, .regions = material});
 
     // Sonar: Jackson scattering per material at 100 kHz; isovelocity water; a 100 kHz planar array on each side.
     using namespace sss;
-    const scattering::jackson<T> jackson(T(100000), T(1500),
-                                         {scattering::sediment_preset<T>(scattering::sediment::medium_sand),
+    const scattering::jackson<T> jackson({.frequency_hz = T(100000), .sound_speed_mps = T(1500), .materials = {scattering::sediment_preset<T>(scattering::sediment::medium_sand),
                                           scattering::sediment_preset<T>(scattering::sediment::sandy_gravel),
-                                          scattering::sediment_preset<T>(scattering::sediment::sandy_mud)});
+                                          scattering::sediment_preset<T>(scattering::sediment::sandy_mud)}});
     const propagation::straight<T> water({T(1500), T(30)});
     beam::planar_array_params<T> array;
     array.frequency_hz = T(100000);

@@ -40,7 +40,7 @@ int main(int argc, char** argv) try {
     sb::fractal_params<T> rough;
     rough.spectrum = sb::jackson_spectrum(T(0.004446), T(3.25), T(20));
     const auto bed = sb::fractal_surface<T>(nx, ny, cell, rough, 3);
-    const scene::height_field<T> seabed(nx, ny, cell, {T(0), T(0)}, bed.values);
+    const scene::height_field<T> seabed({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {T(0), T(0)}, .heights_m = bed.values});
 
     // The mine: case centre 3 m above the seabed, at 32 m slant range from a towfish at 10 m altitude on
     // x = 102.4 m: ground range sqrt(32^2 - 7^2) = 31.2 m.

@@ -51,7 +51,7 @@ int main(int argc, char** argv) try {
     cut.floor_width_m = T(3);
     cut.depth_m = T(1.5);
     sb::stamp(bed, cut);
-    const scene::height_field<T> seabed(nx, ny, cell, {T(0), T(0)}, bed.values);
+    const scene::height_field<T> seabed({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {T(0), T(0)}, .heights_m = bed.values});
 
     // The pipe: radius 0.4 m, concrete-coated (material 1), along the full length of the seabed.
     sb::pipeline_params<T> pp;

@@ -59,7 +59,7 @@ sss::scene::height_field<T> rippled_sand() {
     rough.spectrum = sb::jackson_spectrum(T(0.002), T(3.25), T(20));
     const sb::raster<T> r = sb::fractal_surface<T>(nx, ny, cell, rough, 19);
     for (std::size_t i = 0; i < h.values.size(); ++i) h.values[i] += r.values[i];
-    return sss::scene::height_field<T>(nx, ny, cell, {T(x0), T(y0)}, std::move(h.values));
+    return sss::scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {T(x0), T(y0)}, .heights_m = std::move(h.values)});
 }
 
 sss::propagation::layered<T> water(bool thermocline) {

@@ -96,8 +96,7 @@ sss::scene::height_field<T> rippled_sand(const std::vector<sss::motion::perturbe
     rough.spectrum = sb::jackson_spectrum(T(0.001), T(3.25), T(20));
     const sb::raster<T> r = sb::fractal_surface<T>(nx, ny, cell, rough, 5);
     for (std::size_t i = 0; i < h.values.size(); ++i) h.values[i] += r.values[i];
-    return sss::scene::height_field<T>(nx, ny, cell, {static_cast<T>(x0 - 1.0), static_cast<T>(y0 - 1.0)},
-                                       std::move(h.values));
+    return sss::scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {static_cast<T>(x0 - 1.0), static_cast<T>(y0 - 1.0)}, .heights_m = std::move(h.values)});
 }
 
 using turn_simulator = sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>,

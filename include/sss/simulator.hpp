@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <concepts>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -80,14 +81,14 @@ public:
         : scattering_(std::move(scattering)), propagation_(std::move(propagation)), beam_(std::move(beam)),
           motion_(std::move(motion)), receiver_(receiver), density_(density) {
         receiver_.validate();
-        sss::detail::require(density_.along >= 1, "ray_density.along", "must be >= 1");
-        sss::detail::require(density_.along <= 4096, "ray_density.along", "must be <= 4096");
-        sss::detail::require(density_.across == 0 || density_.across >= 2, "ray_density.across", "must be 0 (automatic) or >= 2");
-        if (density_.across == 0) sss::detail::require_positive(density_.per_sample, "ray_density.per_sample");
+        sss::require(density_.along >= 1, "ray_density.along", "must be >= 1");
+        sss::require(density_.along <= 4096, "ray_density.along", "must be <= 4096");
+        sss::require(density_.across == 0 || density_.across >= 2, "ray_density.across", "must be 0 (automatic) or >= 2");
+        if (density_.across == 0) sss::require_positive(density_.per_sample, "ray_density.per_sample");
         c_ref_ = double(propagation_.reference_speed_mps());
         samples_ = receiver_.samples(c_ref_);
-        sss::detail::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
-                        "gives " + std::to_string(samples_) + " samples per line; must be between 1 and 2^26");
+        sss::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
+                        [&] { return "gives " + std::to_string(samples_) + " samples per line; must be between 1 and 2^26"; });
         dt_ = 1.0 / receiver_.sample_rate_hz;
         source_level_ = db_to_power(receiver_.source_level_db);
         sampler_ = time_sampler(samples_, dt_, receiver_.pulse);
@@ -239,7 +240,13 @@ public:
 
 private:
     /// True when the scattering policy switches on one specular bounce (scattering/specular_bounce.hpp).
-    static constexpr bool bouncing = requires { S::specular_bounce_enabled; };
+    /// The member's value decides, not its presence: a policy declaring it false does not bounce.
+    static constexpr bool bouncing = [] {
+        if constexpr (requires { { S::specular_bounce_enabled } -> std::convertible_to<bool>; })
+            return bool(S::specular_bounce_enabled);
+        else
+            return false;
+    }();
 
     struct ray_end {
         bool valid = false;

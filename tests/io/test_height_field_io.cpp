@@ -47,7 +47,7 @@ template <class T> height_field<T> sample_field() {
     std::vector<T> h(28);
     for (std::size_t i = 0; i < h.size(); ++i)
         h[i] = T(std::sin(double(i) * 1.7) * 12.3456789 - 3.0 + 1e-3 * double(i));
-    return height_field<T>(7, 4, T(0.3), vec2<T>{T(500123.25), T(-42.125)}, std::move(h));
+    return height_field<T>({.nx = 7, .ny = 4, .cell_m = T(0.3), .origin_m = vec2<T>{T(500123.25), T(-42.125)}, .heights_m = std::move(h)});
 }
 
 template <class T> void check_same(const height_field<T>& a, const height_field<T>& b) {
@@ -83,7 +83,7 @@ TEST_CASE_TEMPLATE("An ESRI ASCII grid written and read back gives the same heig
     check_same(hf, sss::io::read_esri_ascii<T>(path));
     CHECK_FALSE(fs::exists(path + ".tmp"));
     // Writing again replaces the file.
-    sss::io::write_esri_ascii(path, height_field<T>(2, 2, T(1), {}, {T(1), T(2), T(3), T(4)}));
+    sss::io::write_esri_ascii(path, height_field<T>({.nx = 2, .ny = 2, .cell_m = T(1), .heights_m = {T(1), T(2), T(3), T(4)}}));
     CHECK(sss::io::read_esri_ascii<T>(path).nx() == 2);
 }
 
@@ -171,7 +171,7 @@ TEST_CASE_TEMPLATE("Raw float32 with its sidecar round-trips, little-endian, sou
     // Heights that float32 holds exactly, so the double round trip is exact too.
     std::vector<T> h(12);
     for (std::size_t i = 0; i < h.size(); ++i) h[i] = T(double(i) * 0.25 - 1.5);
-    const height_field<T> hf(4, 3, T(0.5), vec2<T>{T(10), T(-20)}, h);
+    const height_field<T> hf({.nx = 4, .ny = 3, .cell_m = T(0.5), .origin_m = vec2<T>{T(10), T(-20)}, .heights_m = h});
     sss::io::write_raw_f32(path, hf);
     check_same(hf, sss::io::read_raw_f32<T>(path));
     CHECK_FALSE(fs::exists(path + ".tmp"));
@@ -187,7 +187,7 @@ TEST_CASE_TEMPLATE("Raw float32 with its sidecar round-trips, little-endian, sou
 TEST_CASE("Bad raw height files are rejected naming the sidecar line or the data's byte offset") {
     scratch_dir d;
     const std::string path = d.file("bad.raw");
-    const height_field<float> hf(3, 2, 1.0f, {}, {1, 2, 3, 4, 5, 6});
+    const height_field<float> hf({.nx = 3, .ny = 2, .cell_m = 1.0f, .heights_m = {1, 2, 3, 4, 5, 6}});
     sss::io::write_raw_f32(path, hf);
     const std::string good_side = read_bytes(path + ".txt");
     const std::string good_data = read_bytes(path);
@@ -310,7 +310,7 @@ TEST_CASE("Bad PGM files are rejected naming the byte offset") {
 TEST_CASE("A writer that cannot create its file throws naming it and leaves nothing behind") {
     scratch_dir d;
     const std::string path = d.file("no/such/dir/out.asc");
-    const height_field<double> hf(2, 2, 1.0, {}, {0, 0, 0, 0});
+    const height_field<double> hf({.nx = 2, .ny = 2, .cell_m = 1.0, .heights_m = {0, 0, 0, 0}});
     const auto e = error_of([&] { sss::io::write_esri_ascii(path, hf); });
     CHECK(e.file() == path);
     CHECK_FALSE(fs::exists(path));

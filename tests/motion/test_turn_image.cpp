@@ -93,8 +93,7 @@ sss::scene::height_field<T> rippled_seabed(const turn_case& c, const sss::motion
     r.crest_direction_rad = T(0);
     r.symmetry_index = static_cast<T>(c.symmetry_index);
     auto h = sss::seabed::ripple_field<T>(nx, ny, static_cast<T>(cell_m), r, 1);
-    return sss::scene::height_field<T>(nx, ny, static_cast<T>(cell_m), {static_cast<T>(x0), static_cast<T>(y0)},
-                                       std::move(h.values));
+    return sss::scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = static_cast<T>(cell_m), .origin_m = {static_cast<T>(x0), static_cast<T>(y0)}, .heights_m = std::move(h.values)});
 }
 
 using turn_simulator = sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>,

@@ -102,7 +102,7 @@ TEST_CASE_TEMPLATE("Over a height field the scene's hit is the nearer of the sea
     for (std::size_t iy = 0; iy < n; ++iy)
         for (std::size_t ix = 0; ix < n; ++ix)
             hts[iy * n + ix] = T(0.8 * std::sin(0.2 * double(ix)) * std::cos(0.13 * double(iy)));
-    const height_field<T> hf(n, n, T(0.5), vec2<T>{T(0), T(0)}, hts);
+    const height_field<T> hf({.nx = n, .ny = n, .cell_m = T(0.5), .origin_m = vec2<T>{T(0), T(0)}, .heights_m = hts});
     std::mt19937_64 g(4);
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<object<T>> objs;

@@ -186,7 +186,7 @@ TEST_CASE("the large-roughness term is zero at grazing incidence and its diffuse
         const double v = jackson_sigma_lr(c, 0.9 * c.theta_c_rad);
         CHECK(v >= c.sigma1_lr);
         CHECK(v <= c.sigma1_lr + 0.026 * c.r90_sq / (2.0 * c.s2));
-        CHECK(c.w_moderate < 1e-3); // these beds are in the large-roughness regime
+        CHECK(jackson_moderate_weight(c.s) < 1e-3); // these beds are in the large-roughness regime
     }
 }
 
@@ -274,7 +274,7 @@ TEST_CASE("backscatter is continuous for very rough beds, in angle and across th
         for (double w2 = 0.001; w2 < 0.5; w2 *= 1.002) {
             p.w2_cm4 = w2;
             const auto c = make_jackson_coefficients(p, 30e3, 1528.0);
-            crossed = crossed || c.w_moderate < 0.5;
+            crossed = crossed || jackson_moderate_weight(c.s) < 0.5;
             const double v = 10.0 * std::log10(jackson_backscatter(c, deg_to_rad(deg)));
             if (w2 > 0.001) worst = std::max(worst, std::abs(v - prev));
             prev = v;

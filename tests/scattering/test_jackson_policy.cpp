@@ -74,20 +74,22 @@ TEST_CASE("the jackson policy validates its parameters, naming each") {
         return "";
     };
     const auto sand = sediment_preset<float>(sediment::medium_sand);
-    CHECK(name_of([&] { jackson<double>(1e5, 1500.0, {sediment_preset<double>(sediment::clay)}); }).empty());
-    CHECK(name_of([&] { jackson<float>(0.0f, 1500.0f, sand); }) == "jackson.f_hz");
-    CHECK(name_of([&] { jackson<float>(1e5f, -1.0f, sand); }) == "jackson.c_water_mps");
-    CHECK(name_of([&] { jackson<float>(1e5f, 1500.0f, std::vector<sediment_params<float>>{}); }) == "jackson.materials");
+    CHECK(name_of([&] { jackson<double>({.frequency_hz = 1e5, .sound_speed_mps = 1500.0, .materials = {sediment_preset<double>(sediment::clay)}}); }).empty());
+    CHECK(name_of([&] { jackson<float>({.frequency_hz = 0.0f, .materials = {sand}}); }) == "jackson.frequency_hz");
+    CHECK(name_of([&] { jackson<float>({.sound_speed_mps = -1.0f, .materials = {sand}}); }) == "jackson.sound_speed_mps");
+    CHECK(name_of([&] { jackson<float>({.materials = {}}); }) == "jackson.materials");
     auto bad = sand;
     bad.delta = -0.01f;
-    CHECK(name_of([&] { jackson<float>(1e5f, 1500.0f, {sand, bad}); }) == "jackson.materials[1].delta");
+    CHECK(name_of([&] { jackson<float>({.materials = {sand, bad}}); }) == "jackson.materials[1].delta");
     bad = sand;
     bad.w2_cm4 = std::numeric_limits<float>::infinity();
-    CHECK(name_of([&] { jackson<float>(1e5f, 1500.0f, {bad}); }) == "jackson.materials[0].w2_cm4");
+    CHECK(name_of([&] { jackson<float>({.materials = {bad}}); }) == "jackson.materials[0].w2_cm4");
 }
 
 TEST_CASE("the jackson policy gives each material its own sediment, and ids beyond the list the last one") {
-    const jackson<double> s(100e3, 1500.0, {sediment_preset<double>(sediment::clay), sediment_preset<double>(sediment::rock)});
+    const jackson<double> s({.frequency_hz = 100e3,
+                           .sound_speed_mps = 1500.0,
+                           .materials = {sediment_preset<double>(sediment::clay), sediment_preset<double>(sediment::rock)}});
     CHECK(s.material_count() == 2);
     CHECK(s.frequency_hz() == 100e3);
     CHECK(s.sound_speed_mps() == 1500.0);
@@ -103,8 +105,8 @@ TEST_CASE("the jackson policy gives each material its own sediment, and ids beyo
 }
 
 TEST_CASE("the jackson policy's bistatic equals its backscatter at the backscatter geometry and the direct model elsewhere") {
-    const jackson<float> sf(200e3f, 1500.0f, {sediment_preset<float>(sediment::medium_sand), sediment_preset<float>(sediment::sandy_mud)});
-    const jackson<double> sd(200e3, 1500.0, {sediment_preset<double>(sediment::medium_sand), sediment_preset<double>(sediment::sandy_mud)});
+    const jackson<float> sf({.frequency_hz = 200e3f, .sound_speed_mps = 1500.0f, .materials = {sediment_preset<float>(sediment::medium_sand), sediment_preset<float>(sediment::sandy_mud)}});
+    const jackson<double> sd({.frequency_hz = 200e3, .sound_speed_mps = 1500.0, .materials = {sediment_preset<double>(sediment::medium_sand), sediment_preset<double>(sediment::sandy_mud)}});
     for (std::uint32_t m = 0; m < 2; ++m)
         for (int i = 0; i <= 90; ++i) {
             const double g = deg_to_rad(double(i));
@@ -124,7 +126,7 @@ TEST_CASE("the jackson policy's bistatic equals its backscatter at the backscatt
 }
 
 TEST_CASE("the jackson policy answers every input with a finite, non-negative value") {
-    const jackson<float> s(100e3f, 1500.0f, sediment_preset<float>(sediment::rough_rock));
+    const jackson<float> s({.frequency_hz = 100e3f, .sound_speed_mps = 1500.0f, .materials = {sediment_preset<float>(sediment::rough_rock)}});
     const float nan = std::numeric_limits<float>::quiet_NaN();
     for (float g : {-1.0f, 0.0f, 1e-30f, 0.7f, sss::half_pi_v<float>, 3.0f, nan})
         for (float phi : {0.0f, 1.0f, sss::pi_v<float>, 10.0f, nan}) {
@@ -142,8 +144,8 @@ TEST_CASE("the jackson policy answers every input with a finite, non-negative va
 
 TEST_CASE("float and double jackson policies agree to within 0.01 dB") {
     for (const auto& row : sediment_table) {
-        const jackson<float> sf(50e3f, 1490.0f, sediment_preset<float>(row.id));
-        const jackson<double> sd(50e3, 1490.0, sediment_preset<double>(row.id));
+        const jackson<float> sf({.frequency_hz = 50e3f, .sound_speed_mps = 1490.0f, .materials = {sediment_preset<float>(row.id)}});
+        const jackson<double> sd({.frequency_hz = 50e3, .sound_speed_mps = 1490.0, .materials = {sediment_preset<double>(row.id)}});
         for (double deg = 0.2; deg <= 90.0; deg += 0.37) {
             const double g = deg_to_rad(deg);
             CAPTURE(row.name);

@@ -18,8 +18,16 @@ using jackson_d = sss::scattering::jackson<double>;
 using bouncing_d = sss::scattering::specular_bounce<jackson_d>;
 
 jackson_d sand() {
-    return jackson_d(100000.0, 1500.0, sss::scattering::sediment_preset<double>(sss::scattering::sediment::medium_sand));
+    return jackson_d({.frequency_hz = 100000.0,
+                      .sound_speed_mps = 1500.0,
+                      .materials = {sss::scattering::sediment_preset<double>(sss::scattering::sediment::medium_sand)}});
 }
+
+/// A policy built on specular_bounce that declares the bounce switched off: the simulator must read the value.
+struct bounce_declared_off : bouncing_d {
+    using bouncing_d::bouncing_d;
+    static constexpr bool specular_bounce_enabled = false;
+};
 
 template <class S>
 using sim_t = sss::simulator<S, sss::propagation::straight<double>, sss::beam::ideal_fan<double>, sss::motion::straight_line<double>>;
@@ -64,11 +72,11 @@ TEST_CASE("a bounce off the seabed onto a raised bank adds echoes at the summed 
             const double x = -20.0 + double(ix) * cell;
             h[iy * nx + ix] = x > 30.0 ? std::min(6.0, (x - 30.0) * 3.0) : 0.0;
         }
-    const sss::scene::height_field<double> bank(nx, ny, cell, {-20.0, -20.0}, h);
+    const sss::scene::height_field<double> bank({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {-20.0, -20.0}, .heights_m = h});
     sss::receiver_params rx;
     rx.max_range_m = 60;
-    const sim_t<jackson_d> plain(sand(), {}, sss::beam::ideal_fan<double>({1.0, 80.0, 40.0}), {}, rx);
-    const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, sss::beam::ideal_fan<double>({1.0, 80.0, 40.0}), {}, rx);
+    const sim_t<jackson_d> plain(sand(), {}, sss::beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = 80.0, .depression_deg = 40.0}), {}, rx);
+    const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, sss::beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = 80.0, .depression_deg = 40.0}), {}, rx);
     const auto a = plain.ping(bank, 0), b = bouncing.ping(bank, 0);
     // Port sees only flat seabed: identical.
     CHECK(a.port == b.port);
@@ -94,6 +102,14 @@ TEST_CASE("a bounce off the seabed onto a raised bank adds echoes at the summed 
     for (std::size_t k = std::size_t(t_bounce / plain.dt_s()) - 5; k < a.starboard.size(); ++k) bank_direct += a.starboard[k];
     CHECK(extra < bank_direct);
     CHECK(total(b.starboard) > total(a.starboard));
+
+    // The same policy with specular_bounce_enabled = false does not bounce: exactly the plain render.
+    const sim_t<bounce_declared_off> off(bounce_declared_off(sand()), {},
+                                         sss::beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = 80.0, .depression_deg = 40.0}),
+                                         {}, rx);
+    const auto c = off.ping(bank, 0);
+    CHECK(c.starboard == a.starboard);
+    CHECK(c.port == a.port);
 }
 
 TEST_CASE("a sphere above a flat seabed returns a second echo at the seabed-bounce travel time, only with the bounce") {
@@ -107,7 +123,7 @@ TEST_CASE("a sphere above a flat seabed returns a second echo at the seabed-boun
     const scene sc(flat_seabed<double>(0.0), object_set<double>(std::move(objs)));
     sss::receiver_params rx;
     rx.max_range_m = 40;
-    const sss::beam::ideal_fan<double> fan({1.0, 80.0, 40.0});
+    const sss::beam::ideal_fan<double> fan({.along_width_deg = 1.0, .vertical_width_deg = 80.0, .depression_deg = 40.0});
     const sss::motion::straight_line<double> still({{0.0, 0.0}, 0.0, 0.0, 10.0, 0.1});
     const sim_t<jackson_d> plain(sand(), {}, fan, still, rx);
     const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, fan, still, rx);

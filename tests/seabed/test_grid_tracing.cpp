@@ -34,12 +34,12 @@ struct plane {
     vec3<double> normal() const { return glm::normalize(vec3<double>{-bx, -by, 1}); }
 };
 
-template <class T> height_field<T> plane_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o, plane p) {
+template <class T> height_field<T> plane_field({.nx = std::size_t nx, .ny = std::size_t ny, .cell_m = double cell, .origin_m = vec2<double> o, .heights_m = plane p}) {
     std::vector<T> h(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t ix = 0; ix < nx; ++ix)
             h[iy * nx + ix] = T(p.at(o.x + double(ix) * cell, o.y + double(iy) * cell));
-    return height_field<T>(nx, ny, T(cell), vec2<T>(o), std::move(h));
+    return height_field<T>({.nx = nx, .ny = ny, .cell_m = T(cell), .origin_m = vec2<T>(o), .heights_m = std::move(h)});
 }
 
 template <class T> double eps() { return double(std::numeric_limits<T>::epsilon()); }
@@ -166,7 +166,7 @@ TEST_CASE_TEMPLATE("A ray from below the surface is not stopped on its way out, 
     std::vector<T> h(21 * 5);
     for (std::size_t iy = 0; iy < 5; ++iy)
         for (std::size_t ix = 0; ix < 21; ++ix) h[iy * 21 + ix] = T(std::abs(double(ix) * 0.5 - 5));
-    const height_field<T> hf(21, 5, T(0.5), {}, h);
+    const height_field<T> hf({.nx = 21, .ny = 5, .cell_m = T(0.5), .heights_m = h});
     // From (1, 1, 3.5), 0.5 m under the west slope, along (1, 0, 0.1): it leaves the west slope at
     // x = 16/11 and meets the east slope h = x - 5 where 3.4 + 0.1 x = x - 5: x = 28/3.
     const vec3<double> d = glm::normalize(vec3<double>{1, 0, 0.1});
@@ -274,7 +274,7 @@ TEST_CASE_TEMPLATE("On grids of 1 x 1, 2 x 2 and 5 x 3 cells the tracer agrees w
         std::vector<T> h(nx * ny);
         for (auto& v : h) v = T(gen.uniform(-1, 1));
         const double cell = 0.7;
-        const height_field<T> hf(nx, ny, T(cell), vec2<T>{T(1), T(-2)}, h);
+        const height_field<T> hf({.nx = nx, .ny = ny, .cell_m = T(cell), .origin_m = vec2<T>{T(1), T(-2)}, .heights_m = h});
         // All triangles in world coordinates.
         std::vector<std::array<lvec3, 3>> tris;
         auto V = [&](std::size_t ix, std::size_t iy) {

@@ -119,8 +119,7 @@ TEST_CASE("In float, fans and single rays differ only where a ray grazes the sur
     // Float rounding decides near-tangent touches differently in the two formulations; any difference
     // must be such a touch, as judged in double on the same heights.
     const auto hf = rough_field<float>(601, 411, 0.25, {-20, 10}, 42);
-    const height_field<double> hd(601, 411, 0.25, {-20, 10},
-                                  std::vector<double>(hf.heights_m().begin(), hf.heights_m().end()));
+    const height_field<double> hd({.nx = 601, .ny = 411, .cell_m = 0.25, .origin_m = {-20, 10}, .heights_m = std::vector<double>(hf.heights_m().begin(), hf.heights_m().end())});
     rng gen{29};
     long compared = 0, differ = 0;
     for (int p = 0; p < 20; ++p) {

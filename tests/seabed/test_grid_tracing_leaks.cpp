@@ -74,7 +74,7 @@ template <class T> tally plane_rays(long n, std::uint64_t seed) {
     for (std::size_t iy = 0; iy < n_side; ++iy)
         for (std::size_t ix = 0; ix < n_side; ++ix)
             h[iy * n_side + ix] = T(a + bx * double(ix) * cell + by * double(iy) * cell);
-    const height_field<T> hf(n_side, n_side, T(cell), vec2<T>{T(0), T(0)}, h);
+    const height_field<T> hf({.nx = n_side, .ny = n_side, .cell_m = T(cell), .origin_m = vec2<T>{T(0), T(0)}, .heights_m = h});
     const double eps = std::numeric_limits<T>::epsilon();
     rng g{seed};
     tally t;
@@ -114,7 +114,7 @@ template <class T> tally rough_rays(long n, std::uint64_t seed) {
             1.0 * std::sin(0.2 * x + 0.1 * y) + 0.3 * std::sin(1.1 * x - 0.7 * y) + 0.15 * (noise.uniform() - 0.5);
         return std::min(z, 0.9); // flat plateaus: exact ties
     });
-    const height_field<T> hf(n_side, n_side, T(cell), vec2<T>{T(0), T(0)}, h);
+    const height_field<T> hf({.nx = n_side, .ny = n_side, .cell_m = T(cell), .origin_m = vec2<T>{T(0), T(0)}, .heights_m = h});
     const double top = double(hf.top_m());
     const double margin = std::is_same_v<T, float> ? 1e-4 : 1e-9;
     rng g{seed};

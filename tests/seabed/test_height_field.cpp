@@ -42,35 +42,35 @@ static_assert(sss::Scene<height_field<float>> && sss::Scene<height_field<double>
 TEST_CASE_TEMPLATE("A height field rejects bad sizes, spacing and origins, and non-finite heights by vertex", T, float,
                    double) {
     const std::vector<T> four(4, T(1));
-    CHECK(throws_naming([&] { height_field<T>(1, 4, T(1), {}, four); }, "height_field.nx"));
-    CHECK(throws_naming([&] { height_field<T>(4, 1, T(1), {}, four); }, "height_field.ny"));
-    CHECK(throws_naming([&] { height_field<T>(2, 2, T(0), {}, four); }, "height_field.cell_m"));
-    CHECK(throws_naming([&] { height_field<T>(2, 2, T(-1), {}, four); }, "height_field.cell_m"));
-    CHECK(throws_naming([&] { height_field<T>(2, 2, std::numeric_limits<T>::infinity(), {}, four); },
+    CHECK(throws_naming([&] { height_field<T>({.nx = 1, .ny = 4, .cell_m = T(1), .heights_m = four}); }, "height_field.nx"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 4, .ny = 1, .cell_m = T(1), .heights_m = four}); }, "height_field.ny"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 2, .ny = 2, .cell_m = T(0), .heights_m = four}); }, "height_field.cell_m"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 2, .ny = 2, .cell_m = T(-1), .heights_m = four}); }, "height_field.cell_m"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 2, .ny = 2, .cell_m = std::numeric_limits<T>::infinity(), .heights_m = four}); },
                            "height_field.cell_m"));
     CHECK(throws_naming(
         [&] {
-            height_field<T>(2, 2, T(1), vec2<T>{std::numeric_limits<T>::quiet_NaN(), T(0)}, four);
+            height_field<T>({.nx = 2, .ny = 2, .cell_m = T(1), .origin_m = vec2<T>{std::numeric_limits<T>::quiet_NaN(), T(0)}, .heights_m = four});
         },
         "height_field.origin_m.x"));
-    CHECK(throws_naming([&] { height_field<T>(2, 3, T(1), {}, four); }, "height_field.heights_m"));
-    CHECK(throws_naming([&] { height_field<T>(2, 2, T(1), {}, four, std::vector<std::uint32_t>(2)); },
+    CHECK(throws_naming([&] { height_field<T>({.nx = 2, .ny = 3, .cell_m = T(1), .heights_m = four}); }, "height_field.heights_m"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 2, .ny = 2, .cell_m = T(1), .heights_m = four, .materials = std::vector<std::uint32_t>(2)}); },
                            "height_field.materials"));
-    CHECK(throws_naming([&] { height_field<T>(2, 2, T(1), {}, four, {}, std::vector<std::uint32_t>(3)); },
+    CHECK(throws_naming([&] { height_field<T>({.nx = 2, .ny = 2, .cell_m = T(1), .heights_m = four, .regions = std::vector<std::uint32_t>(3)}); },
                            "height_field.regions"));
 
     std::vector<T> h(12, T(0));
     h[7] = std::numeric_limits<T>::quiet_NaN(); // vertex (ix 3, iy 1) of a 4 x 3 grid
-    CHECK(throws_naming([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
-    CHECK(throws_naming([&] { height_field<T>(4, 3, T(1), {}, h); }, "(ix 3, iy 1)"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 4, .ny = 3, .cell_m = T(1), .heights_m = h}); }, "heights_m[7]"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 4, .ny = 3, .cell_m = T(1), .heights_m = h}); }, "(ix 3, iy 1)"));
     h[7] = -std::numeric_limits<T>::infinity();
-    CHECK(throws_naming([&] { height_field<T>(4, 3, T(1), {}, h); }, "heights_m[7]"));
+    CHECK(throws_naming([&] { height_field<T>({.nx = 4, .ny = 3, .cell_m = T(1), .heights_m = h}); }, "heights_m[7]"));
 }
 
 TEST_CASE_TEMPLATE("Inside a cell the surface is the two triangles split by the south-west to north-east diagonal", T,
                    float, double) {
     // One cell with corners h00 = 0, h10 = 1, h01 = 2, h11 = 0.5, 2 m cells, origin (10, 20).
-    const height_field<T> hf(2, 2, T(2), vec2<T>{T(10), T(20)}, {T(0), T(1), T(2), T(0.5)});
+    const height_field<T> hf({.nx = 2, .ny = 2, .cell_m = T(2), .origin_m = vec2<T>{T(10), T(20)}, .heights_m = {T(0), T(1), T(2), T(0.5)}});
     const double tol = 4 * std::numeric_limits<T>::epsilon() * 4;
     // Corners.
     CHECK(hf.seabed_height_m(T(10), T(20)) == doctest::Approx(0.0).epsilon(tol));
@@ -88,7 +88,7 @@ TEST_CASE_TEMPLATE("Inside a cell the surface is the two triangles split by the 
 TEST_CASE_TEMPLATE("Outside its footprint the surface continues at the height of the nearest boundary point", T, float,
                    double) {
     const auto h = sample<T>(5, 4, 0.5, {-1.0, 2.0}, [](double x, double y) { return 0.3 * x - 0.2 * y + 1.0; });
-    const height_field<T> hf(5, 4, T(0.5), vec2<T>{T(-1), T(2)}, h);
+    const height_field<T> hf({.nx = 5, .ny = 4, .cell_m = T(0.5), .origin_m = vec2<T>{T(-1), T(2)}, .heights_m = h});
     // Footprint: x in [-1, 1], y in [2, 3.5].
     CHECK(double(hf.seabed_height_m(T(-5), T(3))) == doctest::Approx(0.3 * -1 - 0.2 * 3 + 1).epsilon(1e-5));
     CHECK(double(hf.seabed_height_m(T(7), T(-9))) == doctest::Approx(0.3 * 1 - 0.2 * 2 + 1).epsilon(1e-5));
@@ -99,7 +99,7 @@ TEST_CASE_TEMPLATE("top_m and bottom_m are the highest and lowest vertices", T, 
     std::vector<T> h(30, T(0.5));
     h[17] = T(3.25);
     h[4] = T(-7.5);
-    const height_field<T> hf(6, 5, T(1), {}, h);
+    const height_field<T> hf({.nx = 6, .ny = 5, .cell_m = T(1), .heights_m = h});
     CHECK(hf.top_m() == T(3.25));
     CHECK(hf.bottom_m() == T(-7.5));
 }
@@ -111,7 +111,7 @@ TEST_CASE_TEMPLATE("A hit carries the material and region of the cell it lands i
         mat[c] = 10 + c;
         reg[c] = 100 + c;
     }
-    const height_field<T> hf(4, 3, T(1), {}, std::vector<T>(12, T(0)), mat, reg);
+    const height_field<T> hf({.nx = 4, .ny = 3, .cell_m = T(1), .heights_m = std::vector<T>(12, T(0)), .materials = mat, .regions = reg});
     for (std::uint32_t iy = 0; iy < 2; ++iy)
         for (std::uint32_t ix = 0; ix < 3; ++ix) {
             const sss::ray<T> r{vec3<T>{T(ix) + T(0.3), T(iy) + T(0.6), T(5)}, vec3<T>{T(0), T(0), T(-1)}};
@@ -123,7 +123,7 @@ TEST_CASE_TEMPLATE("A hit carries the material and region of the cell it lands i
             CHECK(hf.material(ix, iy) == 10 + iy * 3 + ix);
             CHECK(hf.region(ix, iy) == 100 + iy * 3 + ix);
         }
-    const height_field<T> plain(4, 3, T(1), {}, std::vector<T>(12, T(0)));
+    const height_field<T> plain({.nx = 4, .ny = 3, .cell_m = T(1), .heights_m = std::vector<T>(12, T(0))});
     const auto hit = plain.intersect(sss::ray<T>{vec3<T>{T(1.5), T(1.5), T(1)}, vec3<T>{T(0), T(0), T(-1)}}, T(10));
     REQUIRE(hit);
     CHECK(hit->material == 0);
@@ -136,7 +136,7 @@ TEST_CASE_TEMPLATE("Geometric normals are per triangle; smooth normals are conti
     const double c = 0.5;
     const auto f = [](double x, double y) { return 0.05 * (x * x + 2 * y * y); };
     const auto h = sample<T>(21, 17, c, {-5.0, -4.0}, f);
-    const height_field<T> hf(21, 17, T(c), vec2<T>{T(-5), T(-4)}, h);
+    const height_field<T> hf({.nx = 21, .ny = 17, .cell_m = T(c), .origin_m = vec2<T>{T(-5), T(-4)}, .heights_m = h});
     const auto& g = hf.grid();
     const double tol = std::is_same_v<T, float> ? 2e-5 : 1e-12;
     for (std::int32_t iy = 0; iy + 1 < g.ny; ++iy)
@@ -174,7 +174,7 @@ TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a t
     // 37 x 23 vertices: partial blocks at the edges of every level.
     const auto h = sample<T>(37, 23, 1.0, {0.0, 0.0},
                              [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.7 * y) + 0.01 * x * y; });
-    const height_field<T> hf(37, 23, T(1), {}, h);
+    const height_field<T> hf({.nx = 37, .ny = 23, .cell_m = T(1), .heights_m = h});
     const auto& p = hf.pyramid();
     const auto& g = hf.grid();
     REQUIRE(p.levels() == 6); // 36 cells -> 18, 9, 5, 3, 2, 1
@@ -193,10 +193,10 @@ TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a t
 }
 
 TEST_CASE_TEMPLATE("A copied or moved height field traces its own heights", T, float, double) {
-    height_field<T> a(3, 3, T(1), {}, std::vector<T>(9, T(2)));
+    height_field<T> a({.nx = 3, .ny = 3, .cell_m = T(1), .heights_m = std::vector<T>(9, T(2))});
     const height_field<T> b = a;
     height_field<T> c(std::move(a));
-    a = height_field<T>(2, 2, T(1), {}, std::vector<T>(4, T(-1)));
+    a = height_field<T>({.nx = 2, .ny = 2, .cell_m = T(1), .heights_m = std::vector<T>(4, T(-1))});
     const sss::ray<T> down{vec3<T>{T(0.5), T(0.5), T(10)}, vec3<T>{T(0), T(0), T(-1)}};
     REQUIRE(b.intersect(down, T(100)));
     REQUIRE(c.intersect(down, T(100)));

@@ -26,7 +26,7 @@ TEST_CASE_TEMPLATE("a flat height field matches the quadrature oracle as closely
     // 257 x 257 vertices at 0.4 m around the towfish, all at z = 2 m.
     const std::size_t n = 257;
     const T cell = T(0.4);
-    const sss::scene::height_field<T> grid(n, n, cell, {T(-48), T(-55)}, std::vector<T>(n * n, T(2)));
+    const sss::scene::height_field<T> grid({.nx = n, .ny = n, .cell_m = cell, .origin_m = {T(-48), T(-55)}, .heights_m = std::vector<T>(n * n, T(2))});
     const sss::scene::flat_seabed<T> plane(T(2));
     const auto from_grid = sim.ping(grid, 0);
     const auto from_plane = sim.ping(plane, 0);
@@ -90,7 +90,7 @@ TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are
             h[iy * n + ix] = T(1.5 * std::sin(0.09 * x + 0.04 * y) + 0.3 * std::sin(1.3 * x - 0.7 * y) +
                                0.2 * std::sin(0.5 * y) * std::cos(2.2 * x));
         }
-    const sss::scene::height_field<T> relief(n, n, T(0.4), {T(-46), T(-50)}, std::move(h));
+    const sss::scene::height_field<T> relief({.nx = n, .ny = n, .cell_m = T(0.4), .origin_m = {T(-46), T(-50)}, .heights_m = std::move(h)});
     static_assert(sss::BatchScene<sss::scene::height_field<T>>);
     static_assert(!sss::BatchScene<one_ray_at_a_time<sss::scene::height_field<T>>>);
     for (std::size_t i = 0; i < 3; ++i) {

@@ -81,8 +81,7 @@ inline std::vector<std::uint32_t> cell_ids(std::size_t nx, std::size_t ny) {
 /// - The noise (0.1 m) makes every cell's triangles different, so a hit in the wrong cell shows.
 /// Every cell's region id is its index (cell_ids), so a hit's label names its cell.
 template <class T>
-sss::scene::height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell_m, sss::vec2<double> origin,
-                                        std::uint64_t seed) {
+sss::scene::height_field<T> rough_field({.nx = std::size_t nx, .ny = std::size_t ny, .cell_m = double cell_m, .origin_m = sss::vec2<double> origin, .heights_m = std::uint64_t seed}) {
     rng noise{seed};
     auto h = sample_heights<T>(nx, ny, cell_m, [&noise](double x, double y) {
         double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
@@ -91,8 +90,7 @@ sss::scene::height_field<T> rough_field(std::size_t nx, std::size_t ny, double c
         if (x + 0.5 * y > 60 && x + 0.5 * y < 75) z -= 1.5; // a trench with near-vertical walls
         return z;
     });
-    return sss::scene::height_field<T>(nx, ny, T(cell_m), sss::vec2<T>(origin), std::move(h), {},
-                                       cell_ids(nx, ny));
+    return sss::scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = T(cell_m), .origin_m = sss::vec2<T>(origin), .heights_m = std::move(h), .regions = cell_ids(nx, ny)});
 }
 
 /// Rolling relief with white noise and a material per cell, over an nx x ny grid of spacing `cell_m` (m)
@@ -103,8 +101,7 @@ sss::scene::height_field<T> rough_field(std::size_t nx, std::size_t ny, double c
 /// that makes every cell's triangles and normals different. Cell c has region c and material c % 5, so a
 /// hit's label names its cell and its material can be checked against that label.
 template <class T>
-sss::scene::height_field<T> rolling_field(std::size_t nx, std::size_t ny, double cell_m, sss::vec2<double> origin,
-                                          std::uint64_t seed) {
+sss::scene::height_field<T> rolling_field({.nx = std::size_t nx, .ny = std::size_t ny, .cell_m = double cell_m, .origin_m = sss::vec2<double> origin, .heights_m = std::uint64_t seed}) {
     rng noise{seed};
     auto h = sample_heights<T>(nx, ny, cell_m, [&noise](double x, double y) {
         return 1.1 * std::sin(0.13 * x + 0.04 * y) + 0.3 * std::sin(0.8 * x - 0.7 * y + 1) +
@@ -112,8 +109,7 @@ sss::scene::height_field<T> rolling_field(std::size_t nx, std::size_t ny, double
     });
     std::vector<std::uint32_t> regions = cell_ids(nx, ny), materials(regions.size());
     for (std::size_t c = 0; c < materials.size(); ++c) materials[c] = std::uint32_t(c % 5);
-    return sss::scene::height_field<T>(nx, ny, T(cell_m), sss::vec2<T>(origin), std::move(h), std::move(materials),
-                                       std::move(regions));
+    return sss::scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = T(cell_m), .origin_m = sss::vec2<T>(origin), .heights_m = std::move(h), .materials = std::move(materials), .regions = std::move(regions)});
 }
 
 } // namespace sss_test

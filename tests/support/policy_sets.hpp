@@ -121,7 +121,9 @@ template <class T> struct matrix_policy<sss::motion::straight_line<T>> {
 template <class T> struct matrix_policy<sss::scattering::jackson<T>> {
     // Medium sand at 100 kHz: the Kirchhoff peak, the composite-roughness and volume terms all contribute.
     static sss::scattering::jackson<T> make() {
-        return sss::scattering::jackson<T>{T(100000), T(1500), sss::scattering::sediment_preset<T>("medium sand")};
+        return sss::scattering::jackson<T>({.frequency_hz = T(100000),
+                                            .sound_speed_mps = T(1500),
+                                            .materials = {sss::scattering::sediment_preset<T>("medium sand")}});
     }
     static void describe(oracle_setup&, const sss::scattering::jackson<T>&) {}
 };

@@ -98,7 +98,7 @@ template <Real T>
     return std::sqrt(re * re + im * im) / std::abs(sum);
 }
 
-namespace directivity_detail {
+namespace detail {
 /// The x in (0, pi) where sinc(x) = level, for a level in (0, 1): Newton from a bisection bracket.
 template <Real T> [[nodiscard]] inline T sinc_inverse(T level) noexcept {
     T lo = 0, hi = pi_v<T>;
@@ -122,18 +122,18 @@ template <Real T> [[nodiscard]] inline T array_factor_inverse(std::size_t count,
 template <Real T> [[nodiscard]] inline T full_width_from_sine(T s) noexcept {
     return s >= T(1) ? pi_v<T> : T(2) * std::asin(s);
 }
-} // namespace directivity_detail
+} // namespace detail
 
 /// Full width (rad) of a uniform line aperture's main lobe at the one-way intensity level `power_ratio`
 /// (linear, in (0, 1); 0.5 is the half-power or "-3 dB" width): 2 asin(x lambda / (pi L)) with
 /// sinc(x)^2 = power_ratio. For half power x = 1.391557 and the width is about 0.885893 lambda / L.
 /// Returns pi when the level is not reached in the front half-space (aperture too short).
 template <Real T> [[nodiscard]] inline T line_aperture_width_rad(T length_m, T wavelength_m, T power_ratio) {
-    sss::detail::require_positive(length_m, "length_m");
-    sss::detail::require_positive(wavelength_m, "wavelength_m");
-    sss::detail::require(power_ratio > T(0) && power_ratio < T(1), "power_ratio", "must lie in (0, 1)");
-    const T x = directivity_detail::sinc_inverse(std::sqrt(power_ratio));
-    return directivity_detail::full_width_from_sine(x * wavelength_m / (pi_v<T> * length_m));
+    sss::require_positive(length_m, "length_m");
+    sss::require_positive(wavelength_m, "wavelength_m");
+    sss::require(power_ratio > T(0) && power_ratio < T(1), "power_ratio", "must lie in (0, 1)");
+    const T x = detail::sinc_inverse(std::sqrt(power_ratio));
+    return detail::full_width_from_sine(x * wavelength_m / (pi_v<T> * length_m));
 }
 
 /// Half-power (-3.01 dB one way) full width of a uniform line aperture (rad).
@@ -144,9 +144,9 @@ template <Real T> [[nodiscard]] inline T line_aperture_half_power_width_rad(T le
 /// Angle of the first null of a uniform line aperture from its axis (rad): sin theta = lambda / L.
 /// Throws invalid_parameter("length_m") when L <= lambda (no null in the front half-space).
 template <Real T> [[nodiscard]] inline T line_aperture_first_null_rad(T length_m, T wavelength_m) {
-    sss::detail::require_positive(length_m, "length_m");
-    sss::detail::require_positive(wavelength_m, "wavelength_m");
-    sss::detail::require(length_m > wavelength_m, "length_m", "must exceed the wavelength for a null to exist");
+    sss::require_positive(length_m, "length_m");
+    sss::require_positive(wavelength_m, "wavelength_m");
+    sss::require(length_m > wavelength_m, "length_m", "must exceed the wavelength for a null to exist");
     return std::asin(wavelength_m / length_m);
 }
 
@@ -154,10 +154,10 @@ template <Real T> [[nodiscard]] inline T line_aperture_first_null_rad(T length_m
 /// where the one-way level is sinc(4.4934)^2 = -13.26 dB. Throws invalid_parameter("length_m") when the
 /// sidelobe lies beyond the front half-space.
 template <Real T> [[nodiscard]] inline T line_aperture_first_sidelobe_rad(T length_m, T wavelength_m) {
-    sss::detail::require_positive(length_m, "length_m");
-    sss::detail::require_positive(wavelength_m, "wavelength_m");
+    sss::require_positive(length_m, "length_m");
+    sss::require_positive(wavelength_m, "wavelength_m");
     const T s = sinc_first_sidelobe_x_v<T> * wavelength_m / (pi_v<T> * length_m);
-    sss::detail::require(s < T(1), "length_m", "too short for a sidelobe in the front half-space");
+    sss::require(s < T(1), "length_m", "too short for a sidelobe in the front half-space");
     return std::asin(s);
 }
 
@@ -172,12 +172,12 @@ template <Real T> [[nodiscard]] inline T line_aperture_first_sidelobe_db() noexc
 /// the level is not reached in the front half-space.
 template <Real T>
 [[nodiscard]] inline T array_width_rad(std::size_t count, T pitch_m, T wavelength_m, T power_ratio) {
-    sss::detail::require(count >= 2, "count", "must be at least 2");
-    sss::detail::require_positive(pitch_m, "pitch_m");
-    sss::detail::require_positive(wavelength_m, "wavelength_m");
-    sss::detail::require(power_ratio > T(0) && power_ratio < T(1), "power_ratio", "must lie in (0, 1)");
-    const T delta = directivity_detail::array_factor_inverse(count, std::sqrt(power_ratio));
-    return directivity_detail::full_width_from_sine(delta * wavelength_m / (pi_v<T> * pitch_m));
+    sss::require(count >= 2, "count", "must be at least 2");
+    sss::require_positive(pitch_m, "pitch_m");
+    sss::require_positive(wavelength_m, "wavelength_m");
+    sss::require(power_ratio > T(0) && power_ratio < T(1), "power_ratio", "must lie in (0, 1)");
+    const T delta = detail::array_factor_inverse(count, std::sqrt(power_ratio));
+    return detail::full_width_from_sine(delta * wavelength_m / (pi_v<T> * pitch_m));
 }
 
 /// Direction cosine of the first null of a uniform array from its steered axis: u - u0 = lambda / (N d).

@@ -26,13 +26,13 @@ public:
     ideal_fan() : ideal_fan(ideal_fan_params<T>{}) {}
 
     explicit ideal_fan(const ideal_fan_params<T>& p) : p_(p) {
-        sss::detail::require_finite(p.along_width_deg, "ideal_fan.along_width_deg");
-        sss::detail::require(p.along_width_deg > T(0) && p.along_width_deg < T(180), "ideal_fan.along_width_deg",
+        sss::require_finite(p.along_width_deg, "ideal_fan.along_width_deg");
+        sss::require(p.along_width_deg > T(0) && p.along_width_deg < T(180), "ideal_fan.along_width_deg",
                         "must lie in (0, 180) degrees");
-        sss::detail::require_finite(p.vertical_width_deg, "ideal_fan.vertical_width_deg");
-        sss::detail::require(p.vertical_width_deg > T(0) && p.vertical_width_deg <= T(180), "ideal_fan.vertical_width_deg",
+        sss::require_finite(p.vertical_width_deg, "ideal_fan.vertical_width_deg");
+        sss::require(p.vertical_width_deg > T(0) && p.vertical_width_deg <= T(180), "ideal_fan.vertical_width_deg",
                         "must lie in (0, 180] degrees");
-        sss::detail::require_in_range(p.depression_deg, T(-90), T(90), "ideal_fan.depression_deg");
+        sss::require_in_range(p.depression_deg, T(-90), T(90), "ideal_fan.depression_deg");
         const T half_along = deg_to_rad(p.along_width_deg) / T(2);
         const T lo = deg_to_rad(p.depression_deg - p.vertical_width_deg / T(2));
         const T hi = deg_to_rad(p.depression_deg + p.vertical_width_deg / T(2));

@@ -74,11 +74,11 @@ public:
     planar_array() : planar_array(planar_array_params<T>{}) {}
 
     explicit planar_array(const planar_array_params<T>& p) : p_(p) {
-        sss::detail::require_positive(p.frequency_hz, "planar_array.frequency_hz");
-        sss::detail::require_positive(p.sound_speed_mps, "planar_array.sound_speed_mps");
-        sss::detail::require_in_range(p.depression_deg, T(-90), T(90), "planar_array.depression_deg");
-        sss::detail::require_finite(p.threshold_db, "planar_array.threshold_db");
-        sss::detail::require(p.threshold_db < T(0), "planar_array.threshold_db", "must be < 0 dB");
+        sss::require_positive(p.frequency_hz, "planar_array.frequency_hz");
+        sss::require_positive(p.sound_speed_mps, "planar_array.sound_speed_mps");
+        sss::require_in_range(p.depression_deg, T(-90), T(90), "planar_array.depression_deg");
+        sss::require_finite(p.threshold_db, "planar_array.threshold_db");
+        sss::require(p.threshold_db < T(0), "planar_array.threshold_db", "must be < 0 dB");
         validate(p.transmit.along, "planar_array.transmit.along");
         validate(p.transmit.vertical, "planar_array.transmit.vertical");
         if (p.receive) {
@@ -161,23 +161,23 @@ private:
     };
 
     static void validate(const array_axis<T>& a, const std::string& name) {
-        sss::detail::require(a.count >= 1, name + ".count", "must be at least 1");
-        sss::detail::require_positive(a.element_m, name + ".element_m");
+        sss::require(a.count >= 1, name + ".count", "must be at least 1");
+        sss::require_positive(a.element_m, name + ".element_m");
         if (a.count > 1) {
-            sss::detail::require_positive(a.pitch_m, name + ".pitch_m");
-            sss::detail::require(a.pitch_m >= a.element_m, name + ".pitch_m",
+            sss::require_positive(a.pitch_m, name + ".pitch_m");
+            sss::require(a.pitch_m >= a.element_m, name + ".pitch_m",
                             "must be at least element_m (elements cannot overlap)");
         }
         if (!a.shading.empty()) {
-            sss::detail::require(a.shading.size() == a.count, name + ".shading",
-                            "must hold one weight per element (" + std::to_string(a.count) + "), got " +
-                                std::to_string(a.shading.size()));
+            sss::require(a.shading.size() == a.count, name + ".shading",
+                            [&] { return "must hold one weight per element (" + std::to_string(a.count) + "), got " +
+                                std::to_string(a.shading.size()); });
             T sum = 0;
             for (T w : a.shading) {
-                sss::detail::require(std::isfinite(w) && w >= T(0), name + ".shading", "weights must be finite and >= 0");
+                sss::require(std::isfinite(w) && w >= T(0), name + ".shading", "weights must be finite and >= 0");
                 sum += w;
             }
-            sss::detail::require(sum > T(0), name + ".shading", "weights must not all be 0");
+            sss::require(sum > T(0), name + ".shading", "weights must not all be 0");
         }
     }
 

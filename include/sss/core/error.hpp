@@ -4,10 +4,12 @@
 /// Messages name what was wrong: the parameter, or the file and line (or byte offset).
 
 #include <cmath>
+#include <concepts>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace sss {
 
@@ -51,31 +53,40 @@ private:
     std::size_t byte_offset_;
 };
 
-namespace detail {
+// ---------------------------------------------------------------------------------------------
+// Validation helpers. Each throws invalid_parameter naming the parameter; the message is composed
+// only when the check fails, so a passing check costs a comparison (they are used on hot paths too).
+
 /// Throws invalid_parameter(name, why) unless `ok`.
 inline void require(bool ok, std::string_view name, std::string_view why) {
-    if (!ok) throw invalid_parameter(name, why);
+    if (!ok) [[unlikely]] throw invalid_parameter(name, why);
+}
+/// Throws invalid_parameter(name, why()) unless `ok`; `why` (returning a string) is called only on failure,
+/// so a message with numbers in it costs nothing when the check passes:
+/// `sss::require(n == m, "x.paths", [&] { return "has " + std::to_string(n) + " entries"; })`.
+template <std::invocable Why> void require(bool ok, std::string_view name, Why&& why) {
+    if (!ok) [[unlikely]] throw invalid_parameter(name, std::forward<Why>(why)());
 }
 /// Throws unless x is finite.
 template <class T> void require_finite(T x, std::string_view name) {
-    require(std::isfinite(x), name, "must be finite, got " + std::to_string(x));
+    if (!std::isfinite(x)) [[unlikely]] throw invalid_parameter(name, "must be finite, got " + std::to_string(x));
 }
 /// Throws unless x is finite and > 0.
 template <class T> void require_positive(T x, std::string_view name) {
     require_finite(x, name);
-    require(x > T(0), name, "must be > 0, got " + std::to_string(x));
+    if (!(x > T(0))) [[unlikely]] throw invalid_parameter(name, "must be > 0, got " + std::to_string(x));
 }
 /// Throws unless x is finite and >= 0.
 template <class T> void require_non_negative(T x, std::string_view name) {
     require_finite(x, name);
-    require(x >= T(0), name, "must be >= 0, got " + std::to_string(x));
+    if (!(x >= T(0))) [[unlikely]] throw invalid_parameter(name, "must be >= 0, got " + std::to_string(x));
 }
 /// Throws unless lo <= x <= hi (and x finite).
 template <class T> void require_in_range(T x, T lo, T hi, std::string_view name) {
     require_finite(x, name);
-    require(x >= lo && x <= hi, name,
-            "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
+    if (!(x >= lo && x <= hi)) [[unlikely]]
+        throw invalid_parameter(name, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                                          std::to_string(x));
 }
-} // namespace detail
 
 } // namespace sss

@@ -333,7 +333,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     const vec2<T> origin{static_cast<T>(x_center ? *x_ll : *x_ll + half),
                          static_cast<T>(y_center ? *y_ll : *y_ll + half)};
     try {
-        return scene::height_field<T>(nx, ny, static_cast<T>(*cellsize), origin, std::move(heights));
+        return scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = static_cast<T>(*cellsize), .origin_m = origin, .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
         throw fail(0, e.what());
     }
@@ -458,8 +458,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
         heights[i] = static_cast<T>(h);
     }
     try {
-        return scene::height_field<T>(*nx, *ny, static_cast<T>(*cell),
-                                      vec2<T>{static_cast<T>(*ox), static_cast<T>(*oy)}, std::move(heights));
+        return scene::height_field<T>({.nx = *nx, .ny = *ny, .cell_m = static_cast<T>(*cell), .origin_m = vec2<T>{static_cast<T>(*ox), static_cast<T>(*oy)}, .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
         throw file_error(side_path, 0, e.what());
     }
@@ -519,12 +518,12 @@ template <Real T> [[nodiscard]] pgm_vertical<T> pgm16_fit(const scene::height_fi
 /// spacing cell_m and vertex (0, 0) (the first sample of the last row: south-west) at origin_m.
 template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::string& path, T cell_m, vec2<T> origin_m,
                                                                   pgm_vertical<T> vertical) {
-    sss::detail::require_positive(cell_m, "read_pgm16.cell_m");
-    sss::detail::require_finite(origin_m.x, "read_pgm16.origin_m.x");
-    sss::detail::require_finite(origin_m.y, "read_pgm16.origin_m.y");
-    sss::detail::require_finite(vertical.scale_m, "read_pgm16.vertical.scale_m");
-    sss::detail::require(vertical.scale_m != T(0), "read_pgm16.vertical.scale_m", "must not be 0");
-    sss::detail::require_finite(vertical.offset_m, "read_pgm16.vertical.offset_m");
+    sss::require_positive(cell_m, "read_pgm16.cell_m");
+    sss::require_finite(origin_m.x, "read_pgm16.origin_m.x");
+    sss::require_finite(origin_m.y, "read_pgm16.origin_m.y");
+    sss::require_finite(vertical.scale_m, "read_pgm16.vertical.scale_m");
+    sss::require(vertical.scale_m != T(0), "read_pgm16.vertical.scale_m", "must not be 0");
+    sss::require_finite(vertical.offset_m, "read_pgm16.vertical.offset_m");
     const std::string data = detail::read_all(path);
     std::size_t pos = 0;
     auto fail = [&](std::size_t offset, const std::string& why) { return file_error(path, 0, why, offset); };
@@ -578,16 +577,16 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::str
             heights[iy * width + ix] = h;
         }
     }
-    return scene::height_field<T>(width, height, cell_m, origin_m, std::move(heights));
+    return scene::height_field<T>({.nx = width, .ny = height, .cell_m = cell_m, .origin_m = origin_m, .heights_m = std::move(heights)});
 }
 
 /// Writes `hf` as a 16-bit binary PGM with sample = round((h - offset_m) / scale_m); throws
 /// invalid_parameter naming the vertex when a height maps outside [0, 65535].
 template <Real T>
 void write_pgm16(const std::string& path, const scene::height_field<T>& hf, pgm_vertical<T> vertical) {
-    sss::detail::require_finite(vertical.scale_m, "write_pgm16.vertical.scale_m");
-    sss::detail::require(vertical.scale_m != T(0), "write_pgm16.vertical.scale_m", "must not be 0");
-    sss::detail::require_finite(vertical.offset_m, "write_pgm16.vertical.offset_m");
+    sss::require_finite(vertical.scale_m, "write_pgm16.vertical.scale_m");
+    sss::require(vertical.scale_m != T(0), "write_pgm16.vertical.scale_m", "must not be 0");
+    sss::require_finite(vertical.offset_m, "write_pgm16.vertical.offset_m");
     const std::size_t nx = hf.nx(), ny = hf.ny();
     std::string buf = "P5\n# sss height field: h_m = offset_m + scale_m * sample; scale_m ";
     detail::append_number(buf, vertical.scale_m);

@@ -48,7 +48,7 @@
 namespace sss::io {
 
 // Not `detail`: a nested namespace of that name would hide sss::detail from the rest of sss::io.
-namespace svp_detail {
+namespace detail::svp {
 
 /// One line of text with its 1-based number.
 struct text_line {
@@ -182,7 +182,7 @@ template <Real T> struct knot_list {
     return in;
 }
 
-} // namespace svp_detail
+} // namespace detail::svp
 
 // ------------------------------------------------------------------------------------------------
 // CSV
@@ -190,7 +190,7 @@ template <Real T> struct knot_list {
 /// Reads a depth,speed CSV profile from `in`; `name` labels error messages.
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_sound_speed_csv(std::istream& in, std::string_view name) {
-    using namespace svp_detail;
+    using namespace detail::svp;
     const auto lines = read_lines(in, name);
     knot_list<T> knots;
     for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -208,7 +208,7 @@ template <Real T = double>
 /// Reads a depth,speed CSV profile from a file.
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_sound_speed_csv(const std::filesystem::path& path) {
-    auto in = svp_detail::open_for_reading(path);
+    auto in = detail::svp::open_for_reading(path);
     return read_sound_speed_csv<T>(in, path.string());
 }
 
@@ -219,7 +219,7 @@ template <Real T = double>
 template <Real T = double>
 [[nodiscard]] std::vector<propagation::sound_speed_profile<T>> read_caris_svp_sections(std::istream& in,
                                                                                       std::string_view name) {
-    using namespace svp_detail;
+    using namespace detail::svp;
     const auto lines = read_lines(in, name);
     if (lines.empty()) throw file_error(name, 0, "empty file: expected a \"[SVP_VERSION_2]\" line");
     if (!iequals_prefix(lines[0].text, "[SVP_VERSION")) {
@@ -270,14 +270,14 @@ template <Real T = double>
 template <Real T = double>
 [[nodiscard]] std::vector<propagation::sound_speed_profile<T>> read_caris_svp_sections(
     const std::filesystem::path& path) {
-    auto in = svp_detail::open_for_reading(path);
+    auto in = detail::svp::open_for_reading(path);
     return read_caris_svp_sections<T>(in, path.string());
 }
 
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_caris_svp(const std::filesystem::path& path,
                                                                  std::size_t section = 0) {
-    auto in = svp_detail::open_for_reading(path);
+    auto in = detail::svp::open_for_reading(path);
     return read_caris_svp<T>(in, path.string(), section);
 }
 
@@ -287,7 +287,7 @@ template <Real T = double>
 /// Reads a Kongsberg .asvp profile from `in`; `name` labels error messages.
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_kongsberg_asvp(std::istream& in, std::string_view name) {
-    using namespace svp_detail;
+    using namespace detail::svp;
     const auto lines = read_lines(in, name);
     if (lines.empty()) throw file_error(name, 0, "empty file: expected a \"( SoundVelocity ...)\" header");
     const std::string_view first = lines[0].text;
@@ -338,7 +338,7 @@ template <Real T = double>
 
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_kongsberg_asvp(const std::filesystem::path& path) {
-    auto in = svp_detail::open_for_reading(path);
+    auto in = detail::svp::open_for_reading(path);
     return read_kongsberg_asvp<T>(in, path.string());
 }
 
@@ -365,7 +365,7 @@ template <Real T = double>
 template <Real T>
 void write_sound_speed_csv(std::ostream& out, const propagation::sound_speed_profile<T>& profile,
                            std::string_view name) {
-    using svp_detail::shortest;
+    using detail::svp::shortest;
     out << "depth_m,speed_mps\n";
     const auto depth = profile.depths_m();
     const auto speed = profile.speeds_mps();

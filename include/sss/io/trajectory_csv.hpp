@@ -45,7 +45,7 @@
 
 namespace sss::io {
 
-namespace trajectory_csv_detail {
+namespace detail::trajectory_csv {
 
 enum class column : unsigned char { time, ping, x, y, z, roll, pitch, yaw, heave, sway, count };
 
@@ -119,13 +119,13 @@ inline const char* column_name(column c) noexcept {
     return names[static_cast<std::size_t>(c)];
 }
 
-} // namespace trajectory_csv_detail
+} // namespace detail::trajectory_csv
 
 /// Reads trajectory samples from a CSV stream; `name` (a file name or a description) locates errors.
 /// Throws sss::file_error(name, line, why) on any malformed content, and when fewer than 2 samples are found.
 template <Real T>
 [[nodiscard]] motion::trajectory_samples<T> read_trajectory_csv(std::istream& in, std::string_view name) {
-    namespace d = trajectory_csv_detail;
+    namespace d = detail::trajectory_csv;
     constexpr std::size_t ncol = static_cast<std::size_t>(d::column::count);
     std::vector<d::column_spec> columns;
     std::array<bool, ncol> present{};

@@ -81,27 +81,27 @@ public:
     perturbed() : perturbed(perturbed_params<T>{}) {}
 
     explicit perturbed(const perturbed_params<T>& p) : p_(p) {
-        sss::detail::require_finite(p.start_m.x, "perturbed.start_m.x");
-        sss::detail::require_finite(p.start_m.y, "perturbed.start_m.y");
-        sss::detail::require_finite(p.heading_deg, "perturbed.heading_deg");
-        sss::detail::require_non_negative(p.speed_mps, "perturbed.speed_mps");
-        sss::detail::require_positive(p.altitude_m, "perturbed.altitude_m");
-        sss::detail::require_positive(p.ping_interval_s, "perturbed.ping_interval_s");
+        sss::require_finite(p.start_m.x, "perturbed.start_m.x");
+        sss::require_finite(p.start_m.y, "perturbed.start_m.y");
+        sss::require_finite(p.heading_deg, "perturbed.heading_deg");
+        sss::require_non_negative(p.speed_mps, "perturbed.speed_mps");
+        sss::require_positive(p.altitude_m, "perturbed.altitude_m");
+        sss::require_positive(p.ping_interval_s, "perturbed.ping_interval_s");
         check(p.yaw_deg, "perturbed.yaw_deg");
         check(p.sway_m, "perturbed.sway_m");
         check(p.pitch_deg, "perturbed.pitch_deg");
         check(p.heave_m, "perturbed.heave_m");
         check(p.roll_deg, "perturbed.roll_deg");
-        sss::detail::require(std::abs(p.pitch_deg.amplitude) < T(90), "perturbed.pitch_deg.amplitude", "must be < 90 deg");
-        sss::detail::require(std::abs(p.roll_deg.amplitude) < T(90), "perturbed.roll_deg.amplitude", "must be < 90 deg");
+        sss::require(std::abs(p.pitch_deg.amplitude) < T(90), "perturbed.pitch_deg.amplitude", "must be < 90 deg");
+        sss::require(std::abs(p.roll_deg.amplitude) < T(90), "perturbed.roll_deg.amplitude", "must be < 90 deg");
         if (p.turn) {
             const constant_turn<T>& c = *p.turn;
             const double sign = c.toward == side::starboard ? 1.0 : -1.0;
             if (c.radius_m != T(0)) {
-                sss::detail::require_positive(c.radius_m, "perturbed.turn.radius_m");
+                sss::require_positive(c.radius_m, "perturbed.turn.radius_m");
                 omega_ = sign * static_cast<double>(p.speed_mps) / static_cast<double>(c.radius_m);
             } else {
-                sss::detail::require_positive(c.rate_deg_s, "perturbed.turn.rate_deg_s");
+                sss::require_positive(c.rate_deg_s, "perturbed.turn.rate_deg_s");
                 omega_ = sign * deg_to_rad(static_cast<double>(c.rate_deg_s));
             }
         }
@@ -149,9 +149,9 @@ private:
     };
 
     static void check(const oscillation<T>& o, const std::string& name) {
-        sss::detail::require_finite(o.amplitude, name + ".amplitude");
-        sss::detail::require_positive(o.period_s, name + ".period_s");
-        sss::detail::require_finite(o.phase_deg, name + ".phase_deg");
+        sss::require_finite(o.amplitude, name + ".amplitude");
+        sss::require_positive(o.period_s, name + ".period_s");
+        sss::require_finite(o.phase_deg, name + ".phase_deg");
     }
 
     [[nodiscard]] double time_of(std::size_t ping) const noexcept {

@@ -27,12 +27,12 @@ public:
     straight_line() : straight_line(straight_line_params<T>{}) {}
 
     explicit straight_line(const straight_line_params<T>& p) : p_(p) {
-        sss::detail::require_finite(p.start_m.x, "straight_line.start_m.x");
-        sss::detail::require_finite(p.start_m.y, "straight_line.start_m.y");
-        sss::detail::require_finite(p.heading_deg, "straight_line.heading_deg");
-        sss::detail::require_non_negative(p.speed_mps, "straight_line.speed_mps");
-        sss::detail::require_positive(p.altitude_m, "straight_line.altitude_m");
-        sss::detail::require_positive(p.ping_interval_s, "straight_line.ping_interval_s");
+        sss::require_finite(p.start_m.x, "straight_line.start_m.x");
+        sss::require_finite(p.start_m.y, "straight_line.start_m.y");
+        sss::require_finite(p.heading_deg, "straight_line.heading_deg");
+        sss::require_non_negative(p.speed_mps, "straight_line.speed_mps");
+        sss::require_positive(p.altitude_m, "straight_line.altitude_m");
+        sss::require_positive(p.ping_interval_s, "straight_line.ping_interval_s");
         yaw_rad_ = deg_to_rad(p.heading_deg);
         rotation_ = body_to_world_rotation(T(0), T(0), yaw_rad_);
     }

@@ -79,18 +79,18 @@ public:
     static constexpr double gravity_mps2 = 9.80665;
 
     explicit trajectory(const trajectory_samples<T>& s, const trajectory_params<T>& p = {}) : p_(p) {
-        sss::detail::require_positive(p.ping_interval_s, "trajectory.ping_interval_s");
+        sss::require_positive(p.ping_interval_s, "trajectory.ping_interval_s");
         by_ping_ = !s.ping.empty();
         const std::vector<double>& key = by_ping_ ? s.ping : s.time_s;
         const std::size_t n = key.size();
-        sss::detail::require(n >= 2, by_ping_ ? "trajectory.ping" : "trajectory.time_s",
+        sss::require(n >= 2, by_ping_ ? "trajectory.ping" : "trajectory.time_s",
                              "needs at least 2 samples (with either time_s or ping given)");
         check_increasing(key, by_ping_ ? "trajectory.ping" : "trajectory.time_s");
         require_size(s.position_m.size(), n, "trajectory.position_m");
         for (std::size_t i = 0; i < n; ++i) {
             const vec3<T>& q = s.position_m[i];
-            sss::detail::require(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z), "trajectory.position_m",
-                                 "sample " + std::to_string(i) + " is not finite");
+            sss::require(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z), "trajectory.position_m",
+                                 [&] { return "sample " + std::to_string(i) + " is not finite"; });
         }
         has_time_ = by_ping_ && !s.time_s.empty();
         if (has_time_) {
@@ -105,7 +105,7 @@ public:
 
         key_ = key;
         k0_ = std::isnan(p.ping_zero_at) ? key.front() : p.ping_zero_at;
-        sss::detail::require(std::isfinite(k0_) && k0_ >= key.front() && k0_ <= key.back(), "trajectory.ping_zero_at",
+        sss::require(std::isfinite(k0_) && k0_ >= key.front() && k0_ <= key.back(), "trajectory.ping_zero_at",
                              "must lie within the samples' keys");
         const double step = by_ping_ ? 1.0 : static_cast<double>(p.ping_interval_s);
         // The tolerance absorbs the rounding of a ping interval given in T (e.g. 0.1f).
@@ -193,21 +193,21 @@ private:
     };
 
     static void require_size(std::size_t got, std::size_t n, const char* name) {
-        sss::detail::require(got == n, name,
-                             "must hold one value per sample (" + std::to_string(n) + "), got " + std::to_string(got));
+        sss::require(got == n, name,
+                             [&] { return "must hold one value per sample (" + std::to_string(n) + "), got " + std::to_string(got); });
     }
     template <class V> static void require_channel(const std::vector<V>& v, std::size_t n, const char* name) {
         if (v.empty()) return;
         require_size(v.size(), n, name);
         for (std::size_t i = 0; i < n; ++i)
-            sss::detail::require(std::isfinite(v[i]), name, "sample " + std::to_string(i) + " is not finite");
+            sss::require(std::isfinite(v[i]), name, [&] { return "sample " + std::to_string(i) + " is not finite"; });
     }
     static void check_increasing(const std::vector<double>& k, const char* name) {
         for (std::size_t i = 0; i < k.size(); ++i) {
-            sss::detail::require(std::isfinite(k[i]), name, "sample " + std::to_string(i) + " is not finite");
+            sss::require(std::isfinite(k[i]), name, [&] { return "sample " + std::to_string(i) + " is not finite"; });
             if (i > 0)
-                sss::detail::require(k[i] > k[i - 1], name,
-                                     "must be strictly increasing; sample " + std::to_string(i) + " is not");
+                sss::require(k[i] > k[i - 1], name,
+                                     [&] { return "must be strictly increasing; sample " + std::to_string(i) + " is not"; });
         }
     }
     static std::vector<double> to_double(const std::vector<T>& v) { return std::vector<double>(v.begin(), v.end()); }

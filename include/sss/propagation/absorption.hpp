@@ -61,9 +61,9 @@ template <Real T> struct water_properties {
 /// for sea water: temperature in [-3, 40] degC, salinity in [0, 50] ppt, pH in [6, 10]. These bounds are
 /// wider than the formulas' validity ranges (see the file comment), which are not enforced.
 template <Real T> inline void check_water_properties(const water_properties<T>& w) {
-    sss::detail::require_in_range(w.temperature_c, T(-3), T(40), "water.temperature_c");
-    sss::detail::require_in_range(w.salinity_ppt, T(0), T(50), "water.salinity_ppt");
-    sss::detail::require_in_range(w.ph, T(6), T(10), "water.ph");
+    sss::require_in_range(w.temperature_c, T(-3), T(40), "water.temperature_c");
+    sss::require_in_range(w.salinity_ppt, T(0), T(50), "water.salinity_ppt");
+    sss::require_in_range(w.ph, T(6), T(10), "water.ph");
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -140,7 +140,7 @@ public:
 
     /// Throws sss::invalid_parameter for f_hz not finite and > 0, or water outside check_water_properties.
     francois_garrison(T f_hz, const water_properties<T>& water) : f_hz_(f_hz) {
-        sss::detail::require_positive(f_hz, "f_hz");
+        sss::require_positive(f_hz, "f_hz");
         check_water_properties(water);
         const T f = f_hz / T(1000);
         const T f_sq = f * f;
@@ -197,7 +197,7 @@ public:
 
     /// Throws sss::invalid_parameter for f_hz not finite and > 0, or water outside check_water_properties.
     ainslie_mccolm(T f_hz, const water_properties<T>& water) : f_hz_(f_hz) {
-        sss::detail::require_positive(f_hz, "f_hz");
+        sss::require_positive(f_hz, "f_hz");
         check_water_properties(water);
         const T f = f_hz / T(1000);
         const T f_sq = f * f;

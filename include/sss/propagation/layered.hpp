@@ -283,12 +283,12 @@ private:
     }
 
     static const layered_params<T>& validated(const layered_params<T>& p) {
-        sss::detail::require_finite(p.surface_z_m, "layered.surface_z_m");
-        sss::detail::require_positive(p.frequency_hz, "layered.frequency_hz");
+        sss::require_finite(p.surface_z_m, "layered.surface_z_m");
+        sss::require_positive(p.frequency_hz, "layered.frequency_hz");
         check_water_properties(p.water);
-        sss::detail::require_positive(p.chord_tolerance_m, "layered.chord_tolerance_m");
-        sss::detail::require_non_negative(p.reference_speed_mps, "layered.reference_speed_mps");
-        sss::detail::require(p.absorption == absorption_formula::francois_garrison ||
+        sss::require_positive(p.chord_tolerance_m, "layered.chord_tolerance_m");
+        sss::require_non_negative(p.reference_speed_mps, "layered.reference_speed_mps");
+        sss::require(p.absorption == absorption_formula::francois_garrison ||
                                  p.absorption == absorption_formula::ainslie_mccolm,
                              "layered.absorption", "is not a known formula");
         return p;
@@ -331,7 +331,7 @@ private:
             const T g = zero_steps >= 2 ? T(0) : layer.gradient_per_s;
             const T c0 = layer.speed_mps(m.z);
             const T xi = m.cos_phi / c0;
-            arc_detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, g, xi, xi * g};
+            detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, g, xi, xi * g};
             const arc_frame<T> frame{vec3<T>{r.origin.x + hdir.x * m.x, r.origin.y + hdir.y * m.x, p_.surface_z_m - m.z}, hdir};
             // A hit on this arc ends the trace: the path, if the hit comes in time.
             bool in_time = false;
@@ -406,7 +406,7 @@ private:
     }
 
     /// Adds a whole arc through a layer to the march.
-    void advance(march& m, const arc_detail::arc_start<T>& a, const layer_step<T>& st, const gradient_layer<T>& layer) const {
+    void advance(march& m, const detail::arc_start<T>& a, const layer_step<T>& st, const gradient_layer<T>& layer) const {
         const arc_sample<T>& e = st.exit;
         const T sin_e = std::sin(e.incline_rad);
         m.tube.add_piece(ray_tube_q(e.range_m, a.xi, e.depth_m - a.z0, a.c0, layer.speed_mps(e.depth_m), a.sin0, sin_e),
@@ -424,15 +424,15 @@ private:
 
     /// The path to a hit on the current arc, into `out` (and the details into *more when not null); false if the hit
     /// comes after t_max_s.
-    [[nodiscard]] bool finish(const march& m, const arc_detail::arc_start<T>& a, const hit<T>& h, const vec3<T>& point,
+    [[nodiscard]] bool finish(const march& m, const detail::arc_start<T>& a, const hit<T>& h, const vec3<T>& point,
                               T arc_m, const arc_offset<T>& o, const gradient_layer<T>& layer, const vec3<T>& hdir,
                               T t_max_s, std::optional<path<T>>& out, details* more) const {
         T dt;
         if (a.cos0 > T(0)) {
-            dt = arc_detail::arc_time(a, o.range_m, o.cos_incline, o.sin_half * o.sin_half);
+            dt = detail::arc_time(a, o.range_m, o.cos_incline, o.sin_half * o.sin_half);
         } else { // vertical
             const T dz = o.depth_m;
-            dt = std::abs(dz) / a.c0 * arc_detail::log1p_ratio(a.g * dz / a.c0);
+            dt = std::abs(dz) / a.c0 * detail::log1p_ratio(a.g * dz / a.c0);
         }
         const T t_hit = m.t + dt;
         if (!(t_hit <= t_max_s)) return false;
@@ -471,7 +471,7 @@ private:
     /// reached (Snell gives a real sine there, sin_b), exactly the arc length to it, s = 2 dz/(sin_a + sin_b)
     /// atan(w)/w with w = kappa dz/(sin_a + sin_b) (ray_arc.hpp); when the ray turns first, the depth down to the turn
     /// and back past its start to the other boundary. 0 for a horizontal start.
-    [[nodiscard]] static T stay_length(const gradient_layer<T>& layer, T z, const arc_detail::arc_start<T>& a) noexcept {
+    [[nodiscard]] static T stay_length(const gradient_layer<T>& layer, T z, const detail::arc_start<T>& a) noexcept {
         if (a.sin0 == T(0)) return T(0);
         const bool down = a.sin0 > T(0);
         const T ahead = down ? layer.z_bottom_m : layer.z_top_m;
@@ -481,7 +481,7 @@ private:
         if (c < T(1)) {
             const T sin_b = std::copysign(std::sqrt((T(1) - c) * (T(1) + c)), a.sin0);
             const T sum = a.sin0 + sin_b;
-            return T(2) * dz / sum * arc_detail::atan_ratio(a.kappa * dz / sum);
+            return T(2) * dz / sum * detail::atan_ratio(a.kappa * dz / sum);
         }
         // It turns before the boundary ahead: down to the turning depth and back up past its start at least.
         const T turn = a.sin0 * a.sin0 / ((T(1) + a.cos0) * std::abs(a.kappa));
@@ -507,7 +507,7 @@ private:
             layer.z_bottom_m = std::min(layer.z_bottom_m, z_h);
             const T c0 = layer.speed_mps(m.z);
             const T xi = m.cos_phi / c0;
-            const arc_detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, layer.gradient_per_s, xi,
+            const detail::arc_start<T> a{m.z, c0, m.phi, m.sin_phi, m.cos_phi, layer.gradient_per_s, xi,
                                              xi * layer.gradient_per_s};
             const layer_step<T> st = step_through_layer(layer, m.z, m.phi, vertical_direction::down);
             if (st.boundary != layer_exit::bottom || !(st.exit.incline_rad > T(0))) return std::nullopt;
@@ -585,7 +585,7 @@ private:
 
     /// One-way absorption (dB) along the first len_m (m) of the arc `a`: three-point Gauss-Legendre in arc length
     /// (file comment).
-    [[nodiscard]] T arc_absorption_db(const arc_detail::arc_start<T>& a, T len_m) const noexcept {
+    [[nodiscard]] T arc_absorption_db(const detail::arc_start<T>& a, T len_m) const noexcept {
         if (!(len_m > T(0))) return T(0);
         const T half = len_m / T(2);
         const T off = half * T(0.774596669241483377035853079956479922L); // sqrt(3/5)

@@ -57,23 +57,23 @@ public:
     /// and strictly increasing; speeds are finite and positive.
     sound_speed_profile(std::vector<T> depth_m, std::vector<T> speed_mps)
         : depth_(std::move(depth_m)), speed_(std::move(speed_mps)) {
-        sss::detail::require(!depth_.empty(), "depth_m", "needs at least one knot");
-        sss::detail::require(speed_.size() == depth_.size(), "speed_mps",
-                        "must have as many entries as depth_m (" + std::to_string(depth_.size()) + "), has " +
-                            std::to_string(speed_.size()));
+        sss::require(!depth_.empty(), "depth_m", "needs at least one knot");
+        sss::require(speed_.size() == depth_.size(), "speed_mps",
+                        [&] { return "must have as many entries as depth_m (" + std::to_string(depth_.size()) + "), has " +
+                            std::to_string(speed_.size()); });
         for (std::size_t i = 0; i < depth_.size(); ++i) {
-            sss::detail::require_finite(depth_[i], knot_name("depth_m", i));
-            sss::detail::require_positive(speed_[i], knot_name("speed_mps", i));
+            sss::require_finite(depth_[i], knot_name("depth_m", i));
+            sss::require_positive(speed_[i], knot_name("speed_mps", i));
             if (i > 0) {
-                sss::detail::require(depth_[i] > depth_[i - 1], knot_name("depth_m", i),
-                                "depths must increase strictly: " + std::to_string(depth_[i]) + " follows " +
-                                    std::to_string(depth_[i - 1]));
+                sss::require(depth_[i] > depth_[i - 1], knot_name("depth_m", i),
+                                [&] { return "depths must increase strictly: " + std::to_string(depth_[i]) + " follows " +
+                                    std::to_string(depth_[i - 1]); });
             }
         }
         gradient_.assign(depth_.size() + 1, T(0));
         for (std::size_t i = 1; i < depth_.size(); ++i) {
             const T g = (speed_[i] - speed_[i - 1]) / (depth_[i] - depth_[i - 1]);
-            sss::detail::require(std::isfinite(g), knot_name("depth_m", i),
+            sss::require(std::isfinite(g), knot_name("depth_m", i),
                             "knots too close: the speed gradient to the previous knot overflows");
             gradient_[i] = g;
         }
@@ -90,16 +90,16 @@ public:
     [[nodiscard]] static sound_speed_profile from_temperature_salinity(std::vector<T> depth_m,
                                                                        const std::vector<T>& temperature_c,
                                                                        const std::vector<T>& salinity_ppt) {
-        sss::detail::require(temperature_c.size() == depth_m.size(), "temperature_c",
-                        "must have as many entries as depth_m (" + std::to_string(depth_m.size()) + ")");
-        sss::detail::require(salinity_ppt.size() == depth_m.size(), "salinity_ppt",
-                        "must have as many entries as depth_m (" + std::to_string(depth_m.size()) + ")");
+        sss::require(temperature_c.size() == depth_m.size(), "temperature_c",
+                        [&] { return "must have as many entries as depth_m (" + std::to_string(depth_m.size()) + ")"; });
+        sss::require(salinity_ppt.size() == depth_m.size(), "salinity_ppt",
+                        [&] { return "must have as many entries as depth_m (" + std::to_string(depth_m.size()) + ")"; });
         std::vector<T> speed(depth_m.size());
         for (std::size_t i = 0; i < depth_m.size(); ++i) {
-            sss::detail::require_finite(temperature_c[i], knot_name("temperature_c", i));
-            sss::detail::require_finite(salinity_ppt[i], knot_name("salinity_ppt", i));
-            sss::detail::require(salinity_ppt[i] >= T(0), knot_name("salinity_ppt", i), "must be >= 0");
-            sss::detail::require_finite(depth_m[i], knot_name("depth_m", i));
+            sss::require_finite(temperature_c[i], knot_name("temperature_c", i));
+            sss::require_finite(salinity_ppt[i], knot_name("salinity_ppt", i));
+            sss::require(salinity_ppt[i] >= T(0), knot_name("salinity_ppt", i), "must be >= 0");
+            sss::require_finite(depth_m[i], knot_name("depth_m", i));
             speed[i] = mackenzie_sound_speed_mps(temperature_c[i], salinity_ppt[i], depth_m[i]);
         }
         return sound_speed_profile(std::move(depth_m), std::move(speed));

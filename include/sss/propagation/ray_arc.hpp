@@ -95,7 +95,7 @@ template <Real T> struct layer_step {
 };
 
 // Not `detail`: a nested namespace of that name would hide sss::detail from the rest of sss::propagation.
-namespace arc_detail {
+namespace detail {
 
 /// sin(u)/u, exact at 0.
 template <Real T> [[nodiscard]] inline T sinc(T u) noexcept {
@@ -240,7 +240,7 @@ template <Real T>
     return out;
 }
 
-} // namespace arc_detail
+} // namespace detail
 
 /// Steps a ray through a constant-gradient layer from depth depth_m (clamped into the layer) at grazing
 /// angle graze_rad (rad, 0..pi/2) heading `heading`: returns the arc and where and how it leaves
@@ -250,7 +250,7 @@ template <Real T>
 [[nodiscard]] inline layer_step<T> step_through_layer(const gradient_layer<T>& layer, T depth_m, T graze_rad,
                                                       vertical_direction heading) noexcept {
     const T graze = std::clamp(graze_rad, T(0), half_pi_v<T>);
-    return arc_detail::step_from(layer, depth_m, heading == vertical_direction::down ? graze : -graze);
+    return detail::step_from(layer, depth_m, heading == vertical_direction::down ? graze : -graze);
 }
 
 /// As step_through_layer, with the ray given by its Snell invariant xi_s_per_m = cos(graze)/c (s/m).
@@ -265,22 +265,22 @@ template <Real T>
 
 /// The point at arc length arc_m along the arc (clamped to [0, length_m]).
 template <Real T> [[nodiscard]] inline arc_sample<T> arc_point(const ray_arc<T>& arc, T arc_m) noexcept {
-    const auto a = arc_detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
+    const auto a = detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
     const T s = std::clamp(arc_m, T(0), arc.length_m);
     if (a.cos0 == T(0)) {
         const T dz = std::copysign(s, a.sin0);
-        return {a.z0 + dz, T(0), s / a.c0 * arc_detail::log1p_ratio(a.g * dz / a.c0), s, a.phi0};
+        return {a.z0 + dz, T(0), s / a.c0 * detail::log1p_ratio(a.g * dz / a.c0), s, a.phi0};
     }
     // The chord runs along the mean inclination phi0 - half. Its cosine is expanded so that it keeps
     // full relative precision near vertical, where cos(phi0 - half) itself would not.
     const T half = a.kappa * s / T(2);
     const T ch = std::cos(half);
     const T sh = std::sin(half);
-    const T chord = s * arc_detail::sinc(half);
+    const T chord = s * detail::sinc(half);
     const T x = chord * (a.cos0 * ch + a.sin0 * sh);
     const T dz = chord * (a.sin0 * ch - a.cos0 * sh);
     const T cos1 = std::clamp(a.cos0 * (T(1) + a.g * dz / a.c0), T(0), T(1)); // Snell: cos(phi) = xi c(z)
-    const T t = arc_detail::arc_time(a, x, cos1, sh * sh);
+    const T t = detail::arc_time(a, x, cos1, sh * sh);
     return {a.z0 + dz, x, t, s, a.phi0 - T(2) * half};
 }
 
@@ -289,12 +289,12 @@ template <Real T> [[nodiscard]] inline arc_sample<T> arc_point(const ray_arc<T>&
 template <Real T>
 [[nodiscard]] inline std::optional<arc_sample<T>> arc_point_at_range(const ray_arc<T>& arc, T range_m) noexcept {
     if (!(range_m >= T(0))) return std::nullopt;
-    const auto a = arc_detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
+    const auto a = detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
     if (a.cos0 == T(0)) return range_m == T(0) ? std::optional(arc_point(arc, T(0))) : std::nullopt;
     const T sin1 = a.sin0 - a.kappa * range_m;
     if (!(std::abs(sin1) <= T(1))) return std::nullopt;
     const T cos_sum = a.cos0 + std::sqrt((T(1) - sin1) * (T(1) + sin1));
-    const T s = T(2) * range_m / cos_sum * arc_detail::atan_ratio(a.kappa * range_m / cos_sum);
+    const T s = T(2) * range_m / cos_sum * detail::atan_ratio(a.kappa * range_m / cos_sum);
     if (s > arc.length_m * (T(1) + T(4) * std::numeric_limits<T>::epsilon())) return std::nullopt;
     arc_sample<T> p = arc_point(arc, s);
     p.range_m = range_m;
@@ -304,7 +304,7 @@ template <Real T>
 /// The first point at which the arc reaches depth_m; nullopt when it does not before its end.
 template <Real T>
 [[nodiscard]] inline std::optional<arc_sample<T>> arc_point_at_depth(const ray_arc<T>& arc, T depth_m) noexcept {
-    const auto a = arc_detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
+    const auto a = detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
     if (depth_m == a.z0) return arc_point(arc, T(0));
     std::optional<arc_sample<T>> hit;
     if (a.cos0 == T(0)) {
@@ -313,18 +313,18 @@ template <Real T>
         if (hit) hit->depth_m = depth_m;
         return hit;
     }
-    const int motion = arc_detail::start_motion(a);
+    const int motion = detail::start_motion(a);
     if (motion == 0) return std::nullopt;
-    if ((depth_m - a.z0) * T(motion) > T(0)) hit = arc_detail::reach_depth(a, depth_m, false);
-    if (!hit && arc_detail::can_turn(a)) hit = arc_detail::reach_depth(a, depth_m, true);
+    if ((depth_m - a.z0) * T(motion) > T(0)) hit = detail::reach_depth(a, depth_m, false);
+    if (!hit && detail::can_turn(a)) hit = detail::reach_depth(a, depth_m, true);
     if (hit && hit->arc_m > arc.length_m * (T(1) + T(4) * std::numeric_limits<T>::epsilon())) hit.reset();
     return hit;
 }
 
 /// The turning point (where the ray is horizontal) strictly inside the arc, if there is one.
 template <Real T> [[nodiscard]] inline std::optional<arc_sample<T>> arc_turning_point(const ray_arc<T>& arc) noexcept {
-    const auto a = arc_detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
-    if (!arc_detail::can_turn(a)) return std::nullopt;
+    const auto a = detail::make_start(arc.start_depth_m, arc.start_speed_mps, arc.start_incline_rad, arc.gradient_per_s);
+    if (!detail::can_turn(a)) return std::nullopt;
     const T s = a.phi0 / a.kappa;
     if (!(s < arc.length_m)) return std::nullopt;
     arc_sample<T> p = arc_point(arc, s);

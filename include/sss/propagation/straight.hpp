@@ -31,8 +31,8 @@ public:
     straight() : straight(straight_params<T>{}) {}
 
     explicit straight(const straight_params<T>& p) : p_(p) {
-        sss::detail::require_in_range(p.sound_speed_mps, T(1000), T(2500), "straight.sound_speed_mps");
-        sss::detail::require_non_negative(p.absorption_db_per_km, "straight.absorption_db_per_km");
+        sss::require_in_range(p.sound_speed_mps, T(1000), T(2500), "straight.sound_speed_mps");
+        sss::require_non_negative(p.absorption_db_per_km, "straight.absorption_db_per_km");
         loss_per_m_ = std::log(T(10)) * p.absorption_db_per_km / T(10000);
     }
 
@@ -52,9 +52,9 @@ public:
     /// so a scene that shares work among the rays of a column (BatchScene) gets them all at once.
     template <Scene S>
     void trace_many(std::span<const ray<T>> rays, const S& scene, T t_max_s, std::span<std::optional<path<T>>> paths) const {
-        sss::detail::require(paths.size() == rays.size(), "straight.trace_many.paths",
-                             "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
-                                 std::to_string(paths.size()));
+        sss::require(paths.size() == rays.size(), "straight.trace_many.paths",
+                             [&] { return "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
+                                 std::to_string(paths.size()); });
         std::vector<std::optional<hit<T>>> hits(rays.size());
         intersect_all(scene, rays, t_max_s * p_.sound_speed_mps, std::span<std::optional<hit<T>>>(hits));
         for (std::size_t k = 0; k < rays.size(); ++k) {

@@ -22,8 +22,8 @@ struct pulse {
     pulse_shape shape = pulse_shape::rectangular; ///< power envelope
 
     void validate() const {
-        sss::detail::require_positive(length_s, "pulse.length_s");
-        sss::detail::require(length_s <= 1.0, "pulse.length_s", "must be <= 1 s");
+        sss::require_positive(length_s, "pulse.length_s");
+        sss::require(length_s <= 1.0, "pulse.length_s", "must be <= 1 s");
     }
 
     /// p(t): power envelope at time t after the start (s), 0 outside [0, length].

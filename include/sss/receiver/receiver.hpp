@@ -17,9 +17,9 @@ struct receiver_params {
     double source_level_db = 0.0;    ///< source level (dB re 1 unit at 1 m); outputs are powers on the same reference
 
     void validate() const {
-        sss::detail::require_positive(sample_rate_hz, "receiver.sample_rate_hz");
-        sss::detail::require_positive(max_range_m, "receiver.max_range_m");
-        sss::detail::require_finite(source_level_db, "receiver.source_level_db");
+        sss::require_positive(sample_rate_hz, "receiver.sample_rate_hz");
+        sss::require_positive(max_range_m, "receiver.max_range_m");
+        sss::require_finite(source_level_db, "receiver.source_level_db");
         pulse.validate();
     }
 

@@ -40,7 +40,7 @@ public:
     /// \param p         transmitted pulse
     time_sampler(std::size_t samples, double dt_s, const pulse& p)
         : n_(samples), dt_(dt_s), inv_h_(double(sub_bins) / dt_s), m0_(samples * sub_bins, 0.0), m1_(samples * sub_bins, 0.0) {
-        sss::detail::require_positive(dt_s, "time_sampler.dt_s");
+        sss::require_positive(dt_s, "time_sampler.dt_s");
         p.validate();
         build_kernels(p);
     }

@@ -10,13 +10,17 @@
 /// The terms, their equations and units are in jackson_terms.hpp and jackson_bistatic.hpp; the sediment
 /// parameters and the TR 9407 Table 2 presets in sediments.hpp; reflection coefficients in reflection.hpp.
 ///
-/// Example: `jackson<float> s(100e3f, 1500.f, {sediment_preset<float>("medium_sand"), sediment_preset<float>(sediment::rock)});`
+/// Example:
+///
+///     const jackson<float> s({.frequency_hz = 100e3f,
+///                             .sound_speed_mps = 1500.f,
+///                             .materials = {sediment_preset<float>(sediment::medium_sand),
+///                                           sediment_preset<float>(sediment::rock)}});
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -31,35 +35,36 @@
 
 namespace sss::scattering {
 
+/// Settings of the Jackson policy. Frequency and sound speed are named fields, so they cannot be swapped.
+template <Real T> struct jackson_params {
+    T frequency_hz = T(100000);   ///< sonar frequency (Hz), > 0 (TR 9407 fitted 10-100 kHz)
+    T sound_speed_mps = T(1500);  ///< water sound speed at the seabed (m/s), > 0
+    /// One sediment per material id; ids beyond the list use the last one. Not empty.
+    std::vector<sediment_params<T>> materials{sediment_preset<T>(sediment::medium_sand)};
+};
+
 template <Real T> class jackson {
 public:
     using value_type = T;
 
-    /// One sediment per material id; ids beyond the list use the last one. f_hz (Hz) > 0 and c_water_mps
-    /// (m/s) > 0: the sonar frequency and the water sound speed at the seabed (TR 9407 fitted 10-100 kHz).
-    /// Throws invalid_parameter naming the parameter: "jackson.f_hz", "jackson.c_water_mps",
+    /// Default parameters: 100 kHz, 1500 m/s, medium sand (non-explicit, so `{}` builds one).
+    jackson() : jackson(jackson_params<T>{}) {}
+
+    /// Throws invalid_parameter naming the parameter: "jackson.frequency_hz", "jackson.sound_speed_mps",
     /// "jackson.materials" (empty list) or "jackson.materials[i].rho" (etc.).
-    jackson(T f_hz, T c_water_mps, const std::vector<sediment_params<T>>& materials) : f_hz_(f_hz), c_mps_(c_water_mps) {
-        sss::detail::require_positive(f_hz, "jackson.f_hz");
-        sss::detail::require_positive(c_water_mps, "jackson.c_water_mps");
-        sss::detail::require(!materials.empty(), "jackson.materials", "needs at least one material");
-        materials_ = materials;
-        for (std::size_t i = 0; i < materials.size(); ++i) {
+    explicit jackson(const jackson_params<T>& p) : f_hz_(p.frequency_hz), c_mps_(p.sound_speed_mps) {
+        sss::require_positive(p.frequency_hz, "jackson.frequency_hz");
+        sss::require_positive(p.sound_speed_mps, "jackson.sound_speed_mps");
+        sss::require(!p.materials.empty(), "jackson.materials", "needs at least one material");
+        materials_ = p.materials;
+        for (std::size_t i = 0; i < materials_.size(); ++i) {
             const std::string who = "jackson.materials[" + std::to_string(i) + "]";
-            validate(materials[i], who);
-            const sediment_params<T>& p = materials[i];
-            const sediment_params<double> pd{double(p.rho), double(p.nu), double(p.delta), double(p.sigma2), double(p.gamma), double(p.w2_cm4)};
-            coefficients_.push_back(make_jackson_coefficients(pd, double(f_hz), double(c_water_mps), "jackson"));
+            validate(materials_[i], who);
+            coefficients_.push_back(
+                make_jackson_coefficients(to_double(materials_[i]), double(f_hz_), double(c_mps_), "jackson"));
             tables_.emplace_back(coefficients_.back());
         }
     }
-
-    jackson(T f_hz, T c_water_mps, std::initializer_list<sediment_params<T>> materials)
-        : jackson(f_hz, c_water_mps, std::vector<sediment_params<T>>(materials)) {}
-
-    /// One sediment for every material id.
-    jackson(T f_hz, T c_water_mps, const sediment_params<T>& material)
-        : jackson(f_hz, c_water_mps, std::vector<sediment_params<T>>{material}) {}
 
     /// Backscattering cross section sigma (linear) at grazing angle graze_rad (rad, clamped to [0, pi/2]).
     [[nodiscard]] T backscatter(T graze_rad, std::uint32_t material) const noexcept { return tables_[index(material)](graze_rad); }

@@ -176,10 +176,7 @@ template <Real T>
     t.volume = shadow * avg.pv;
     t.large_roughness = jackson_bistatic_sigma_lr(c, b);
     const T ratio = b.delta > T(0) ? b.delta_t / b.delta : T(1);
-    const T x = (ratio - c.cos_theta_kdb) / T(0.0125);
-    const T moderate = jackson_logistic(x) * t.kirchhoff + jackson_logistic(-x) * t.composite;
-    const T xw = (rad_to_deg(std::atan(c.s)) - T(7)) / T(0.5);
-    t.roughness = jackson_logistic(xw) * moderate + jackson_logistic(-xw) * t.large_roughness;
+    t.roughness = jackson_roughness_blend(c, ratio, t.kirchhoff, t.composite, t.large_roughness);
     t.total = t.roughness + t.volume;
     return t;
 }
@@ -197,10 +194,10 @@ template <Real T>
 /// or grazing angles outside [0, pi/2] ("graze_in_rad", "graze_out_rad") or a non-finite "phi_rad".
 template <Real T>
 [[nodiscard]] T jackson_bistatic(const sediment_params<T>& p, T f_hz, T c_water_mps, T graze_in_rad, T graze_out_rad, T phi_rad) {
-    sss::detail::require_in_range(graze_in_rad, T(0), half_pi_v<T>, "graze_in_rad");
-    sss::detail::require_in_range(graze_out_rad, T(0), half_pi_v<T>, "graze_out_rad");
-    sss::detail::require_finite(phi_rad, "phi_rad");
-    const sediment_params<double> pd{double(p.rho), double(p.nu), double(p.delta), double(p.sigma2), double(p.gamma), double(p.w2_cm4)};
+    sss::require_in_range(graze_in_rad, T(0), half_pi_v<T>, "graze_in_rad");
+    sss::require_in_range(graze_out_rad, T(0), half_pi_v<T>, "graze_out_rad");
+    sss::require_finite(phi_rad, "phi_rad");
+    const sediment_params<double> pd = to_double(p);
     const jackson_coefficients<double> c = make_jackson_coefficients(pd, double(f_hz), double(c_water_mps));
     return T(jackson_bistatic(c, double(graze_in_rad), double(graze_out_rad), double(phi_rad)));
 }

@@ -43,8 +43,8 @@ public:
     /// midpoints); max_intervals >= 256 caps N (memory: (N + 1) values of T).
     explicit jackson_backscatter_table(const jackson_coefficients<double>& c, double tolerance_db = 0.01,
                                        std::size_t max_intervals = std::size_t(1) << 16) {
-        sss::detail::require_positive(tolerance_db, "jackson_backscatter_table.tolerance_db");
-        sss::detail::require(max_intervals >= 256, "jackson_backscatter_table.max_intervals", "must be >= 256");
+        sss::require_positive(tolerance_db, "jackson_backscatter_table.tolerance_db");
+        sss::require(max_intervals >= 256, "jackson_backscatter_table.max_intervals", "must be >= 256");
         build(c, tolerance_db, max_intervals);
     }
 
@@ -74,10 +74,6 @@ public:
     [[nodiscard]] double midpoint_error_db() const noexcept { return midpoint_error_db_; }
 
 private:
-    static sediment_params<double> to_double(const sediment_params<T>& p) noexcept {
-        return {double(p.rho), double(p.nu), double(p.delta), double(p.sigma2), double(p.gamma), double(p.w2_cm4)};
-    }
-
     void build(const jackson_coefficients<double>& c, double tolerance_db, std::size_t max_intervals) {
         const auto log_sigma_at = [&](double x) { // x = sqrt(theta / (pi/2)) in [0, 1]
             const double s = jackson_backscatter(c, half_pi_v<double> * x * x);

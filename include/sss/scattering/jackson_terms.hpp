@@ -69,7 +69,6 @@ template <Real T> struct jackson_coefficients {
     T m_lr{};              ///< large-roughness exponent 0.7263 s^(-1/3)
     T sigma1_lr{};         ///< large-roughness diffuse level sigma1
     T cos_theta_kdb{};     ///< cosine of the Kirchhoff / composite-roughness crossover angle
-    T w_moderate{};        ///< weight of the moderate-roughness (Kirchhoff + composite) branch
 };
 
 /// The logistic switch of the model, f(x) = 1 / (1 + e^x), with x clamped to [-40, 40] (TR 9407).
@@ -82,16 +81,15 @@ template <Real T> [[nodiscard]] inline T jackson_logistic(T x) noexcept {
 ///   b = a^((1 + alpha)/(2 alpha)) Gamma(1/alpha) / (2 alpha),
 ///   theta_c = acos(1/nu) (2.5613 deg if nu < 1.001),  m = 0.7263 s^(-1/3),
 ///   sigma1 = 0.04682 s^1.25 nu^3.25 [(1 - 2/rho) nu^-2 + 1]^2 / (1 + 3.54 theta_s / theta_c),
-///   c4 = 1000^(1/(1 + alpha)) (a q_c^2)^(1/alpha),  cos(theta_kdb) = (1/c4 + 4)^(-1/4),
-///   w = f((atan(s) [deg] - 7) / 0.5).
+///   c4 = 1000^(1/(1 + alpha)) (a q_c^2)^(1/alpha),  cos(theta_kdb) = (1/c4 + 4)^(-1/4).
 /// f_hz (Hz) > 0, c_water_mps (m/s) > 0. Throws invalid_parameter naming `who`.f_hz, `who`.c_water_mps or
 /// the sediment parameter (`who`.sediment.rho, ...).
 template <Real T>
 [[nodiscard]] jackson_coefficients<T> make_jackson_coefficients(const sediment_params<T>& p, T f_hz, T c_water_mps,
                                                                 const std::string& who = "jackson") {
     validate(p, who + ".sediment");
-    sss::detail::require_positive(f_hz, who + ".f_hz");
-    sss::detail::require_positive(c_water_mps, who + ".c_water_mps");
+    sss::require_positive(f_hz, who + ".f_hz");
+    sss::require_positive(c_water_mps, who + ".c_water_mps");
     jackson_coefficients<T> c;
     c.sediment = p;
     c.k_radpcm = two_pi_v<T> * f_hz / (T(100) * c_water_mps);
@@ -114,7 +112,6 @@ template <Real T>
                   (T(1) + T(3.54) * c.s / c.theta_c_rad);
     const T c4 = std::pow(T(1000), T(1) / (T(1) + a)) * std::pow(c.a_kr * c.q_c * c.q_c, T(1) / a);
     c.cos_theta_kdb = std::pow(T(1) / c4 + T(4), T(-0.25));
-    c.w_moderate = jackson_logistic((rad_to_deg(std::atan(c.s)) - T(7)) / T(0.5));
     return c;
 }
 
@@ -207,18 +204,6 @@ template <Real T, class F> [[nodiscard]] inline T gauss_hermite_slope_average(F&
            std::sqrt(pi_v<T>);
 }
 
-/// Composite-roughness term: sigma_cr = S(theta) <sigma_pr>(theta) (TR 9407).
-template <Real T> [[nodiscard]] inline T jackson_sigma_cr(const jackson_coefficients<T>& c, T graze_rad) noexcept {
-    const auto pr = [&](T g) { return jackson_sigma_pr(c, g); };
-    return jackson_shadowing(graze_rad, c.s) * gauss_hermite_slope_average(pr, clamp_graze(graze_rad), c.s);
-}
-
-/// Volume term: sigma_v = S(theta) <sigma_pv>(theta) (TR 9407).
-template <Real T> [[nodiscard]] inline T jackson_sigma_v(const jackson_coefficients<T>& c, T graze_rad) noexcept {
-    const auto pv = [&](T g) { return jackson_sigma_pv(c, g); };
-    return jackson_shadowing(graze_rad, c.s) * gauss_hermite_slope_average(pv, clamp_graze(graze_rad), c.s);
-}
-
 /// 1 / crit = theta^2 / (theta^2 + 0.81 theta_c^2), the large-roughness critical-angle factor (in [0, 1)).
 template <Real T> [[nodiscard]] inline T jackson_inverse_crit(T graze_rad, T theta_c_rad) noexcept {
     const T g2 = graze_rad * graze_rad;
@@ -237,10 +222,24 @@ template <Real T> [[nodiscard]] inline T jackson_sigma_lr(const jackson_coeffici
     return c.sigma1_lr * lobe + peak;
 }
 
-/// Weight of the Kirchhoff term against the composite-roughness term (TR 9407):
-///   f((cos theta - cos theta_kdb) / 0.0125),  f(x) = 1 / (1 + e^x).
-template <Real T> [[nodiscard]] inline T jackson_kirchhoff_weight(const jackson_coefficients<T>& c, T cos_graze) noexcept {
-    return jackson_logistic((cos_graze - c.cos_theta_kdb) / T(0.0125));
+/// Weight w of the moderate-roughness branch (Kirchhoff and composite roughness) against the large-roughness
+/// fit (TR 9407): w = f((atan(s) [deg] - 7) / 0.5), f(x) = 1 / (1 + e^x); s the RMS slope (dimensionless).
+template <Real T> [[nodiscard]] inline T jackson_moderate_weight(T s) noexcept {
+    return jackson_logistic((rad_to_deg(std::atan(s)) - T(7)) / T(0.5));
+}
+
+/// The roughness blend of TR 9407, shared by backscatter and bistatic scattering:
+///   sigma_mr = f_k sigma_kr + (1 - f_k) sigma_cr,   f_k = f((cos_theta - cos theta_kdb) / 0.0125),
+///   sigma_r  = w sigma_mr + (1 - w) sigma_lr,        w = f((atan(s) [deg] - 7) / 0.5),
+/// with f(x) = 1 / (1 + e^x) and 1 - f(x) = f(-x). cos_theta: cos of the grazing angle at backscatter, of the
+/// half-angle between the incident and scattered directions (delta_t / delta) in the bistatic case.
+template <Real T>
+[[nodiscard]] inline T jackson_roughness_blend(const jackson_coefficients<T>& c, T cos_theta, T sigma_kr, T sigma_cr,
+                                               T sigma_lr) noexcept {
+    const T x = (cos_theta - c.cos_theta_kdb) / T(0.0125);
+    const T moderate = jackson_logistic(x) * sigma_kr + jackson_logistic(-x) * sigma_cr;
+    const T xw = (rad_to_deg(std::atan(c.s)) - T(7)) / T(0.5);
+    return jackson_logistic(xw) * moderate + jackson_logistic(-xw) * sigma_lr;
 }
 
 /// Each term of the backscattering cross section at one angle (linear, dimensionless).
@@ -254,9 +253,8 @@ template <Real T> struct jackson_terms {
 };
 
 /// The whole model, term by term (TR 9407):
-///   sigma_mr = f_k sigma_kr + (1 - f_k) sigma_cr,   f_k = f((cos theta - cos theta_kdb) / 0.0125),
-///   sigma_r  = w sigma_mr + (1 - w) sigma_lr,        w = f((atan(s) [deg] - 7) / 0.5),
-///   sigma    = sigma_r + sigma_v.
+///   sigma = sigma_r + sigma_v,  sigma_r the roughness blend of sigma_kr, sigma_cr and sigma_lr
+///   (jackson_roughness_blend).
 template <Real T> [[nodiscard]] inline jackson_terms<T> jackson_backscatter_terms(const jackson_coefficients<T>& c, T graze_rad) noexcept {
     const T g = clamp_graze(graze_rad);
     // Perturbation and volume terms share P and R at each of the three slope-averaging angles.
@@ -275,10 +273,7 @@ template <Real T> [[nodiscard]] inline jackson_terms<T> jackson_backscatter_term
     t.composite = shadow * pr_sum;
     t.volume = shadow * pv_sum;
     t.large_roughness = jackson_sigma_lr(c, g);
-    const T x = (std::cos(g) - c.cos_theta_kdb) / T(0.0125);
-    const T moderate = jackson_logistic(x) * t.kirchhoff + jackson_logistic(-x) * t.composite;
-    const T xw = (rad_to_deg(std::atan(c.s)) - T(7)) / T(0.5);
-    t.roughness = jackson_logistic(xw) * moderate + jackson_logistic(-xw) * t.large_roughness;
+    t.roughness = jackson_roughness_blend(c, std::cos(g), t.kirchhoff, t.composite, t.large_roughness);
     t.total = t.roughness + t.volume;
     return t;
 }
@@ -294,8 +289,8 @@ template <Real T> [[nodiscard]] inline T jackson_backscatter(const jackson_coeff
 /// ("jackson.sediment.rho", "jackson.f_hz", ...) or a grazing angle outside [0, pi/2] ("graze_rad").
 template <Real T>
 [[nodiscard]] T jackson_backscatter(const sediment_params<T>& p, T f_hz, T c_water_mps, T graze_rad) {
-    sss::detail::require_in_range(graze_rad, T(0), half_pi_v<T>, "graze_rad");
-    const sediment_params<double> pd{double(p.rho), double(p.nu), double(p.delta), double(p.sigma2), double(p.gamma), double(p.w2_cm4)};
+    sss::require_in_range(graze_rad, T(0), half_pi_v<T>, "graze_rad");
+    const sediment_params<double> pd = to_double(p);
     const jackson_coefficients<double> c = make_jackson_coefficients(pd, double(f_hz), double(c_water_mps));
     return T(jackson_backscatter(c, double(graze_rad)));
 }

@@ -27,6 +27,13 @@ template <Real T> [[nodiscard]] inline T lambert_sigma(T mu, T graze_in_rad, T g
     return mu * std::sin(graze_in_rad) * std::sin(graze_out_rad);
 }
 
+/// Settings of the Lambertian policy.
+template <Real T> struct lambertian_params {
+    /// Lambert parameter 10 log10 mu (dB) per material id, <= -4.97 dB (mu <= 1/pi); ids beyond the list use
+    /// the last entry. Not empty. Default: Mackenzie's (1961) -27 dB.
+    std::vector<T> mu_db{T(-27)};
+};
+
 template <Real T> class lambertian {
 public:
     using value_type = T;
@@ -38,14 +45,17 @@ public:
     explicit lambertian(T mu_db) : lambertian({mu_db}) {}
 
     /// One Lambert parameter per material id, in dB; ids beyond the list use the last entry.
-    lambertian(std::initializer_list<T> mu_db_by_material) {
-        sss::detail::require(mu_db_by_material.size() > 0, "lambertian.mu_db", "needs at least one material");
-        std::size_t i = 0;
-        for (T db : mu_db_by_material) {
-            const std::string name = "lambertian.mu_db[" + std::to_string(i++) + "]";
-            sss::detail::require_finite(db, name);
+    lambertian(std::initializer_list<T> mu_db_by_material)
+        : lambertian(lambertian_params<T>{.mu_db = std::vector<T>(mu_db_by_material)}) {}
+
+    explicit lambertian(const lambertian_params<T>& p) {
+        sss::require(!p.mu_db.empty(), "lambertian.mu_db", "needs at least one material");
+        for (std::size_t i = 0; i < p.mu_db.size(); ++i) {
+            const T db = p.mu_db[i];
+            const auto name = [&] { return "lambertian.mu_db[" + std::to_string(i) + "]"; };
+            if (!std::isfinite(db)) sss::require_finite(db, name());
             // mu = 1/pi is the energy-conserving bound for a perfectly diffuse surface.
-            sss::detail::require(db <= T(-4.97), name, "must be <= -4.97 dB (mu <= 1/pi, energy conservation)");
+            if (!(db <= T(-4.97))) sss::require(false, name(), "must be <= -4.97 dB (mu <= 1/pi, energy conservation)");
             mu_.push_back(db_to_power(db));
         }
     }

@@ -88,9 +88,9 @@ template <Real T>
 [[nodiscard]] std::complex<T> coherent_reflection(const sediment_params<T>& s, T f_hz, T c_water_mps, T graze_rad,
                                                   T patch_size_m) {
     validate(s, "sediment");
-    sss::detail::require_positive(f_hz, "f_hz");
-    sss::detail::require_positive(c_water_mps, "c_water_mps");
-    sss::detail::require_positive(patch_size_m, "patch_size_m");
+    sss::require_positive(f_hz, "f_hz");
+    sss::require_positive(c_water_mps, "c_water_mps");
+    sss::require_positive(patch_size_m, "patch_size_m");
     const double k = two_pi_v<double> * double(f_hz) / double(c_water_mps);
     const double h = roughness_rms_height_m(double(s.w2_cm4), double(s.gamma), two_pi_v<double> / double(patch_size_m));
     const std::complex<T> r = rayleigh_reflection(s, graze_rad);

@@ -35,6 +35,11 @@ template <Real T> struct sediment_params {
                            ///< SI: w2 [m^(4 - gamma)] = w2 [cm^4] * 10^(2 gamma - 8).
 };
 
+/// The same sediment in double precision (the model's coefficients are always computed in double).
+template <Real T> [[nodiscard]] constexpr sediment_params<double> to_double(const sediment_params<T>& p) noexcept {
+    return {double(p.rho), double(p.nu), double(p.delta), double(p.sigma2), double(p.gamma), double(p.w2_cm4)};
+}
+
 /// Throws invalid_parameter, named `who` + ".rho", ".nu", ..., unless the parameters lie in the domain the
 /// model's formulas hold on: rho > 0, nu > 0, delta > 0 (the volume term divides by the sediment's
 /// attenuation), sigma2 >= 0, 2.1 <= gamma <= 3.9 (0 < alpha = gamma/2 - 1 < 1 keeps the slope variance
@@ -42,12 +47,12 @@ template <Real T> struct sediment_params {
 /// TR 9407 Table 2 spans 1.145 <= rho <= 2.5, 0.98 <= nu <= 2.5, 0.00148 <= delta <= 0.0216 with
 /// gamma = 3.25; outside that the model extrapolates.
 template <Real T> void validate(const sediment_params<T>& p, const std::string& who) {
-    sss::detail::require_positive(p.rho, who + ".rho");
-    sss::detail::require_positive(p.nu, who + ".nu");
-    sss::detail::require_positive(p.delta, who + ".delta");
-    sss::detail::require_non_negative(p.sigma2, who + ".sigma2");
-    sss::detail::require_in_range(p.gamma, T(2.1), T(3.9), who + ".gamma");
-    sss::detail::require_positive(p.w2_cm4, who + ".w2_cm4");
+    sss::require_positive(p.rho, who + ".rho");
+    sss::require_positive(p.nu, who + ".nu");
+    sss::require_positive(p.delta, who + ".delta");
+    sss::require_non_negative(p.sigma2, who + ".sigma2");
+    sss::require_in_range(p.gamma, T(2.1), T(3.9), who + ".gamma");
+    sss::require_positive(p.w2_cm4, who + ".w2_cm4");
 }
 
 /// The sediment types of TR 9407 Table 2, coarsest first.
@@ -168,7 +173,7 @@ inline constexpr double max_grain_size_phi = 9.0;
 /// were fitted to, ends included; outside it this throws invalid_parameter ("mz_phi") rather than
 /// extrapolate (for coarser beds use the rock, cobble or sandy_gravel presets).
 template <Real T> [[nodiscard]] sediment_params<T> sediment_from_grain_size(T mz_phi) {
-    sss::detail::require_in_range(mz_phi, T(min_grain_size_phi), T(max_grain_size_phi), "mz_phi");
+    sss::require_in_range(mz_phi, T(min_grain_size_phi), T(max_grain_size_phi), "mz_phi");
     const double m = double(mz_phi);
     double rho = 0, nu = 0, kp = 0;
     if (m < 1.0) {

@@ -4,9 +4,9 @@
 /// specular direction, weighted by the coherent reflection coefficient of the surface; what it meets next
 /// scatters back to the transducer along the same path, and the travel time is the sum of the legs.
 ///
-/// `specular_bounce<S>` is the scattering policy S with the bounce switched on: the simulator sees the member
-/// `specular_bounce` and traces the second leg; a simulator built on plain S compiles without it and pays
-/// nothing. S must model `Reflecting`:
+/// `specular_bounce<S>` is the scattering policy S with the bounce switched on: the simulator reads the static
+/// member `specular_bounce_enabled` (its value: a policy declaring it false does not bounce) and traces the
+/// second leg; a simulator built on plain S compiles without it and pays nothing. S must model `Reflecting`:
 ///
 /// | expression                           | type | meaning                                                          |
 /// |--------------------------------------|------|------------------------------------------------------------------|
@@ -43,7 +43,7 @@ public:
     /// \param base     the scattering policy
     /// \param patch_m  scale (m) below which roughness reduces the coherent reflection: the scene's cell size
     explicit specular_bounce(S base, value_type patch_m = value_type(0.1)) : S(std::move(base)), patch_m_(patch_m) {
-        sss::detail::require_positive(patch_m, "specular_bounce.patch_m");
+        sss::require_positive(patch_m, "specular_bounce.patch_m");
     }
 
     [[nodiscard]] const S& base() const noexcept { return *this; }

@@ -44,15 +44,15 @@ public:
         : end0_(end0_m), end1_(end1_m), radius_(radius_m), ids_(ids) {
         detail::require_finite_vec(end0_m, "cylinder.end0_m");
         detail::require_finite_vec(end1_m, "cylinder.end1_m");
-        sss::detail::require_positive(radius_m, "cylinder.radius_m");
+        sss::require_positive(radius_m, "cylinder.radius_m");
         detail::require_object_ids(ids, "cylinder");
         const vec3<T> axis = end1_m - end0_m;
         length_ = glm::length(axis);
-        sss::detail::require(length_ > T(0) && std::isfinite(length_), "cylinder.length_m",
+        sss::require(length_ > T(0) && std::isfinite(length_), "cylinder.length_m",
                              "the ends must be distinct (length > 0) and the length finite");
         axis_ = axis / length_;
         radius2_ = radius_m * radius_m;
-        sss::detail::require(radius2_ > T(0) && std::isfinite(radius2_), "cylinder.radius_m",
+        sss::require(radius2_ > T(0) && std::isfinite(radius2_), "cylinder.radius_m",
                              "its square must be a finite positive number");
     }
 

@@ -23,7 +23,7 @@ public:
     /// \param region   seabed region id (the ground-truth label of its returns)
     explicit flat_seabed(T height_m = T(0), std::uint32_t material = 0, std::uint32_t region = 0)
         : height_m_(height_m), material_(material), region_(region) {
-        sss::detail::require_finite(height_m, "flat_seabed.height_m");
+        sss::require_finite(height_m, "flat_seabed.height_m");
     }
 
     /// Nearest hit of a downward-going ray with the plane from above (rays from below or parallel miss).

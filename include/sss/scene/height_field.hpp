@@ -32,40 +32,47 @@
 
 namespace sss::scene {
 
+/// A height field's grid, heights and per-cell ids.
+template <Real T> struct height_field_params {
+    std::size_t nx = 0;             ///< vertices along x (east), >= 2
+    std::size_t ny = 0;             ///< vertices along y (north), >= 2
+    T cell_m = T(1);                ///< vertex spacing (m), finite and > 0
+    vec2<T> origin_m{T(0), T(0)};   ///< world (x, y) of vertex (0, 0) (m), finite
+    std::vector<T> heights_m{};     ///< nx * ny vertex heights, world z (m), row-major from the south row; finite
+    std::vector<std::uint32_t> materials{}; ///< per-cell scattering material ids, (nx-1) * (ny-1), or empty for all 0
+    std::vector<std::uint32_t> regions{};   ///< per-cell region ids (the ground-truth label of hits), same size rule
+};
+
 template <Real T> class height_field {
 public:
     using value_type = T;
 
-    /// \param nx        vertices along x (east), >= 2
-    /// \param ny        vertices along y (north), >= 2
-    /// \param cell_m    vertex spacing (m), finite and > 0
-    /// \param origin_m  world (x, y) of vertex (0, 0) (m), finite
-    /// \param heights_m nx * ny vertex heights, world z (m), row-major from the south row; all finite
-    /// \param materials per-cell scattering material ids, (nx-1) * (ny-1) of them, or empty for all 0
-    /// \param regions   per-cell region ids (the ground-truth label of hits), same size rule
-    height_field(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, std::vector<T> heights_m,
-                 std::vector<std::uint32_t> materials = {}, std::vector<std::uint32_t> regions = {})
-        : heights_(std::move(heights_m)), materials_(std::move(materials)), regions_(std::move(regions)) {
+    /// Throws invalid_parameter naming the field ("height_field.nx", "height_field.heights_m[i]", ...).
+    explicit height_field(height_field_params<T> p)
+        : heights_(std::move(p.heights_m)), materials_(std::move(p.materials)), regions_(std::move(p.regions)) {
+        const std::size_t nx = p.nx, ny = p.ny;
+        const T cell_m = p.cell_m;
+        const vec2<T> origin_m = p.origin_m;
         constexpr std::size_t max_n = std::size_t(1) << 30;
-        sss::detail::require(nx >= 2 && nx <= max_n, "height_field.nx",
-                             "must lie in [2, 2^30] (vertices), got " + std::to_string(nx));
-        sss::detail::require(ny >= 2 && ny <= max_n, "height_field.ny",
-                             "must lie in [2, 2^30] (vertices), got " + std::to_string(ny));
-        sss::detail::require_positive(cell_m, "height_field.cell_m");
-        sss::detail::require_finite(origin_m.x, "height_field.origin_m.x");
-        sss::detail::require_finite(origin_m.y, "height_field.origin_m.y");
-        sss::detail::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
+        sss::require(nx >= 2 && nx <= max_n, "height_field.nx",
+                             [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(nx); });
+        sss::require(ny >= 2 && ny <= max_n, "height_field.ny",
+                             [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(ny); });
+        sss::require_positive(cell_m, "height_field.cell_m");
+        sss::require_finite(origin_m.x, "height_field.origin_m.x");
+        sss::require_finite(origin_m.y, "height_field.origin_m.y");
+        sss::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
                              "nx * ny overflows");
         const std::size_t n = nx * ny, cells = (nx - 1) * (ny - 1);
-        sss::detail::require(heights_.size() == n, "height_field.heights_m",
-                             "must hold nx * ny = " + std::to_string(n) + " values, got " +
-                                 std::to_string(heights_.size()));
-        sss::detail::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
-                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                                 std::to_string(materials_.size()));
-        sss::detail::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
-                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                                 std::to_string(regions_.size()));
+        sss::require(heights_.size() == n, "height_field.heights_m",
+                             [&] { return "must hold nx * ny = " + std::to_string(n) + " values, got " +
+                                 std::to_string(heights_.size()); });
+        sss::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
+                             [&] { return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                                 std::to_string(materials_.size()); });
+        sss::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
+                             [&] { return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                                 std::to_string(regions_.size()); });
         bounds_.bottom_m = std::numeric_limits<T>::infinity();
         bounds_.top_m = -std::numeric_limits<T>::infinity();
         for (std::size_t i = 0; i < n; ++i) {
@@ -130,9 +137,9 @@ public:
     /// of the wedge, then a short exact walk per ray. Other rays go one by one.
     /// Throws invalid_parameter unless hits.size() == rays.size().
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
-        sss::detail::require(hits.size() == rays.size(), "height_field.intersect_many.hits",
-                             "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
-                                 std::to_string(hits.size()));
+        sss::require(hits.size() == rays.size(), "height_field.intersect_many.hits",
+                             [&] { return "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
+                                 std::to_string(hits.size()); });
         // Working memory for one fan at a time (at most detail::max_fan_rays rays): the rays' slopes, and
         // where the sweep found each ray coming down, turned into hits in a second pass over the fan.
         fan_scratch scratch;
@@ -294,8 +301,8 @@ private:
             for (std::size_t j = 0; j < m; ++j) {
                 if (k0 + j + 2 * batch < hits.size()) { // the slots come from memory: ask for them ahead
                     const auto* slot = reinterpret_cast<const unsigned char*>(&hits[k0 + j + 2 * batch]);
-                    detail::prefetch(slot);
-                    detail::prefetch(slot + sizeof(std::optional<hit<T>>) - 1);
+                    sss::detail::prefetch(slot);
+                    sss::detail::prefetch(slot + sizeof(std::optional<hit<T>>) - 1);
                 }
                 if (dist[j] > T(0))
                     hits[k0 + j].emplace(make_hit(fan[k0 + j], dist[j], seg[j]->ix, seg[j]->iy, gr[j]));

@@ -26,21 +26,13 @@
 #include <span>
 #include <vector>
 
+#include "sss/core/detail/prefetch.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/height_field_tracer.hpp"
 
 namespace sss::scene {
 
 namespace detail {
-
-/// A hint to bring the cache line holding p closer (nothing where the compiler has no such hint).
-inline void prefetch(const void* p) noexcept {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
 
 /// A fan ray's slope numbers: tau = tan(depression) = -dz / |(dx, dy)|, and inv_h = 1 / |(dx, dy)|, the
 /// distance along the ray per metre of horizontal travel.
@@ -78,7 +70,7 @@ template <Real T> [[nodiscard]] inline fan_run find_fan_run(std::span<const ray<
     const std::size_t end = first + std::min(rays.size() - first, slopes.size());
     for (std::size_t j = first + 1; j < end; ++j) {
         const ray<T>& r = rays[j];
-        if (j + 32 < rays.size()) prefetch(&rays[j + 32]); // rays arrive from memory: ask ahead
+        if (j + 32 < rays.size()) sss::detail::prefetch(&rays[j + 32]); // rays arrive from memory: ask ahead
         if (!(r.origin == r0.origin)) break;
         const T inv_h = T(1) / std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
         if (!(inv_h <= T(1e3))) break;
@@ -208,8 +200,8 @@ template <Real T, class Resolved>
             ahead_iy = iy;
             const std::int32_t x0 = std::max(ix - 1, 0), x1 = std::min(ix + 2, g.nx - 1);
             for (std::int32_t y = std::max(iy - 1, 0); y <= std::min(iy + 2, g.ny - 1); ++y) {
-                detail::prefetch(&g.heights[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x0)]);
-                detail::prefetch(&g.heights[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x1)]);
+                sss::detail::prefetch(&g.heights[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x0)]);
+                sss::detail::prefetch(&g.heights[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x1)]);
             }
         }
         void report() {

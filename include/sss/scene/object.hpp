@@ -69,11 +69,11 @@ template <Real T> void require_rigid(const rigid_transform<T>& x, const std::str
     const mat3<T> g = glm::transpose(x.rotation) * x.rotation;
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) {
-            sss::detail::require_finite(x.rotation[c][r], name + ".rotation");
-            sss::detail::require(std::abs(g[c][r] - (c == r ? T(1) : T(0))) <= tol, name + ".rotation",
+            sss::require_finite(x.rotation[c][r], name + ".rotation");
+            sss::require(std::abs(g[c][r] - (c == r ? T(1) : T(0))) <= tol, name + ".rotation",
                                  "must be orthonormal (R^T R = I)");
         }
-    sss::detail::require(std::abs(glm::determinant(x.rotation) - T(1)) <= tol, name + ".rotation",
+    sss::require(std::abs(glm::determinant(x.rotation) - T(1)) <= tol, name + ".rotation",
                          "must be a proper rotation (determinant +1, no reflection)");
 }
 
@@ -92,7 +92,7 @@ public:
     object(const std::vector<sphere<T>>& spheres, const std::vector<cylinder<T>>& cylinders,
            const rigid_transform<T>& where = {})
         : placement_(where) {
-        sss::detail::require(!spheres.empty() || !cylinders.empty(), "object.primitives",
+        sss::require(!spheres.empty() || !cylinders.empty(), "object.primitives",
                              "an object needs at least one sphere or cylinder");
         require_rigid(where, "object.placement");
         spheres_.reserve(spheres.size());

@@ -66,7 +66,7 @@ public:
             bounds_.expand(o.bounds());
             object_boxes_.push_back(detail::padded(o.bounds()));
         }
-        sss::detail::require(cylinders_.size() < detail::cylinder_tag && spheres_.size() < detail::cylinder_tag,
+        sss::require(cylinders_.size() < detail::cylinder_tag && spheres_.size() < detail::cylinder_tag,
                              "object_set.objects", "too many primitives (at most 2^31 of each kind)");
         build();
     }

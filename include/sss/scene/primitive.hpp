@@ -70,15 +70,15 @@ namespace detail {
 
 /// Throws unless `ids.object` is a real object id; `who` prefixes the parameter name.
 inline void require_object_ids(const surface_ids& ids, const std::string& who) {
-    sss::detail::require(ids.object != no_object, who + ".ids.object",
+    sss::require(ids.object != no_object, who + ".ids.object",
                          "must not be sss::no_object (reserved for the seabed)");
 }
 
 /// Throws unless every component of `v` is finite; `name` names it.
 template <Real T> void require_finite_vec(const vec3<T>& v, const std::string& name) {
-    sss::detail::require_finite(v.x, name + ".x");
-    sss::detail::require_finite(v.y, name + ".y");
-    sss::detail::require_finite(v.z, name + ".z");
+    sss::require_finite(v.x, name + ".x");
+    sss::require_finite(v.y, name + ".y");
+    sss::require_finite(v.z, name + ".z");
 }
 
 /// The box grown by 16 ulps of its largest coordinate (at least of 1 m): a culling box that rounding

@@ -46,9 +46,9 @@ public:
     /// hits[k] = intersect(rays[k], t_max_m) for every k: the seabed's hits together (sss::intersect_all, so a
     /// seabed that shares work among rays does), then the objects ray by ray up to each seabed hit.
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
-        sss::detail::require(hits.size() == rays.size(), "scene.intersect_many.hits",
-                             "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
-                                 std::to_string(hits.size()));
+        sss::require(hits.size() == rays.size(), "scene.intersect_many.hits",
+                             [&] { return "must hold one slot per ray (" + std::to_string(rays.size()) + "), got " +
+                                 std::to_string(hits.size()); });
         intersect_all(seabed_, rays, t_max_m, hits);
         if (objects_.empty()) return;
         for (std::size_t k = 0; k < rays.size(); ++k)

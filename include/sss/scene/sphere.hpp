@@ -32,10 +32,10 @@ public:
     sphere(const vec3<T>& center_m, T radius_m, const surface_ids& ids = {})
         : center_(center_m), radius_(radius_m), ids_(ids) {
         detail::require_finite_vec(center_m, "sphere.center_m");
-        sss::detail::require_positive(radius_m, "sphere.radius_m");
+        sss::require_positive(radius_m, "sphere.radius_m");
         detail::require_object_ids(ids, "sphere");
         radius2_ = radius_m * radius_m;
-        sss::detail::require(radius2_ > T(0) && std::isfinite(radius2_), "sphere.radius_m",
+        sss::require(radius2_ > T(0) && std::isfinite(radius2_), "sphere.radius_m",
                              "its square must be a finite positive number");
     }
 

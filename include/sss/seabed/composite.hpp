@@ -76,7 +76,7 @@ template <Real T> struct composite_seabed {
     region_raster<T> regions; ///< region_texture::id of each sample
 };
 
-namespace impl {
+namespace detail {
 
 /// 1D Gaussian smoothing (standard deviation sigma cells, truncated at 4 sigma, edges clamped) of
 /// each row (stride 1) or column (stride nx) of `v` in place.
@@ -107,24 +107,24 @@ inline void gaussian_pass(std::vector<double>& v, std::size_t nx, std::size_t ny
     }
 }
 
-} // namespace impl
+} // namespace detail
 
 /// Texture indices (0 .. fractions.size() - 1) of an nx x ny raster partitioned by levels.
 template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::size_t ny, T cell_m,
                                                            const level_partition<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "partition");
-    sss::detail::require(!p.fractions.empty(), "partition.fractions", "needs at least one texture");
+    sss::require(!p.fractions.empty(), "partition.fractions", "needs at least one texture");
     double total = 0.0;
     for (std::size_t k = 0; k < p.fractions.size(); ++k) {
-        sss::detail::require_positive(p.fractions[k], "partition.fractions[" + std::to_string(k) + "]");
+        sss::require_positive(p.fractions[k], "partition.fractions[" + std::to_string(k) + "]");
         total += static_cast<double>(p.fractions[k]);
     }
-    sss::detail::require_positive(p.patch_scale_m, "partition.patch_scale_m");
-    sss::detail::require_finite(p.boundary_gamma, "partition.boundary_gamma");
-    sss::detail::require(p.boundary_gamma > T(2) && p.boundary_gamma < T(4), "partition.boundary_gamma",
+    sss::require_positive(p.patch_scale_m, "partition.patch_scale_m");
+    sss::require_finite(p.boundary_gamma, "partition.boundary_gamma");
+    sss::require(p.boundary_gamma > T(2) && p.boundary_gamma < T(4), "partition.boundary_gamma",
                     "must lie in (2, 4)");
 
-    const raster<double> f = impl::unit_fractal_field(nx, ny, cell_m, p.boundary_gamma, p.patch_scale_m, seed);
+    const raster<double> f = detail::unit_fractal_field(nx, ny, cell_m, p.boundary_gamma, p.patch_scale_m, seed);
     std::vector<double> sorted = f.values;
     std::sort(sorted.begin(), sorted.end());
     std::vector<double> thresholds; // upper level of textures 0 .. K-2
@@ -149,20 +149,20 @@ template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::
 template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::size_t ny, T cell_m,
                                                            const voronoi_partition<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "partition");
-    sss::detail::require(!p.sites.empty(), "partition.sites", "needs at least one site");
+    sss::require(!p.sites.empty(), "partition.sites", "needs at least one site");
     for (std::size_t k = 0; k < p.sites.size(); ++k) {
-        sss::detail::require_finite(p.sites[k].x_m, "partition.sites[" + std::to_string(k) + "].x_m");
-        sss::detail::require_finite(p.sites[k].y_m, "partition.sites[" + std::to_string(k) + "].y_m");
+        sss::require_finite(p.sites[k].x_m, "partition.sites[" + std::to_string(k) + "].x_m");
+        sss::require_finite(p.sites[k].y_m, "partition.sites[" + std::to_string(k) + "].y_m");
     }
-    sss::detail::require_non_negative(p.warp_m, "partition.warp_m");
-    sss::detail::require_positive(p.warp_scale_m, "partition.warp_scale_m");
-    sss::detail::require_finite(p.warp_gamma, "partition.warp_gamma");
-    sss::detail::require(p.warp_gamma > T(2) && p.warp_gamma < T(4), "partition.warp_gamma", "must lie in (2, 4)");
+    sss::require_non_negative(p.warp_m, "partition.warp_m");
+    sss::require_positive(p.warp_scale_m, "partition.warp_scale_m");
+    sss::require_finite(p.warp_gamma, "partition.warp_gamma");
+    sss::require(p.warp_gamma > T(2) && p.warp_gamma < T(4), "partition.warp_gamma", "must lie in (2, 4)");
 
     raster<double> wx, wy;
     if (p.warp_m > T(0)) {
-        wx = impl::unit_fractal_field(nx, ny, cell_m, p.warp_gamma, p.warp_scale_m, derive_seed(seed, 1));
-        wy = impl::unit_fractal_field(nx, ny, cell_m, p.warp_gamma, p.warp_scale_m, derive_seed(seed, 2));
+        wx = detail::unit_fractal_field(nx, ny, cell_m, p.warp_gamma, p.warp_scale_m, derive_seed(seed, 1));
+        wy = detail::unit_fractal_field(nx, ny, cell_m, p.warp_gamma, p.warp_scale_m, derive_seed(seed, 2));
     }
     const double warp = static_cast<double>(p.warp_m), cell = static_cast<double>(cell_m);
     region_raster<T> out{nx, ny, cell_m, std::vector<std::uint32_t>(nx * ny)};
@@ -197,17 +197,17 @@ template <Real T> [[nodiscard]] composite_seabed<T> compose(const region_raster<
     const std::size_t nx = texture_index.nx, ny = texture_index.ny;
     const T cell_m = texture_index.cell_m;
     require_grid(nx, ny, cell_m, "compose.texture_index");
-    sss::detail::require(texture_index.values.size() == nx * ny, "compose.texture_index.values",
+    sss::require(texture_index.values.size() == nx * ny, "compose.texture_index.values",
                     "size differs from nx * ny");
-    sss::detail::require(!textures.empty(), "compose.textures", "needs at least one texture");
-    sss::detail::require_non_negative(blend_m, "compose.blend_m");
+    sss::require(!textures.empty(), "compose.textures", "needs at least one texture");
+    sss::require_non_negative(blend_m, "compose.blend_m");
     for (std::uint32_t k : texture_index.values)
-        sss::detail::require(k < textures.size(), "compose.texture_index",
-                        "holds texture " + std::to_string(k) + " but only " + std::to_string(textures.size()) +
-                            " are given");
+        sss::require(k < textures.size(), "compose.texture_index",
+                        [&] { return "holds texture " + std::to_string(k) + " but only " + std::to_string(textures.size()) +
+                            " are given"; });
     for (std::size_t k = 0; k < textures.size(); ++k) {
         const std::string who = "compose.textures[" + std::to_string(k) + "]";
-        sss::detail::require_finite(textures[k].mean_height_m, who + ".mean_height_m");
+        sss::require_finite(textures[k].mean_height_m, who + ".mean_height_m");
         validate(textures[k].roughness, who + ".roughness");
         for (std::size_t r = 0; r < textures[k].ripples.size(); ++r)
             validate(textures[k].ripples[r], cell_m, who + ".ripples[" + std::to_string(r) + "]");
@@ -239,8 +239,8 @@ template <Real T> [[nodiscard]] composite_seabed<T> compose(const region_raster<
         }
         weight.assign(nx * ny, 0.0);
         for (std::size_t i = 0; i < nx * ny; ++i) weight[i] = texture_index.values[i] == k ? 1.0 : 0.0;
-        impl::gaussian_pass(weight, nx, ny, sigma_cells, true);
-        impl::gaussian_pass(weight, nx, ny, sigma_cells, false);
+        detail::gaussian_pass(weight, nx, ny, sigma_cells, true);
+        detail::gaussian_pass(weight, nx, ny, sigma_cells, false);
         for (std::size_t i = 0; i < nx * ny; ++i) {
             acc[i] += weight[i] * (mean + static_cast<double>(h.values[i]));
             weight_sum[i] += weight[i];

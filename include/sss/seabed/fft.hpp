@@ -27,12 +27,12 @@ namespace sss::seabed {
 /// Sign of the exponent: forward exp(-i...), backward exp(+i...).
 enum class fft_direction : signed char { forward = -1, backward = +1 };
 
-namespace impl {
+namespace detail {
 /// Complex product written out: std::complex's operator* checks for NaN and infinity (C99 Annex G) and is slow.
 [[nodiscard]] inline std::complex<double> cmul(std::complex<double> a, std::complex<double> b) noexcept {
     return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
 }
-} // namespace impl
+} // namespace detail
 
 /// True for 1, 2, 4, 8, ...
 [[nodiscard]] constexpr bool is_power_of_two(std::size_t n) noexcept { return n != 0 && (n & (n - 1)) == 0; }
@@ -53,7 +53,7 @@ public:
 
     /// \param n transform length (>= 1), any value
     explicit fft_plan(std::size_t n) : n_(n) {
-        sss::detail::require(n >= 1, "fft_plan.n", "transform length must be >= 1");
+        sss::require(n >= 1, "fft_plan.n", "transform length must be >= 1");
         if (is_power_of_two(n)) {
             init_radix2(n, twiddle_, bitrev_);
             return;
@@ -89,22 +89,22 @@ public:
         }
         // The backward transform is the conjugate of the forward transform of the conjugate.
         const bool back = dir == fft_direction::backward;
-        for (std::size_t j = 0; j < n_; ++j) scratch[j] = impl::cmul(back ? std::conj(data[j]) : data[j], chirp_[j]);
+        for (std::size_t j = 0; j < n_; ++j) scratch[j] = detail::cmul(back ? std::conj(data[j]) : data[j], chirp_[j]);
         for (std::size_t j = n_; j < m_; ++j) scratch[j] = complex(0.0, 0.0);
         radix2(scratch, m_, fft_direction::forward);
-        for (std::size_t j = 0; j < m_; ++j) scratch[j] = impl::cmul(scratch[j], kernel_[j]);
+        for (std::size_t j = 0; j < m_; ++j) scratch[j] = detail::cmul(scratch[j], kernel_[j]);
         radix2(scratch, m_, fft_direction::backward);
         const double inv_m = 1.0 / static_cast<double>(m_);
         for (std::size_t k = 0; k < n_; ++k) {
-            const complex v = impl::cmul(scratch[k], chirp_[k]) * inv_m;
+            const complex v = detail::cmul(scratch[k], chirp_[k]) * inv_m;
             data[k] = back ? std::conj(v) : v;
         }
     }
 
     /// Transforms `data` in place, allocating scratch when needed.
     void execute(std::span<complex> data, fft_direction dir) const {
-        sss::detail::require(data.size() == n_, "fft_plan.execute.data",
-                        "length " + std::to_string(data.size()) + " differs from the plan's " + std::to_string(n_));
+        sss::require(data.size() == n_, "fft_plan.execute.data",
+                        [&] { return "length " + std::to_string(data.size()) + " differs from the plan's " + std::to_string(n_); });
         std::vector<complex> scratch(m_);
         execute(data.data(), dir, scratch.data());
     }
@@ -139,7 +139,7 @@ private:
                 complex* hi = lo + half;
                 for (std::size_t j = 0; j < half; ++j) {
                     const complex w = back ? std::conj(twiddle_[j * stride]) : twiddle_[j * stride];
-                    const complex t = impl::cmul(hi[j], w);
+                    const complex t = detail::cmul(hi[j], w);
                     hi[j] = lo[j] - t;
                     lo[j] += t;
                 }
@@ -162,10 +162,10 @@ inline void fft(std::span<std::complex<double>> data, fft_direction dir) { fft_p
 /// X(kx, ky) = sum_{ix, iy} x(ix, iy) exp(-+2 pi i (ix kx / nx + iy ky / ny)), unnormalised.
 /// Rows are transformed first, then columns in blocks of adjacent columns for cache locality.
 inline void fft_2d(std::span<std::complex<double>> data, std::size_t nx, std::size_t ny, fft_direction dir) {
-    sss::detail::require(nx >= 1, "fft_2d.nx", "must be >= 1");
-    sss::detail::require(ny >= 1, "fft_2d.ny", "must be >= 1");
-    sss::detail::require(data.size() == nx * ny, "fft_2d.data",
-                    "length " + std::to_string(data.size()) + " differs from nx * ny = " + std::to_string(nx * ny));
+    sss::require(nx >= 1, "fft_2d.nx", "must be >= 1");
+    sss::require(ny >= 1, "fft_2d.ny", "must be >= 1");
+    sss::require(data.size() == nx * ny, "fft_2d.data",
+                    [&] { return "length " + std::to_string(data.size()) + " differs from nx * ny = " + std::to_string(nx * ny); });
     using complex = std::complex<double>;
     const fft_plan row_plan(nx);
     std::vector<complex> scratch(std::max(row_plan.scratch_size(), std::size_t{1}));

@@ -67,12 +67,12 @@ template <Real T> struct fractal_params {
 /// Throws invalid_parameter naming the offending field (prefixed by `who`).
 template <Real T> void validate(const fractal_params<T>& p, const std::string& who) {
     validate(p.spectrum, who + ".spectrum");
-    sss::detail::require_positive(p.anisotropy, who + ".anisotropy");
-    sss::detail::require_finite(p.direction_rad, who + ".direction_rad");
-    sss::detail::require(p.oversample >= 1 && p.oversample <= 64, who + ".oversample", "must lie in [1, 64]");
+    sss::require_positive(p.anisotropy, who + ".anisotropy");
+    sss::require_finite(p.direction_rad, who + ".direction_rad");
+    sss::require(p.oversample >= 1 && p.oversample <= 64, who + ".oversample", "must lie in [1, 64]");
 }
 
-namespace impl {
+namespace detail {
 
 /// W(K_eff) with the direction's cosine and sine and the outer scale evaluated once.
 struct directional_density {
@@ -159,12 +159,12 @@ template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, s
     }
 }
 
-} // namespace impl
+} // namespace detail
 
 /// Directional spectral density W(K_eff) (m^4) at wave vector (kx, ky) (rad/m); see the file comment.
 template <Real T>
 [[nodiscard]] inline double directional_density_m4(const fractal_params<T>& p, double kx, double ky) noexcept {
-    return impl::make_density(p)(kx, ky);
+    return detail::make_density(p)(kx, ky);
 }
 
 /// The integral of W over the band of an nx x ny grid of spacing cell_m, as the discrete sum
@@ -178,10 +178,10 @@ template <Real T>
     const double dx = static_cast<double>(cell_m);
     const double dkx = two_pi_v<double> / (static_cast<double>(sx) * dx);
     const double dky = two_pi_v<double> / (static_cast<double>(sy) * dx);
-    const impl::directional_density w = impl::make_density(p);
+    const detail::directional_density w = detail::make_density(p);
     double sum = 0.0;
     for (std::size_t j = 0; j < sy; ++j)
-        for (std::size_t i = 0; i < sx; ++i) sum += impl::mode_variance(w, i, j, sx, sy, dkx, dky);
+        for (std::size_t i = 0; i < sx; ++i) sum += detail::mode_variance(w, i, j, sx, sy, dkx, dky);
     return sum;
 }
 
@@ -194,7 +194,7 @@ template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::s
     const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
     rng g(seed);
     std::vector<std::complex<double>> c;
-    impl::fill_coefficients(c, sx, sy, static_cast<double>(cell_m), p, g);
+    detail::fill_coefficients(c, sx, sy, static_cast<double>(cell_m), p, g);
     fft_2d(c, sx, sy, fft_direction::backward);
     raster<T> out{nx, ny, cell_m, std::vector<T>(nx * ny)};
     for (std::size_t iy = 0; iy < ny; ++iy)
@@ -202,7 +202,7 @@ template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::s
     return out;
 }
 
-namespace impl {
+namespace detail {
 
 /// A fractal field of unit expected RMS (power law of exponent gamma, outer scale l0_m; w2 scaled so
 /// that the band variance is 1), in double: the shape of perturbation, warp and partition fields.
@@ -216,6 +216,6 @@ template <Real T> [[nodiscard]] raster<double> unit_fractal_field(std::size_t nx
     return g;
 }
 
-} // namespace impl
+} // namespace detail
 
 } // namespace sss::seabed

@@ -52,11 +52,11 @@ template <Real T> [[nodiscard]] inline T spectral_density_m4(const power_law_spe
 /// Throws invalid_parameter (named `who`.w2_si, .gamma, .outer_scale_m) unless w2_si >= 0,
 /// 2 < gamma < 4 and outer_scale_m >= 0.
 template <Real T> void validate(const power_law_spectrum<T>& s, const std::string& who) {
-    sss::detail::require_non_negative(s.w2_si, who + ".w2_si");
-    sss::detail::require_finite(s.gamma, who + ".gamma");
-    sss::detail::require(s.gamma > T(2) && s.gamma < T(4), who + ".gamma",
-                    "must lie in (2, 4) (fractional Brownian surface), got " + std::to_string(s.gamma));
-    sss::detail::require_non_negative(s.outer_scale_m, who + ".outer_scale_m");
+    sss::require_non_negative(s.w2_si, who + ".w2_si");
+    sss::require_finite(s.gamma, who + ".gamma");
+    sss::require(s.gamma > T(2) && s.gamma < T(4), who + ".gamma",
+                    [&] { return "must lie in (2, 4) (fractional Brownian surface), got " + std::to_string(s.gamma); });
+    sss::require_non_negative(s.outer_scale_m, who + ".outer_scale_m");
 }
 
 } // namespace sss::seabed

@@ -45,9 +45,9 @@ template <Real T> using region_raster = basic_raster<std::uint32_t, T>;
 
 /// Throws unless nx, ny >= 1 and cell_m is finite and > 0; `who` prefixes the parameter names.
 template <Real T> void require_grid(std::size_t nx, std::size_t ny, T cell_m, const std::string& who) {
-    sss::detail::require(nx >= 1, who + ".nx", "must be >= 1");
-    sss::detail::require(ny >= 1, who + ".ny", "must be >= 1");
-    sss::detail::require_positive(cell_m, who + ".cell_m");
+    sss::require(nx >= 1, who + ".nx", "must be >= 1");
+    sss::require(ny >= 1, who + ".ny", "must be >= 1");
+    sss::require_positive(cell_m, who + ".cell_m");
 }
 
 /// A raster of nx x ny samples of spacing cell_m, every sample set to `fill`. Validates the grid.

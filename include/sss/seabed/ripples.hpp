@@ -56,23 +56,23 @@ template <Real T> struct ripple_params {
 
 /// Throws invalid_parameter naming the offending field (prefixed by `who`) for a grid spacing cell_m.
 template <Real T> void validate(const ripple_params<T>& p, T cell_m, const std::string& who) {
-    sss::detail::require_positive(p.wavelength_m, who + ".wavelength_m");
-    sss::detail::require(p.wavelength_m >= T(2) * cell_m, who + ".wavelength_m",
-                    "must be at least 2 cells (" + std::to_string(T(2) * cell_m) + " m) to be resolved, got " +
-                        std::to_string(p.wavelength_m));
-    sss::detail::require_non_negative(p.height_m, who + ".height_m");
-    sss::detail::require_finite(p.crest_direction_rad, who + ".crest_direction_rad");
-    sss::detail::require_positive(p.symmetry_index, who + ".symmetry_index");
-    sss::detail::require_finite(p.phase_rad, who + ".phase_rad");
-    sss::detail::require_non_negative(p.sinuosity_m, who + ".sinuosity_m");
-    sss::detail::require_non_negative(p.sinuosity_wavelength_m, who + ".sinuosity_wavelength_m");
-    sss::detail::require(p.sinuosity_m == T(0) || p.sinuosity_wavelength_m > T(0), who + ".sinuosity_wavelength_m",
+    sss::require_positive(p.wavelength_m, who + ".wavelength_m");
+    sss::require(p.wavelength_m >= T(2) * cell_m, who + ".wavelength_m",
+                    [&] { return "must be at least 2 cells (" + std::to_string(T(2) * cell_m) + " m) to be resolved, got " +
+                        std::to_string(p.wavelength_m); });
+    sss::require_non_negative(p.height_m, who + ".height_m");
+    sss::require_finite(p.crest_direction_rad, who + ".crest_direction_rad");
+    sss::require_positive(p.symmetry_index, who + ".symmetry_index");
+    sss::require_finite(p.phase_rad, who + ".phase_rad");
+    sss::require_non_negative(p.sinuosity_m, who + ".sinuosity_m");
+    sss::require_non_negative(p.sinuosity_wavelength_m, who + ".sinuosity_wavelength_m");
+    sss::require(p.sinuosity_m == T(0) || p.sinuosity_wavelength_m > T(0), who + ".sinuosity_wavelength_m",
                     "must be > 0 when sinuosity_m > 0");
-    sss::detail::require_non_negative(p.perturbation_m, who + ".perturbation_m");
-    sss::detail::require_in_range(p.height_variation, T(0), T(1), who + ".height_variation");
-    sss::detail::require_non_negative(p.perturbation_scale_m, who + ".perturbation_scale_m");
-    sss::detail::require_finite(p.perturbation_gamma, who + ".perturbation_gamma");
-    sss::detail::require(p.perturbation_gamma > T(2) && p.perturbation_gamma < T(4), who + ".perturbation_gamma",
+    sss::require_non_negative(p.perturbation_m, who + ".perturbation_m");
+    sss::require_in_range(p.height_variation, T(0), T(1), who + ".height_variation");
+    sss::require_non_negative(p.perturbation_scale_m, who + ".perturbation_scale_m");
+    sss::require_finite(p.perturbation_gamma, who + ".perturbation_gamma");
+    sss::require(p.perturbation_gamma > T(2) && p.perturbation_gamma < T(4), who + ".perturbation_gamma",
                     "must lie in (2, 4)");
 }
 
@@ -86,7 +86,7 @@ template <Real T> [[nodiscard]] inline T ripple_profile(T q, T stoss_fraction) n
 /// Adds one set of ripples to `h` (heights in m). Same (h, p, seed), same result.
 template <Real T> void add_ripples(raster<T>& h, const ripple_params<T>& p, std::uint64_t seed) {
     require_grid(h.nx, h.ny, h.cell_m, "add_ripples.h");
-    sss::detail::require(h.values.size() == h.nx * h.ny, "add_ripples.h.values", "size differs from nx * ny");
+    sss::require(h.values.size() == h.nx * h.ny, "add_ripples.h.values", "size differs from nx * ny");
     validate(p, h.cell_m, "add_ripples.params");
     const double lambda = static_cast<double>(p.wavelength_m);
     const double theta = static_cast<double>(p.crest_direction_rad);
@@ -100,10 +100,10 @@ template <Real T> void add_ripples(raster<T>& h, const ripple_params<T>& p, std:
 
     raster<double> shift, modulation;
     if (p.perturbation_m > T(0))
-        shift = impl::unit_fractal_field(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
+        shift = detail::unit_fractal_field(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
                                          derive_seed(seed, 1));
     if (p.height_variation > T(0))
-        modulation = impl::unit_fractal_field(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
+        modulation = detail::unit_fractal_field(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
                                               derive_seed(seed, 2));
 
     const double dx = static_cast<double>(h.cell_m);

@@ -83,52 +83,52 @@ template <Real T> struct scour {
 };
 
 template <Real T> void validate(const plate<T>& s, const std::string& who) {
-    sss::detail::require_finite(s.center_x_m, who + ".center_x_m");
-    sss::detail::require_finite(s.center_y_m, who + ".center_y_m");
-    sss::detail::require_positive(s.length_m, who + ".length_m");
-    sss::detail::require_positive(s.width_m, who + ".width_m");
-    sss::detail::require_finite(s.heading_rad, who + ".heading_rad");
-    sss::detail::require_finite(s.top_m, who + ".top_m");
+    sss::require_finite(s.center_x_m, who + ".center_x_m");
+    sss::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::require_positive(s.length_m, who + ".length_m");
+    sss::require_positive(s.width_m, who + ".width_m");
+    sss::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::require_finite(s.top_m, who + ".top_m");
 }
 
 template <Real T> void validate(const trench<T>& s, const std::string& who) {
-    sss::detail::require_finite(s.x0_m, who + ".x0_m");
-    sss::detail::require_finite(s.y0_m, who + ".y0_m");
-    sss::detail::require_finite(s.x1_m, who + ".x1_m");
-    sss::detail::require_finite(s.y1_m, who + ".y1_m");
-    sss::detail::require_positive(s.width_m, who + ".width_m");
-    sss::detail::require_non_negative(s.floor_width_m, who + ".floor_width_m");
-    sss::detail::require(s.floor_width_m < s.width_m, who + ".floor_width_m", "must be < width_m");
-    sss::detail::require_non_negative(s.depth_m, who + ".depth_m");
-    sss::detail::require_non_negative(s.berm_height_m, who + ".berm_height_m");
-    sss::detail::require_non_negative(s.berm_width_m, who + ".berm_width_m");
-    sss::detail::require(s.berm_height_m == T(0) || s.berm_width_m > T(0), who + ".berm_width_m",
+    sss::require_finite(s.x0_m, who + ".x0_m");
+    sss::require_finite(s.y0_m, who + ".y0_m");
+    sss::require_finite(s.x1_m, who + ".x1_m");
+    sss::require_finite(s.y1_m, who + ".y1_m");
+    sss::require_positive(s.width_m, who + ".width_m");
+    sss::require_non_negative(s.floor_width_m, who + ".floor_width_m");
+    sss::require(s.floor_width_m < s.width_m, who + ".floor_width_m", "must be < width_m");
+    sss::require_non_negative(s.depth_m, who + ".depth_m");
+    sss::require_non_negative(s.berm_height_m, who + ".berm_height_m");
+    sss::require_non_negative(s.berm_width_m, who + ".berm_width_m");
+    sss::require(s.berm_height_m == T(0) || s.berm_width_m > T(0), who + ".berm_width_m",
                     "must be > 0 when berm_height_m > 0");
 }
 
 template <Real T> void validate(const mound<T>& s, const std::string& who) {
-    sss::detail::require_finite(s.center_x_m, who + ".center_x_m");
-    sss::detail::require_finite(s.center_y_m, who + ".center_y_m");
-    sss::detail::require_positive(s.radius_u_m, who + ".radius_u_m");
-    sss::detail::require_positive(s.radius_v_m, who + ".radius_v_m");
-    sss::detail::require_finite(s.heading_rad, who + ".heading_rad");
-    sss::detail::require_non_negative(s.height_m, who + ".height_m");
+    sss::require_finite(s.center_x_m, who + ".center_x_m");
+    sss::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::require_positive(s.radius_u_m, who + ".radius_u_m");
+    sss::require_positive(s.radius_v_m, who + ".radius_v_m");
+    sss::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::require_non_negative(s.height_m, who + ".height_m");
 }
 
 template <Real T> void validate(const scour<T>& s, const std::string& who) {
-    sss::detail::require_finite(s.center_x_m, who + ".center_x_m");
-    sss::detail::require_finite(s.center_y_m, who + ".center_y_m");
-    sss::detail::require_positive(s.radius_u_m, who + ".radius_u_m");
-    sss::detail::require_positive(s.radius_v_m, who + ".radius_v_m");
-    sss::detail::require_finite(s.heading_rad, who + ".heading_rad");
-    sss::detail::require_non_negative(s.depth_m, who + ".depth_m");
-    sss::detail::require_non_negative(s.rim_height_m, who + ".rim_height_m");
-    sss::detail::require_non_negative(s.rim_width_m, who + ".rim_width_m");
-    sss::detail::require(s.rim_height_m == T(0) || s.rim_width_m > T(0), who + ".rim_width_m",
+    sss::require_finite(s.center_x_m, who + ".center_x_m");
+    sss::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::require_positive(s.radius_u_m, who + ".radius_u_m");
+    sss::require_positive(s.radius_v_m, who + ".radius_v_m");
+    sss::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::require_non_negative(s.depth_m, who + ".depth_m");
+    sss::require_non_negative(s.rim_height_m, who + ".rim_height_m");
+    sss::require_non_negative(s.rim_width_m, who + ".rim_width_m");
+    sss::require(s.rim_height_m == T(0) || s.rim_width_m > T(0), who + ".rim_width_m",
                     "must be > 0 when rim_height_m > 0");
 }
 
-namespace impl {
+namespace detail {
 
 /// Index range [lo, hi) of samples whose coordinate lies within [a, b] (m), clipped to [0, n).
 inline void sample_range(double a, double b, double cell, std::size_t n, std::size_t& lo, std::size_t& hi) {
@@ -190,14 +190,14 @@ template <class Inside> double coverage(double x, double y, double cell, Inside&
 /// Throws unless h has a valid grid and nx * ny values.
 template <Real T> void require_raster(const raster<T>& h, const std::string& who) {
     require_grid(h.nx, h.ny, h.cell_m, who);
-    sss::detail::require(h.values.size() == h.nx * h.ny, who + ".values", "size differs from nx * ny");
+    sss::require(h.values.size() == h.nx * h.ny, who + ".values", "size differs from nx * ny");
 }
 
-} // namespace impl
+} // namespace detail
 
 /// Lays a plate on the seabed: covered samples take the plate's top, mean seabed under it + top_m.
 template <Real T> void stamp(raster<T>& h, const plate<T>& s) {
-    impl::require_raster(h, "stamp.h");
+    detail::require_raster(h, "stamp.h");
     validate(s, "stamp.plate");
     const double c = std::cos(static_cast<double>(s.heading_rad)), sn = std::sin(static_cast<double>(s.heading_rad));
     const double hl = 0.5 * static_cast<double>(s.length_m), hw = 0.5 * static_cast<double>(s.width_m);
@@ -210,17 +210,17 @@ template <Real T> void stamp(raster<T>& h, const plate<T>& s) {
         return std::abs(u) <= hl && std::abs(v) <= hw;
     };
     double sum = 0.0, weight = 0.0;
-    impl::for_samples_near(h.nx, h.ny, cell, cx, cy, reach_x, reach_y,
+    detail::for_samples_near(h.nx, h.ny, cell, cx, cy, reach_x, reach_y,
                            [&](std::size_t ix, std::size_t iy, double x, double y) {
-                               const double f = impl::coverage(x, y, cell, inside);
+                               const double f = detail::coverage(x, y, cell, inside);
                                sum += f * static_cast<double>(h(ix, iy));
                                weight += f;
                            });
     if (weight == 0.0) return; // entirely off the raster
     const double top = sum / weight + static_cast<double>(s.top_m);
-    impl::for_samples_near(h.nx, h.ny, cell, cx, cy, reach_x, reach_y,
+    detail::for_samples_near(h.nx, h.ny, cell, cx, cy, reach_x, reach_y,
                            [&](std::size_t ix, std::size_t iy, double x, double y) {
-                               const double f = impl::coverage(x, y, cell, inside);
+                               const double f = detail::coverage(x, y, cell, inside);
                                if (f > 0.0)
                                    h(ix, iy) = static_cast<T>(f * top + (1.0 - f) * static_cast<double>(h(ix, iy)));
                            });
@@ -245,15 +245,15 @@ template <Real T> [[nodiscard]] inline double trench_offset_m(const trench<T>& s
 
 /// Cuts a trench into the seabed (adds trench_offset_m).
 template <Real T> void stamp(raster<T>& h, const trench<T>& s) {
-    impl::require_raster(h, "stamp.h");
+    detail::require_raster(h, "stamp.h");
     validate(s, "stamp.trench");
     const double x0 = static_cast<double>(s.x0_m), y0 = static_cast<double>(s.y0_m);
     const double x1 = static_cast<double>(s.x1_m), y1 = static_cast<double>(s.y1_m);
     const double reach = 0.5 * static_cast<double>(s.width_m) + static_cast<double>(s.berm_width_m);
     const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
-    impl::for_samples_near(h.nx, h.ny, static_cast<double>(h.cell_m), cx, cy, 0.5 * std::abs(x1 - x0) + reach,
+    detail::for_samples_near(h.nx, h.ny, static_cast<double>(h.cell_m), cx, cy, 0.5 * std::abs(x1 - x0) + reach,
                            0.5 * std::abs(y1 - y0) + reach, [&](std::size_t ix, std::size_t iy, double x, double y) {
-                               const double d = impl::segment_distance(x, y, x0, y0, x1, y1);
+                               const double d = detail::segment_distance(x, y, x0, y0, x1, y1);
                                h(ix, iy) = static_cast<T>(static_cast<double>(h(ix, iy)) + trench_offset_m(s, d));
                            });
 }
@@ -267,11 +267,11 @@ template <Real T> [[nodiscard]] inline double mound_offset_m(const mound<T>& s, 
 
 /// Raises a mound on the seabed (adds mound_offset_m).
 template <Real T> void stamp(raster<T>& h, const mound<T>& s) {
-    impl::require_raster(h, "stamp.h");
+    detail::require_raster(h, "stamp.h");
     validate(s, "stamp.mound");
-    const impl::ellipse_frame e = impl::frame_of(s);
+    const detail::ellipse_frame e = detail::frame_of(s);
     const double reach = std::max(e.a, e.b);
-    impl::for_samples_near(h.nx, h.ny, static_cast<double>(h.cell_m), e.cx, e.cy, reach, reach,
+    detail::for_samples_near(h.nx, h.ny, static_cast<double>(h.cell_m), e.cx, e.cy, reach, reach,
                            [&](std::size_t ix, std::size_t iy, double x, double y) {
                                h(ix, iy) =
                                    static_cast<T>(static_cast<double>(h(ix, iy)) + mound_offset_m(s, e.r(x, y)));
@@ -300,18 +300,18 @@ template <Real T> [[nodiscard]] inline double scour_offset_m(const scour<T>& s, 
 
 /// Digs a scour pit with its rim (adds scour_offset_m).
 template <Real T> void stamp(raster<T>& h, const scour<T>& s) {
-    impl::require_raster(h, "stamp.h");
+    detail::require_raster(h, "stamp.h");
     validate(s, "stamp.scour");
-    const impl::ellipse_frame e = impl::frame_of(s);
+    const detail::ellipse_frame e = detail::frame_of(s);
     const double reach = std::max(e.a, e.b) * (1.0 + (s.rim_height_m > T(0) ? scour_rim_width(s) : 0.0));
-    impl::for_samples_near(h.nx, h.ny, static_cast<double>(h.cell_m), e.cx, e.cy, reach, reach,
+    detail::for_samples_near(h.nx, h.ny, static_cast<double>(h.cell_m), e.cx, e.cy, reach, reach,
                            [&](std::size_t ix, std::size_t iy, double x, double y) {
                                h(ix, iy) =
                                    static_cast<T>(static_cast<double>(h(ix, iy)) + scour_offset_m(s, e.r(x, y)));
                            });
 }
 
-namespace impl {
+namespace detail {
 
 template <Real T, class Inside> void label(region_raster<T>& regions, double cx, double cy, double reach_x,
                                            double reach_y, std::uint32_t id, Inside&& inside) {
@@ -324,20 +324,20 @@ template <Real T, class Inside> void label(region_raster<T>& regions, double cx,
 
 template <Real T> void require_same_grid(const raster<T>& h, const region_raster<T>& r) {
     require_raster(h, "stamp.h");
-    sss::detail::require(h.nx == r.nx && h.ny == r.ny && h.cell_m == r.cell_m && r.values.size() == r.nx * r.ny,
+    sss::require(h.nx == r.nx && h.ny == r.ny && h.cell_m == r.cell_m && r.values.size() == r.nx * r.ny,
                     "stamp.regions", "must have the height raster's grid");
 }
 
-} // namespace impl
+} // namespace detail
 
 /// Lays a plate and writes `id` into `regions` over its footprint.
 template <Real T> void stamp(raster<T>& h, region_raster<T>& regions, const plate<T>& s, std::uint32_t id) {
-    impl::require_same_grid(h, regions);
+    detail::require_same_grid(h, regions);
     stamp(h, s);
     const double c = std::cos(static_cast<double>(s.heading_rad)), sn = std::sin(static_cast<double>(s.heading_rad));
     const double hl = 0.5 * static_cast<double>(s.length_m), hw = 0.5 * static_cast<double>(s.width_m);
     const double cx = static_cast<double>(s.center_x_m), cy = static_cast<double>(s.center_y_m);
-    impl::label(regions, cx, cy, hl + hw, hl + hw, id, [&](double x, double y) {
+    detail::label(regions, cx, cy, hl + hw, hl + hw, id, [&](double x, double y) {
         const double u = (x - cx) * c + (y - cy) * sn, v = -(x - cx) * sn + (y - cy) * c;
         return std::abs(u) <= hl && std::abs(v) <= hw;
     });
@@ -345,32 +345,32 @@ template <Real T> void stamp(raster<T>& h, region_raster<T>& regions, const plat
 
 /// Cuts a trench and writes `id` into `regions` over its footprint.
 template <Real T> void stamp(raster<T>& h, region_raster<T>& regions, const trench<T>& s, std::uint32_t id) {
-    impl::require_same_grid(h, regions);
+    detail::require_same_grid(h, regions);
     stamp(h, s);
     const double x0 = static_cast<double>(s.x0_m), y0 = static_cast<double>(s.y0_m);
     const double x1 = static_cast<double>(s.x1_m), y1 = static_cast<double>(s.y1_m);
     const double half = 0.5 * static_cast<double>(s.width_m);
-    impl::label(regions, 0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * std::abs(x1 - x0) + half,
+    detail::label(regions, 0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * std::abs(x1 - x0) + half,
                 0.5 * std::abs(y1 - y0) + half, id,
-                [&](double x, double y) { return impl::segment_distance(x, y, x0, y0, x1, y1) < half; });
+                [&](double x, double y) { return detail::segment_distance(x, y, x0, y0, x1, y1) < half; });
 }
 
 /// Raises a mound and writes `id` into `regions` over its footprint.
 template <Real T> void stamp(raster<T>& h, region_raster<T>& regions, const mound<T>& s, std::uint32_t id) {
-    impl::require_same_grid(h, regions);
+    detail::require_same_grid(h, regions);
     stamp(h, s);
-    const impl::ellipse_frame e = impl::frame_of(s);
+    const detail::ellipse_frame e = detail::frame_of(s);
     const double reach = std::max(e.a, e.b);
-    impl::label(regions, e.cx, e.cy, reach, reach, id, [&](double x, double y) { return e.r(x, y) < 1.0; });
+    detail::label(regions, e.cx, e.cy, reach, reach, id, [&](double x, double y) { return e.r(x, y) < 1.0; });
 }
 
 /// Digs a scour pit and writes `id` into `regions` over the pit (the rim is not labelled).
 template <Real T> void stamp(raster<T>& h, region_raster<T>& regions, const scour<T>& s, std::uint32_t id) {
-    impl::require_same_grid(h, regions);
+    detail::require_same_grid(h, regions);
     stamp(h, s);
-    const impl::ellipse_frame e = impl::frame_of(s);
+    const detail::ellipse_frame e = detail::frame_of(s);
     const double reach = std::max(e.a, e.b);
-    impl::label(regions, e.cx, e.cy, reach, reach, id, [&](double x, double y) { return e.r(x, y) < 1.0; });
+    detail::label(regions, e.cx, e.cy, reach, reach, id, [&](double x, double y) { return e.r(x, y) < 1.0; });
 }
 
 } // namespace sss::seabed

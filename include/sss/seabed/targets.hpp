@@ -11,17 +11,8 @@
 /// Resting on a seabed is decided in the vertical plane through the target's axis (or route), from the
 /// seabed sampled along it every `profile_step_m`; slopes across that plane are ignored, so on a seabed
 /// sloping across a pipe or cylinder by beta its upslope side dips into the seabed by up to
-/// r (1 - cos beta) (0.4 mm for r = 0.3 m, beta = 3 deg). Two profile tools do the work:
-/// - `disc_rest_heights`: where the centre of a disc of radius r resting on the profile lies (the profile
-///   dilated by the disc): c_i = max over |s_j - s_i| <= r of z_j + sqrt(r^2 - (s_j - s_i)^2);
-/// - `taut_string`: the string pulled taut over a profile from its first to its last sample, i.e. its upper
-///   convex hull, which follows the profile over crests and bridges every hollow in a straight line. From
-///   each support the string goes to the sample within reach `max_span_m` that it meets at the steepest
-///   upward (least downward) slope, the farthest of equals; with unlimited reach this is the gift-wrapping
-///   construction of the upper hull (Jarvis, 1973, Information Processing Letters 2(1) 18-21), computed in
-///   linear time by the monotone chain (Andrew, 1979, Information Processing Letters 9(5) 216-219). With a
-///   finite reach a hollow wider than the reach is not bridged whole: the string comes down into it.
-///   Every chord lies on or above every sample it passes (each sample within reach has a lower slope).
+/// r (1 - cos beta) (0.4 mm for r = 0.3 m, beta = 3 deg). The profile tools doing the work (a disc resting
+/// on a profile, the taut string over it) are in seabed/profile_hull.hpp.
 
 #include <algorithm>
 #include <cmath>
@@ -40,6 +31,7 @@
 #include "sss/core/error.hpp"
 #include "sss/scene/concept.hpp"
 #include "sss/scene/object.hpp"
+#include "sss/seabed/profile_hull.hpp"
 #include "sss/seabed/random.hpp"
 
 namespace sss::seabed {
@@ -52,62 +44,6 @@ concept HeightFunction = Real<T> && std::invocable<const F&, T, T> && std::conve
 template <Scene S> [[nodiscard]] auto seabed_height_of(const S& s) {
     using T = typename S::value_type;
     return [&s](T x_m, T y_m) { return s.seabed_height_m(x_m, y_m); };
-}
-
-/// Lowest heights (m) of the centre of a disc of radius r resting on the profile (s_m[i], z_m[i]), at each s_m[i]
-/// (see the file comment). s_m ascending.
-template <Real T>
-[[nodiscard]] std::vector<T> disc_rest_heights(std::span<const T> s_m, std::span<const T> z_m, T radius_m) {
-    std::vector<T> c(s_m.size());
-    std::size_t lo = 0, hi = 0;
-    for (std::size_t i = 0; i < s_m.size(); ++i) {
-        while (s_m[i] - s_m[lo] > radius_m) ++lo;
-        while (hi + 1 < s_m.size() && s_m[hi + 1] - s_m[i] <= radius_m) ++hi;
-        T best = -std::numeric_limits<T>::infinity();
-        for (std::size_t j = lo; j <= hi; ++j) {
-            const T d = s_m[j] - s_m[i];
-            best = std::max(best, z_m[j] + std::sqrt(std::max(T(0), radius_m * radius_m - d * d)));
-        }
-        c[i] = best;
-    }
-    return c;
-}
-
-/// Indices of the supports of the taut string over the profile (s_m[i], z_m[i]) (see the file comment):
-/// ascending, first 0, last size - 1; no support is collinear with its neighbours. s_m strictly ascending.
-template <Real T>
-[[nodiscard]] std::vector<std::size_t> taut_string(std::span<const T> s_m, std::span<const T> z_m,
-                                                   T max_span_m = std::numeric_limits<T>::infinity()) {
-    const std::size_t n = s_m.size();
-    std::vector<std::size_t> v;
-    if (n == 0) return v;
-    // > 0 when b lies below the chord from a to c, 0 on it, < 0 above it.
-    auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
-        return (double(s_m[b]) - double(s_m[a])) * (double(z_m[c]) - double(z_m[a])) -
-               (double(z_m[b]) - double(z_m[a])) * (double(s_m[c]) - double(s_m[a]));
-    };
-    auto not_above = [&](std::size_t a, std::size_t b, std::size_t c) { return turn(a, b, c) >= 0.0; };
-    if (!(s_m[n - 1] - s_m[0] > max_span_m)) { // unlimited reach: the upper hull by the monotone chain
-        for (std::size_t i = 0; i < n; ++i) {
-            while (v.size() >= 2 && not_above(v[v.size() - 2], v.back(), i)) v.pop_back();
-            v.push_back(i);
-        }
-        return v;
-    }
-    v.push_back(0);
-    std::size_t i = 0;
-    while (i + 1 < n) {
-        std::size_t best = i + 1;
-        for (std::size_t j = i + 2; j < n && s_m[j] - s_m[i] <= max_span_m; ++j)
-            if (not_above(i, best, j)) best = j; // j at least as steep as best: take the farther
-        // A support exactly collinear with its neighbours is dropped when the chord stays within reach.
-        if (v.size() >= 2 && turn(v[v.size() - 2], v.back(), best) == 0.0 && s_m[best] - s_m[v[v.size() - 2]] <= max_span_m)
-            v.back() = best;
-        else
-            v.push_back(best);
-        i = best;
-    }
-    return v;
 }
 
 // --------------------------------------------------------------------------------------------------
@@ -137,10 +73,8 @@ template <Real T> struct tethered_mine_params {
 /// its centre and 16 points of its rim). Throws invalid_parameter unless the case clears the anchor.
 template <Real T, HeightFunction<T> F>
 [[nodiscard]] scene::object<T> tethered_mine(const tethered_mine_params<T>& p, const F& seabed_height_m) {
-    using sss::detail::require;
-    using sss::detail::require_positive;
-    sss::detail::require_finite(p.anchor_m.x, "tethered_mine.anchor_m.x");
-    sss::detail::require_finite(p.anchor_m.y, "tethered_mine.anchor_m.y");
+    sss::require_finite(p.anchor_m.x, "tethered_mine.anchor_m.x");
+    sss::require_finite(p.anchor_m.y, "tethered_mine.anchor_m.y");
     require_positive(p.case_height_m, "tethered_mine.case_height_m");
     require_positive(p.case_radius_m, "tethered_mine.case_radius_m");
     require_positive(p.tether_radius_m, "tethered_mine.tether_radius_m");
@@ -152,8 +86,8 @@ template <Real T, HeightFunction<T> F>
     vec3<T> axis{T(0), T(0), T(1)};
     if (p.shape == mine_case::cylinder) {
         require_positive(p.case_length_m, "tethered_mine.case_length_m");
-        sss::detail::require_finite(p.case_heading_rad, "tethered_mine.case_heading_rad");
-        sss::detail::require_in_range(p.case_tilt_rad, T(0), half_pi_v<T>, "tethered_mine.case_tilt_rad");
+        sss::require_finite(p.case_heading_rad, "tethered_mine.case_heading_rad");
+        sss::require_in_range(p.case_tilt_rad, T(0), half_pi_v<T>, "tethered_mine.case_tilt_rad");
         const T ct = std::cos(p.case_tilt_rad), st = std::sin(p.case_tilt_rad);
         axis = vec3<T>{ct * std::cos(p.case_heading_rad), ct * std::sin(p.case_heading_rad), st};
         down_m = std::numeric_limits<T>::infinity();
@@ -162,18 +96,18 @@ template <Real T, HeightFunction<T> F>
     }
     const T x = p.anchor_m.x, y = p.anchor_m.y;
     const T ground = static_cast<T>(seabed_height_m(x, y));
-    sss::detail::require_finite(ground, "tethered_mine.seabed_height_m(anchor)");
+    sss::require_finite(ground, "tethered_mine.seabed_height_m(anchor)");
     T base = ground;
     for (int k = 0; k < 16; ++k) {
         const T a = two_pi_v<T> * static_cast<T>(k) / T(16);
         base = std::max(base, static_cast<T>(seabed_height_m(x + p.anchor_radius_m * std::cos(a),
                                                              y + p.anchor_radius_m * std::sin(a))));
     }
-    sss::detail::require_finite(base, "tethered_mine.seabed_height_m(anchor rim)");
+    sss::require_finite(base, "tethered_mine.seabed_height_m(anchor rim)");
     const T center_z = ground + p.case_height_m, anchor_top = base + p.anchor_height_m;
     require(center_z - down_m > anchor_top, "tethered_mine.case_height_m",
-            "the case must clear the anchor: its lowest point " + std::to_string(center_z - down_m) +
-                " m is not above the anchor's top " + std::to_string(anchor_top) + " m");
+            [&] { return "the case must clear the anchor: its lowest point " + std::to_string(center_z - down_m) +
+                " m is not above the anchor's top " + std::to_string(anchor_top) + " m"; });
     const scene::surface_ids case_ids{p.case_material, p.object_id, p.class_id};
     const scene::surface_ids tether_ids{p.tether_material, p.object_id, p.class_id};
     const scene::surface_ids anchor_ids{p.anchor_material, p.object_id, p.class_id};
@@ -222,23 +156,23 @@ template <Real T> struct pipeline_layout {
 template <Real T, HeightFunction<T> F>
 [[nodiscard]] pipeline_layout<T> lay_pipeline(const pipeline_params<T>& p, const F& seabed_height_m) {
     const auto& route = p.route_m;
-    sss::detail::require(route.size() >= 2, "pipeline.route_m", "needs at least 2 points");
-    sss::detail::require_positive(p.radius_m, "pipeline.radius_m");
-    sss::detail::require_positive(p.profile_step_m, "pipeline.profile_step_m");
-    sss::detail::require(p.max_span_m > T(0), "pipeline.max_span_m", "must be > 0 (infinity: unlimited)");
-    sss::detail::require_non_negative(p.tolerance_m, "pipeline.tolerance_m");
+    sss::require(route.size() >= 2, "pipeline.route_m", "needs at least 2 points");
+    sss::require_positive(p.radius_m, "pipeline.radius_m");
+    sss::require_positive(p.profile_step_m, "pipeline.profile_step_m");
+    sss::require(p.max_span_m > T(0), "pipeline.max_span_m", "must be > 0 (infinity: unlimited)");
+    sss::require_non_negative(p.tolerance_m, "pipeline.tolerance_m");
     std::vector<T> leg_s{T(0)};
     for (std::size_t i = 0; i < route.size(); ++i) {
         const std::string name = "pipeline.route_m[" + std::to_string(i) + "]";
-        sss::detail::require_finite(route[i].x, name + ".x");
-        sss::detail::require_finite(route[i].y, name + ".y");
+        sss::require_finite(route[i].x, name + ".x");
+        sss::require_finite(route[i].y, name + ".y");
         if (i == 0) continue;
         const T len = glm::length(route[i] - route[i - 1]);
-        sss::detail::require(len > T(0), name, "must differ from the point before it");
+        sss::require(len > T(0), name, "must differ from the point before it");
         leg_s.push_back(leg_s.back() + len);
     }
     const T total = leg_s.back();
-    sss::detail::require(total / p.profile_step_m < T(1e8), "pipeline.profile_step_m", "gives more than 1e8 samples");
+    sss::require(total / p.profile_step_m < T(1e8), "pipeline.profile_step_m", "gives more than 1e8 samples");
     // Plan position at along-route distance s.
     auto plan_at = [&](T s) {
         const auto it = std::upper_bound(leg_s.begin() + 1, leg_s.end() - 1, s);
@@ -269,7 +203,7 @@ template <Real T, HeightFunction<T> F>
     for (std::size_t i = 0; i < s.size(); ++i) {
         const vec2<T> q = plan_at(s[i]);
         z[i] = static_cast<T>(seabed_height_m(q.x, q.y));
-        sss::detail::require_finite(z[i], "pipeline.seabed_height_m(route)");
+        sss::require_finite(z[i], "pipeline.seabed_height_m(route)");
     }
     const std::vector<T> rest = disc_rest_heights<T>(s, z, p.radius_m);
     const std::vector<std::size_t> sup = taut_string<T>(s, rest, p.max_span_m);
@@ -329,7 +263,7 @@ template <Real T, HeightFunction<T> F>
 /// The pipe itself: one cylinder per axis segment, a sphere of the pipe's radius at every inner axis
 /// vertex (the joints are smooth and closed), flat ends.
 template <Real T> [[nodiscard]] scene::object<T> pipeline_object(const pipeline_layout<T>& l, const pipeline_params<T>& p) {
-    sss::detail::require(l.axis_m.size() >= 2, "pipeline.layout.axis_m", "needs at least 2 vertices");
+    sss::require(l.axis_m.size() >= 2, "pipeline.layout.axis_m", "needs at least 2 vertices");
     std::vector<scene::sphere<T>> joints;
     std::vector<scene::cylinder<T>> segments;
     for (std::size_t i = 0; i + 1 < l.axis_m.size(); ++i) {
@@ -362,13 +296,13 @@ template <Real T> struct lying_cylinder_params {
 /// that keeps it above the seabed; its axis is that edge lifted by the radius, perpendicular to it.
 template <Real T, HeightFunction<T> F>
 [[nodiscard]] scene::object<T> lying_cylinder(const lying_cylinder_params<T>& p, const F& seabed_height_m) {
-    sss::detail::require_finite(p.center_m.x, "lying_cylinder.center_m.x");
-    sss::detail::require_finite(p.center_m.y, "lying_cylinder.center_m.y");
-    sss::detail::require_finite(p.heading_rad, "lying_cylinder.heading_rad");
-    sss::detail::require_positive(p.length_m, "lying_cylinder.length_m");
-    sss::detail::require_positive(p.radius_m, "lying_cylinder.radius_m");
-    sss::detail::require_positive(p.profile_step_m, "lying_cylinder.profile_step_m");
-    sss::detail::require(p.length_m / p.profile_step_m < T(1e7), "lying_cylinder.profile_step_m", "gives more than 1e7 samples");
+    sss::require_finite(p.center_m.x, "lying_cylinder.center_m.x");
+    sss::require_finite(p.center_m.y, "lying_cylinder.center_m.y");
+    sss::require_finite(p.heading_rad, "lying_cylinder.heading_rad");
+    sss::require_positive(p.length_m, "lying_cylinder.length_m");
+    sss::require_positive(p.radius_m, "lying_cylinder.radius_m");
+    sss::require_positive(p.profile_step_m, "lying_cylinder.profile_step_m");
+    sss::require(p.length_m / p.profile_step_m < T(1e7), "lying_cylinder.profile_step_m", "gives more than 1e7 samples");
     const vec2<T> dir{std::cos(p.heading_rad), std::sin(p.heading_rad)};
     const auto n = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(p.length_m / p.profile_step_m)) + 1);
     std::vector<T> s(n), z(n);
@@ -376,7 +310,7 @@ template <Real T, HeightFunction<T> F>
         s[i] = p.length_m * (static_cast<T>(i) / static_cast<T>(n - 1) - T(0.5));
         const vec2<T> q = p.center_m + dir * s[i];
         z[i] = static_cast<T>(seabed_height_m(q.x, q.y));
-        sss::detail::require_finite(z[i], "lying_cylinder.seabed_height_m(axis)");
+        sss::require_finite(z[i], "lying_cylinder.seabed_height_m(axis)");
     }
     const std::vector<std::size_t> hull = taut_string<T>(s, z);
     std::size_t k = 0; // the hull edge [hull[k], hull[k+1]] under the middle (s = 0)
@@ -417,15 +351,15 @@ template <Real T> struct debris_params {
 /// its base at the highest seabed point under its centre and 8 rim points).
 template <Real T, HeightFunction<T> F>
 [[nodiscard]] std::vector<scene::object<T>> debris_cluster(const debris_params<T>& p, const F& seabed_height_m) {
-    sss::detail::require_finite(p.center_m.x, "debris.center_m.x");
-    sss::detail::require_finite(p.center_m.y, "debris.center_m.y");
-    sss::detail::require_positive(p.radius_m, "debris.radius_m");
-    sss::detail::require(p.count >= 1 && p.count <= 1000000, "debris.count", "must lie in [1, 10^6]");
-    sss::detail::require_positive(p.min_size_m, "debris.min_size_m");
-    sss::detail::require_finite(p.max_size_m, "debris.max_size_m");
-    sss::detail::require(p.max_size_m >= p.min_size_m, "debris.max_size_m", "must be >= min_size_m");
-    sss::detail::require_in_range(p.max_burial, T(0), T(0.9), "debris.max_burial");
-    sss::detail::require(std::uint64_t(p.first_object_id) + p.count <= std::uint64_t(no_object), "debris.first_object_id",
+    sss::require_finite(p.center_m.x, "debris.center_m.x");
+    sss::require_finite(p.center_m.y, "debris.center_m.y");
+    sss::require_positive(p.radius_m, "debris.radius_m");
+    sss::require(p.count >= 1 && p.count <= 1000000, "debris.count", "must lie in [1, 10^6]");
+    sss::require_positive(p.min_size_m, "debris.min_size_m");
+    sss::require_finite(p.max_size_m, "debris.max_size_m");
+    sss::require(p.max_size_m >= p.min_size_m, "debris.max_size_m", "must be >= min_size_m");
+    sss::require_in_range(p.max_burial, T(0), T(0.9), "debris.max_burial");
+    sss::require(std::uint64_t(p.first_object_id) + p.count <= std::uint64_t(no_object), "debris.first_object_id",
                          "the pieces' ids would reach sss::no_object");
     rng g(p.seed);
     std::vector<scene::object<T>> out;
