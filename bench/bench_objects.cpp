@@ -90,7 +90,7 @@ template <class T, class Seabed> std::vector<sc::object<T>> targets(const Seabed
             m.anchor_m = {x, y};
             m.shape = k % 4 == 0 ? sb::mine_case::sphere : sb::mine_case::cylinder;
             m.case_height_m = T(2 + 4 * g.uniform());
-            m.case_heading_rad = T(2 * pi * g.uniform());
+            m.case_heading_deg = T(360 * g.uniform());
             m.object_id = id;
             out.push_back(sb::tethered_mine(m, height));
             break;
@@ -98,7 +98,7 @@ template <class T, class Seabed> std::vector<sc::object<T>> targets(const Seabed
         case 2: {
             sb::lying_cylinder_params<T> c;
             c.center_m = {x, y};
-            c.heading_rad = T(2 * pi * g.uniform());
+            c.heading_deg = T(360 * g.uniform());
             c.length_m = T(1 + 3 * g.uniform());
             c.radius_m = T(0.2 + 0.3 * g.uniform());
             c.ids = {1, id, 3};

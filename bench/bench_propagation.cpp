@@ -126,7 +126,7 @@ template <class P, class T> double trace_batch(const P& p, const std::vector<sss
 
 template <class T, water W> void propagation_trace(benchmark::State& state) {
     const auto rays = bench_rays<T>();
-    const straight<T> iso({T(1500), T(60)});
+    const straight<T> iso({.sound_speed_mps = T(1500), .absorption_db_per_km = T(60)});
     const layered<T> lay = W == water::uniform ? uniform_water<T>() : W == water::fine ? fine_water<T>()
                                                                     : thermocline_water<T>(W != water::exact);
     for (auto _ : state) {
@@ -179,7 +179,7 @@ template <class T, water W> void propagation_ping(benchmark::State& state) {
         for (auto _ : state) benchmark::DoNotOptimize(sim.ping(seabed, i++ % 16).starboard.data());
         state.SetItemsProcessed(state.iterations() * std::int64_t(rays_per_ping(sim)));
     };
-    if constexpr (W == water::straight) run(make_pinger<T>(straight<T>({T(1500), T(60)})));
+    if constexpr (W == water::straight) run(make_pinger<T>(straight<T>({.sound_speed_mps = T(1500), .absorption_db_per_km = T(60)})));
     else run(make_pinger<T>(thermocline_water<T>(W != water::exact)));
     state.SetLabel(W == water::straight ? "ping, straight" : W == water::exact ? "ping, layered thermocline, exact"
                                                                               : "ping, layered thermocline");
@@ -210,7 +210,7 @@ void print_summary() {
     constexpr int rounds = 15, ping_rounds = 31;
     const auto rays = bench_rays<double>();
     double sink = 0;
-    const straight<double> iso({1500.0, 60.0});
+    const straight<double> iso({.sound_speed_mps = 1500.0, .absorption_db_per_km = 60.0});
     const auto uniform = uniform_water<double>(), thermo = thermocline_water<double>(), fine = fine_water<double>(),
                exact = thermocline_water<double>(false);
     const auto t = best_interleaved(
@@ -240,7 +240,7 @@ void print_summary() {
     }
 
     const sss::scene::flat_seabed<double> seabed(0.0);
-    const auto a = make_pinger<double>(straight<double>({1500.0, 60.0}));
+    const auto a = make_pinger<double>(straight<double>({.sound_speed_mps = 1500.0, .absorption_db_per_km = 60.0}));
     const auto b = make_pinger<double>(thermocline_water<double>(true));
     const auto c = make_pinger<double>(thermocline_water<double>(false));
     const auto p = best_interleaved(

@@ -31,7 +31,9 @@ int main(int argc, char** argv) try {
     const std::size_t nx = 2048, ny = 1024;
     const T cell = T(0.1);
     sb::voronoi_partition<T> regions;
-    regions.sites = {{T(60), T(25), 0}, {T(150), T(20), 1}, {T(100), T(60), 2}, {T(50), T(90), 1}, {T(160), T(85), 0}};
+    regions.sites = {{.x_m = T(60), .y_m = T(25), .texture = 0},  {.x_m = T(150), .y_m = T(20), .texture = 1},
+                     {.x_m = T(100), .y_m = T(60), .texture = 2}, {.x_m = T(50), .y_m = T(90), .texture = 1},
+                     {.x_m = T(160), .y_m = T(85), .texture = 0}};
     regions.warp_m = T(6);
     regions.warp_scale_m = T(30);
     const auto index = sb::partition(nx, ny, cell, regions, 7);
@@ -39,8 +41,16 @@ int main(int argc, char** argv) try {
     std::vector<sb::region_texture<T>> textures(3);
     textures[0].id = 0; // medium sand with two sets of ripples
     textures[0].roughness.spectrum = sb::jackson_spectrum(T(0.004446), T(3.25), T(20));
-    textures[0].ripples.push_back({T(0.9), T(0.08), T(1.2), T(2.0), T(0), T(0.15), T(7), T(0.05), T(0.2)});
-    textures[0].ripples.push_back({T(3.5), T(0.12), T(1.0), T(1.5)});
+    textures[0].ripples.push_back({.wavelength_m = T(0.9),
+                                   .height_m = T(0.08),
+                                   .crest_heading_deg = T(21.25),
+                                   .symmetry_index = T(2.0),
+                                   .sinuosity_m = T(0.15),
+                                   .sinuosity_wavelength_m = T(7),
+                                   .perturbation_m = T(0.05),
+                                   .height_variation = T(0.2)});
+    textures[0].ripples.push_back(
+        {.wavelength_m = T(3.5), .height_m = T(0.12), .crest_heading_deg = T(32.7), .symmetry_index = T(1.5)});
     textures[1].id = 1; // sandy gravel: rough
     textures[1].mean_height_m = T(0.2);
     textures[1].roughness.spectrum = sb::jackson_spectrum(T(0.2), T(3.25), T(20));
@@ -60,12 +70,12 @@ int main(int argc, char** argv) try {
     const scattering::jackson<T> jackson({.frequency_hz = T(100000), .sound_speed_mps = T(1500), .materials = {scattering::sediment_preset<T>(scattering::sediment::medium_sand),
                                           scattering::sediment_preset<T>(scattering::sediment::sandy_gravel),
                                           scattering::sediment_preset<T>(scattering::sediment::sandy_mud)}});
-    const propagation::straight<T> water({T(1500), T(30)});
+    const propagation::straight<T> water({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)});
     beam::planar_array_params<T> array;
     array.frequency_hz = T(100000);
     array.depression_deg = T(20);
-    array.transmit.along = {1, T(0.8), T(0), {}};
-    array.transmit.vertical = {1, T(0.025), T(0), {}};
+    array.transmit.along = {.count = 1, .element_m = T(0.8)};
+    array.transmit.vertical = {.count = 1, .element_m = T(0.025)};
     array.threshold_db = T(-30);
     motion::perturbed_params<T> tow;
     tow.start_m = {T(102), T(4)};
@@ -73,8 +83,8 @@ int main(int argc, char** argv) try {
     tow.speed_mps = T(2);
     tow.altitude_m = T(10);
     tow.ping_interval_s = T(0.1);
-    tow.roll_deg = {T(1.5), T(9), T(0)};
-    tow.yaw_deg = {T(1.0), T(14), T(40)};
+    tow.roll_deg = {.amplitude = T(1.5), .period_s = T(9)};
+    tow.yaw_deg = {.amplitude = T(1.0), .period_s = T(14), .phase_deg = T(40)};
     receiver_params rx;
     rx.sample_rate_hz = 20000;
     rx.max_range_m = 60;

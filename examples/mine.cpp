@@ -60,9 +60,9 @@ int main(int argc, char** argv) try {
 
     // Sonar: Lambertian scattering, -27 dB for the sand (Mackenzie) and -8 dB for the mine's painted steel;
     // isovelocity water with 30 dB/km absorption; a 1 deg x 50 deg fan tilted 20 deg down; 20 kHz sampling.
-    const scattering::lambertian<T> scatter({T(-27), T(-8)});
-    const propagation::straight<T> water({T(1500), T(30)});
-    const beam::ideal_fan<T> fan({T(1), T(50), T(20)});
+    const scattering::lambertian<T> scatter({.mu_db = {T(-27), T(-8)}});
+    const propagation::straight<T> water({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)});
+    const beam::ideal_fan<T> fan({.along_width_deg = T(1), .vertical_width_deg = T(50), .depression_deg = T(20)});
     motion::straight_line_params<T> tow;
     tow.start_m = {track_x, T(10.6)};
     tow.heading_deg = T(0);

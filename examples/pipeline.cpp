@@ -59,7 +59,7 @@ int main(int argc, char** argv) try {
     pp.radius_m = T(0.4);
     pp.profile_step_m = T(0.05);
     pp.max_span_m = T(12);
-    pp.ids = {1, 1, 2};
+    pp.ids = {.material = 1, .object = 1, .label = 2};
     const auto layout = sb::lay_pipeline(pp, sb::seabed_height_of(seabed));
     std::printf("sss pipeline: %zu axis vertices; free spans higher than 5 cm:\n", layout.axis_m.size());
     for (const auto& s : layout.spans)
@@ -71,9 +71,9 @@ int main(int argc, char** argv) try {
 
     // Sonar: Lambertian scattering, -27 dB for the sand, -12 dB for the pipe's coating; 30 dB/km absorption;
     // a 1 deg x 50 deg fan tilted 20 deg down; 20 kHz sampling, 40 m range.
-    const scattering::lambertian<T> scatter({T(-27), T(-12)});
-    const propagation::straight<T> water({T(1500), T(30)});
-    const beam::ideal_fan<T> fan({T(1), T(50), T(20)});
+    const scattering::lambertian<T> scatter({.mu_db = {T(-27), T(-12)}});
+    const propagation::straight<T> water({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)});
+    const beam::ideal_fan<T> fan({.along_width_deg = T(1), .vertical_width_deg = T(50), .depression_deg = T(20)});
     motion::straight_line_params<T> tow;
     tow.start_m = {track_x, T(2)};
     tow.heading_deg = T(0);

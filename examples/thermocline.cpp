@@ -50,7 +50,7 @@ sss::scene::height_field<T> rippled_sand() {
     sb::ripple_params<T> ripples;
     ripples.wavelength_m = T(2.5);
     ripples.height_m = T(0.2);
-    ripples.crest_direction_rad = T(0.22) * sss::pi_v<T>;
+    ripples.crest_heading_deg = T(50.4); // 39.6 degrees off the track
     ripples.sinuosity_m = T(0.1);
     ripples.sinuosity_wavelength_m = T(10);
     ripples.height_variation = T(0.2);
@@ -84,7 +84,7 @@ sss::waterfall<T> render(const sss::scene::height_field<T>& seabed, bool thermoc
     ray_density density;
     density.along = 4;
     density.per_sample = 2.0;
-    const motion::straight_line<T> track({{T(0), T(0)}, T(0), T(1.5), T(altitude_m), T(0.1)});
+    const motion::straight_line<T> track({.start_m = {T(0), T(0)}, .heading_deg = T(0), .speed_mps = T(1.5), .altitude_m = T(altitude_m), .ping_interval_s = T(0.1)});
     const simulator<scattering::lambertian<T>, propagation::layered<T>, beam::ideal_fan<T>, motion::straight_line<T>> sim(
         scattering::lambertian<T>(T(-27)), water(thermocline), beam::ideal_fan<T>(fan), track, rx, density);
     return sim.render(seabed, 0, pings);

@@ -54,7 +54,7 @@ sss::motion::perturbed<T> turn_path(sss::side toward, bool turning = true) {
     p.altitude_m = T(altitude_m);
     p.ping_interval_s = T(ping_interval_s);
     if (turning) {
-        p.turn = sss::motion::constant_turn<T>{toward, T(radius_m), T(0)};
+        p.turn = sss::motion::constant_turn<T>{.toward = toward, .radius_m = T(radius_m)};
         const double sign = toward == sss::side::starboard ? 1.0 : -1.0;
         const double mid_t = static_cast<double>(pings / 2) * ping_interval_s;
         p.heading_deg = static_cast<T>(-sign * speed_mps / radius_m * mid_t * 180.0 / sss::pi_v<double>);
@@ -85,7 +85,7 @@ sss::scene::height_field<T> rippled_sand(const std::vector<sss::motion::perturbe
     sb::ripple_params<T> ripples;
     ripples.wavelength_m = T(1.5);
     ripples.height_m = T(0.15);
-    ripples.crest_direction_rad = T(0.25) * sss::pi_v<T>; // crests running north-east
+    ripples.crest_heading_deg = T(45); // crests running north-east
     ripples.symmetry_index = T(1.5);
     ripples.sinuosity_m = T(0.15);
     ripples.sinuosity_wavelength_m = T(12);
@@ -115,7 +115,7 @@ turn_simulator make_simulator(sss::motion::perturbed<T> path) {
     density.along = 4;
     density.per_sample = 2.0;
     return turn_simulator(sss::scattering::lambertian<T>(T(-27)),
-                          sss::propagation::straight<T>({T(1500), T(absorption_db_km)}), sss::beam::ideal_fan<T>(fan),
+                          sss::propagation::straight<T>({.sound_speed_mps = T(1500), .absorption_db_per_km = T(absorption_db_km)}), sss::beam::ideal_fan<T>(fan),
                           std::move(path), rx, density);
 }
 

@@ -21,7 +21,7 @@ default_sim<T> make_sim(sss::beam::ideal_fan_params<T> fan, T altitude_m, sss::r
                         sss::ray_density density = {}) {
     sss::motion::straight_line_params<T> m;
     m.altitude_m = altitude_m;
-    return default_sim<T>(sss::scattering::lambertian<T>(T(-27)), sss::propagation::straight<T>({T(1500), absorption_db_per_km}),
+    return default_sim<T>(sss::scattering::lambertian<T>(T(-27)), sss::propagation::straight<T>({.sound_speed_mps = T(1500), .absorption_db_per_km = absorption_db_per_km}),
                           sss::beam::ideal_fan<T>(fan), sss::motion::straight_line<T>(m), rx, density);
 }
 
@@ -35,8 +35,7 @@ template <class T> sss_test::db_error against_oracle(const default_sim<T>& sim, 
     o.samples = sim.samples_per_line();
     o.pulse_length_s = sim.receiver().pulse.length_s;
     o.pulse = sim.receiver().pulse.shape == sss::pulse_shape::hann ? sss_test::envelope::hann : sss_test::envelope::rectangular;
-    const sss::beam::ideal_fan<double> fan({double(sim.beam().params().along_width_deg), double(sim.beam().params().vertical_width_deg),
-                                            double(sim.beam().params().depression_deg)});
+    const sss::beam::ideal_fan<double> fan({.along_width_deg = double(sim.beam().params().along_width_deg), .vertical_width_deg = double(sim.beam().params().vertical_width_deg), .depression_deg = double(sim.beam().params().depression_deg)});
     const auto expected = sss_test::oracle_line(o, fan, sss::scattering::lambertian<double>(-27.0), sd);
     const sss::scene::flat_seabed<T> seabed;
     const auto lines = sim.ping(seabed, 0);

@@ -16,7 +16,7 @@ constexpr double pi = 3.141592653589793238;
 
 TEST_CASE("oracle reproduces the closed-form sonar equation sigma phi c dt / (2 r^3 cos theta) away from nadir") {
     const double phi_deg = 0.5;
-    const sss::beam::ideal_fan<double> fan({phi_deg, 60.0, 25.0});
+    const sss::beam::ideal_fan<double> fan({.along_width_deg = phi_deg, .vertical_width_deg = 60.0, .depression_deg = 25.0});
     const sss::scattering::lambertian<double> lambert(-27.0);
     sss_test::oracle_setup o;
     o.altitude_m = 10.0;
@@ -46,7 +46,7 @@ TEST_CASE("oracle reproduces the closed-form sonar equation sigma phi c dt / (2 
 
 TEST_CASE("oracle conserves the line's energy: sum of samples x dt equals the pulse energy x the echo power") {
     // The same seabed with two pulse lengths: total energy scales exactly with the pulse energy.
-    const sss::beam::ideal_fan<double> fan({1.0, 50.0, 20.0});
+    const sss::beam::ideal_fan<double> fan({.along_width_deg = 1.0, .vertical_width_deg = 50.0, .depression_deg = 20.0});
     const sss::scattering::lambertian<double> lambert(-27.0);
     sss_test::oracle_setup o;
     o.samples = 600;

@@ -59,7 +59,7 @@ TEST_CASE("Without a turn or oscillations the perturbed path is the straight lin
     p.speed_mps = 1.7;
     p.altitude_m = 8.0;
     const perturbed<double> path(p);
-    const sss::motion::straight_line<double> line({{5.0, -3.0}, 123.0, 1.7, 8.0, 0.1});
+    const sss::motion::straight_line<double> line({.start_m = {5.0, -3.0}, .heading_deg = 123.0, .speed_mps = 1.7, .altitude_m = 8.0, .ping_interval_s = 0.1});
     for (std::size_t ping : {0u, 1u, 17u, 1000u}) {
         const auto a = path.pose_at(ping), b = line.pose_at(ping);
         CHECK(a.position.x == doctest::Approx(b.position.x).epsilon(1e-12));

@@ -90,7 +90,7 @@ sss::scene::height_field<T> rippled_seabed(const turn_case& c, const sss::motion
     sss::seabed::ripple_params<T> r;
     r.wavelength_m = static_cast<T>(c.wavelength_m);
     r.height_m = static_cast<T>(c.ripple_height_m);
-    r.crest_direction_rad = T(0);
+    r.crest_heading_deg = T(90); // crests run east
     r.symmetry_index = static_cast<T>(c.symmetry_index);
     auto h = sss::seabed::ripple_field<T>(nx, ny, static_cast<T>(cell_m), r, 1);
     return sss::scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = static_cast<T>(cell_m), .origin_m = {static_cast<T>(x0), static_cast<T>(y0)}, .heights_m = std::move(h.values)});

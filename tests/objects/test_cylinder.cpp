@@ -22,7 +22,7 @@ template <class T> ray<T> make_ray(vec3<T> o, vec3<T> d) { return ray<T>{o, glm:
 
 // A frame whose first column is the given axis: maps canonical (axis = +x) geometry into any orientation.
 template <class T> sss::mat3<T> frame_for(T heading, T pitch, T roll) {
-    return sss::scene::placement<T>(vec3<T>{}, heading, pitch, roll).rotation;
+    return sss::scene::detail::placement_ccw_rad<T>(vec3<T>{}, heading, pitch, roll).rotation;
 }
 
 } // namespace

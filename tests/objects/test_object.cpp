@@ -35,20 +35,27 @@ template <class T> object<T> sample_object(const sss::scene::rigid_transform<T>&
 
 } // namespace
 
-TEST_CASE_TEMPLATE("placement() is a proper rotation: heading turns +x counter-clockwise, pitch raises the +x end", T,
-                   float, double) {
-    const T h = T(0.7), p = T(0.3), r = T(-1.1);
-    const auto x = placement<T>(vec3<T>{T(1), T(2), T(3)}, h, p, r);
+TEST_CASE_TEMPLATE("placement() is a proper rotation: heading turns +x clockwise from north, pitch raises the +x end, roll lowers the right side",
+                   T, float, double) {
+    // Heading 50 deg clockwise from north is 0.7 rad counter-clockwise from east... to float rounding.
+    const T h = T(90.0 - sss::rad_to_deg(0.7)), p = T(sss::rad_to_deg(0.3)), r = T(sss::rad_to_deg(-1.1));
+    const auto x = placement<T>({.position_m = vec3<T>{T(1), T(2), T(3)}, .heading_deg = h, .pitch_deg = p, .roll_deg = r});
     CHECK(glm::determinant(x.rotation) == doctest::Approx(1.0));
     const auto g = glm::transpose(x.rotation) * x.rotation;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) CHECK(g[i][j] == doctest::Approx(i == j ? 1.0 : 0.0));
     const vec3<T> ex = x.vector(vec3<T>{T(1), T(0), T(0)});
-    CHECK(ex.x == doctest::Approx(std::cos(0.7) * std::cos(0.3)));
-    CHECK(ex.y == doctest::Approx(std::sin(0.7) * std::cos(0.3)));
+    CHECK(ex.x == doctest::Approx(std::cos(0.7) * std::cos(0.3)).epsilon(1e-5));
+    CHECK(ex.y == doctest::Approx(std::sin(0.7) * std::cos(0.3)).epsilon(1e-5));
+    // Heading 0: +x points north; heading 90 (the default): east.
+    const vec3<T> north = placement<T>({.heading_deg = T(0)}).vector(vec3<T>{T(1), T(0), T(0)});
+    CHECK(north.y == doctest::Approx(1.0));
+    CHECK(std::abs(double(north.x)) < 1e-6);
+    const vec3<T> east = placement<T>({}).vector(vec3<T>{T(1), T(0), T(0)});
+    CHECK(east.x == doctest::Approx(1.0));
     CHECK(ex.z == doctest::Approx(std::sin(0.3)));
     // Roll turns local +y about local +x, right-handed: with heading = pitch = 0, +y goes to (0, cos r, sin r).
-    const auto rolled = placement<T>(vec3<T>{}, T(0), T(0), T(0.4));
+    const auto rolled = placement<T>({.roll_deg = T(sss::rad_to_deg(0.4))});
     const vec3<T> ey = rolled.vector(vec3<T>{T(0), T(1), T(0)});
     CHECK(ey.y == doctest::Approx(std::cos(0.4)));
     CHECK(ey.z == doctest::Approx(std::sin(0.4)));
@@ -57,7 +64,7 @@ TEST_CASE_TEMPLATE("placement() is a proper rotation: heading turns +x counter-c
 
 TEST_CASE_TEMPLATE("A placed object is hit where its local primitives are hit by the ray carried into its frame", T, float,
                    double) {
-    const auto where = placement<T>(vec3<T>{T(40), T(-12), T(-19)}, T(2.1), T(0.4), T(0.9));
+    const auto where = placement<T>({.position_m = vec3<T>{T(40), T(-12), T(-19)}, .heading_deg = T(90.0 - sss::rad_to_deg(2.1)), .pitch_deg = T(sss::rad_to_deg(0.4)), .roll_deg = T(sss::rad_to_deg(0.9))});
     const object<T> placed = sample_object<T>(where);
     const object<T> local = sample_object<T>({});
     const sss::mat3<T> Rt = glm::transpose(where.rotation);
@@ -87,7 +94,7 @@ TEST_CASE_TEMPLATE("A placed object is hit where its local primitives are hit by
 
 TEST_CASE_TEMPLATE("An object's box is the union of its primitives' boxes and its top is the highest point", T, float,
                    double) {
-    const object<T> o = sample_object<T>(placement<T>(vec3<T>{T(5), T(5), T(-10)}));
+    const object<T> o = sample_object<T>(placement<T>({.position_m = vec3<T>{T(5), T(5), T(-10)}}));
     CHECK(o.bounds().lo.x == doctest::Approx(4.0));   // bar from -1 to 1, radius 0.1 caps
     CHECK(o.bounds().hi.x == doctest::Approx(6.0));
     CHECK(o.bounds().lo.y == doctest::Approx(4.4));   // disc radius 0.6

@@ -43,7 +43,7 @@ template <class T> std::vector<object<T>> random_objects(std::size_t n, unsigned
             }
         }
         const vec3<T> pos{T(100 * u(g) - 50), T(100 * u(g) - 50), T(3 * u(g) - 1)};
-        out.emplace_back(s, c, placement<T>(pos, T(6.283 * u(g)), T(u(g) - 0.5), T(6.283 * u(g))));
+        out.emplace_back(s, c, sss::scene::detail::placement_ccw_rad<T>(pos, T(6.283 * u(g)), T(u(g) - 0.5), T(6.283 * u(g))));
     }
     return out;
 }

@@ -51,7 +51,7 @@ template <class T> auto make_simulator() {
     propagation::straight_params<T> water;
     water.sound_speed_mps = T(c_mps);
     return simulator<scattering::lambertian<T>, propagation::straight<T>, beam::ideal_fan<T>, motion::straight_line<T>>(
-        scattering::lambertian<T>({T(-27), T(-10)}), propagation::straight<T>(water), beam::ideal_fan<T>(fan),
+        scattering::lambertian<T>({.mu_db = {T(-27), T(-10)}}), propagation::straight<T>(water), beam::ideal_fan<T>(fan),
         motion::straight_line<T>(), rp, density);
 }
 

@@ -193,12 +193,12 @@ TEST_CASE("A pipeline follows a crest, is pulled straight from a level foot to i
     CHECK(lowest < -10.5);
 }
 
-TEST_CASE_TEMPLATE("A cylinder lying on a flat seabed at any heading has its axis r above it along the heading", T, float,
-                   double) {
-    for (T heading : {T(0), T(0.5), T(1.5707963), T(2.8), T(-2)}) {
+TEST_CASE_TEMPLATE("A cylinder lying on a flat seabed at any heading (clockwise from north) has its axis r above it along the heading",
+                   T, float, double) {
+    for (T heading : {T(0), T(30), T(90), T(160), T(-115)}) {
         sb::lying_cylinder_params<T> p;
         p.center_m = {T(3), T(-4)};
-        p.heading_rad = heading;
+        p.heading_deg = heading;
         p.length_m = T(4);
         p.radius_m = T(0.35);
         const auto o = sb::lying_cylinder(p, [](T, T) { return T(-15); });
@@ -206,8 +206,10 @@ TEST_CASE_TEMPLATE("A cylinder lying on a flat seabed at any heading has its axi
         const auto& c = o.cylinders()[0];
         CHECK(c.end0_m().z == doctest::Approx(-14.65));
         CHECK(c.end1_m().z == doctest::Approx(-14.65));
-        CHECK(c.axis().x == doctest::Approx(std::cos(double(heading))).epsilon(1e-5));
-        CHECK(c.axis().y == doctest::Approx(std::sin(double(heading))).epsilon(1e-5));
+        // Heading h clockwise from north: the axis points (east, north) = (sin h, cos h), up to its sign.
+        const double sign = c.axis().y * std::cos(sss::deg_to_rad(double(heading))) + c.axis().x * std::sin(sss::deg_to_rad(double(heading))) < 0 ? -1.0 : 1.0;
+        CHECK(sign * c.axis().x == doctest::Approx(std::sin(sss::deg_to_rad(double(heading)))).epsilon(1e-5));
+        CHECK(sign * c.axis().y == doctest::Approx(std::cos(sss::deg_to_rad(double(heading)))).epsilon(1e-5));
         CHECK(c.center_m().x == doctest::Approx(3.0));
         CHECK(c.length_m() == doctest::Approx(4.0));
         CHECK(o.bounds().lo.z == doctest::Approx(-15.0));
@@ -217,7 +219,7 @@ TEST_CASE_TEMPLATE("A cylinder lying on a flat seabed at any heading has its axi
 TEST_CASE("A cylinder on a slope lies along it at distance r, and one over a hollow rests on both rims") {
     sb::lying_cylinder_params<double> p;
     p.center_m = {0, 0};
-    p.heading_rad = 0.3;
+    p.heading_deg = 90.0 - sss::rad_to_deg(0.3); // 0.3 rad counter-clockwise from east
     p.length_m = 5;
     p.radius_m = 0.5;
     const double m = 0.2; // slope along the heading
@@ -232,7 +234,7 @@ TEST_CASE("A cylinder on a slope lies along it at distance r, and one over a hol
     CHECK(dist(c.end1_m()) == doctest::Approx(0.5));
     CHECK(c.length_m() == doctest::Approx(5.0));
     // A 2 m wide, 0.5 m deep hollow under the middle: the cylinder bridges it, level at z = r.
-    p.heading_rad = 0;
+    p.heading_deg = 90; // east
     const auto hollow = [](double x, double) { return std::abs(x) < 1 ? -0.5 * (1 - x * x) : 0.0; };
     c = sb::lying_cylinder(p, hollow).cylinders()[0];
     CHECK(c.end0_m().z == doctest::Approx(0.5));
@@ -279,7 +281,7 @@ TEST_CASE("A cylindrical mine case clears its anchor by its true downward extent
     p.shape = sb::mine_case::cylinder;
     p.case_radius_m = 0.3;
     p.case_length_m = 2.0;
-    p.case_tilt_rad = 0.5;
+    p.case_tilt_deg = sss::rad_to_deg(0.5);
     p.case_height_m = 2.0;
     const auto flat = [](double, double) { return 0.0; };
     const auto mine = sb::tethered_mine(p, flat);

@@ -159,7 +159,7 @@ TEST_CASE("in water of constant speed, layered equals straight rays to 1e-12 (hi
     // Knots at odd depths, all 1500 m/s: every layer boundary is crossed, none bends anything.
     const std::vector<double> d{0, 5, 17, 40, 41, 50, 63, 90};
     const layered<double> water(sound_speed_profile<double>(d, std::vector<double>(d.size(), 1500.0)), exact(70.0));
-    const straight<double> iso({1500, 40});
+    const straight<double> iso({.sound_speed_mps = 1500, .absorption_db_per_km = 40});
     const scene::flat_seabed<double> seabed(0);
     const francois_garrison<double> fg(300000, {});
     double worst = 0, worst_abs = 0, worst_db = 0;
@@ -534,7 +534,7 @@ TEST_CASE("float layered water matches the closed forms and the straight policy 
     CHECK(rel(p->range_m, ref.x) < 2e-6);
     CHECK(rel(p->result.time_s, ref.t) < 2e-6);
     const layered<float> iso(sound_speed_profile<float>({0.f, 30.f, 55.f}, {1500.f, 1500.f, 1500.f}), exact(70.f));
-    const straight<float> st({1500.f, 40.f});
+    const straight<float> st({.sound_speed_mps = 1500.f, .absorption_db_per_km = 40.f});
     for (double graze : {3.0, 20.0, 60.0, 90.0}) {
         const auto rr = launch<float>(70.f, 50.f, graze * deg, 1.0);
         const auto a = iso.trace(rr, scene::flat_seabed<float>(0.f), 1.f);

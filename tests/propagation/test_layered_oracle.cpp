@@ -93,7 +93,7 @@ TEST_CASE("the layered oracle's spreading is cos(theta0) / (r sin(theta) |dr/dth
 
 TEST_CASE("in uniform water the layered oracle's line equals the straight-ray oracle's") {
     // Same beam, scattering, pose and water; the one integrates over slant range, the other over launch angle.
-    const sss::beam::ideal_fan<double> fan({1.0, 50.0, 25.0});
+    const sss::beam::ideal_fan<double> fan({.along_width_deg = 1.0, .vertical_width_deg = 50.0, .depression_deg = 25.0});
     const sss::scattering::lambertian<double> lambert(-27.0);
     sss_test::oracle_setup o;
     o.altitude_m = 10;

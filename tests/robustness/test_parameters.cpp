@@ -71,7 +71,7 @@ TEST_CASE("propagation, scattering, motion and ray density parameters are reject
     CHECK(named([] { sss::propagation::straight<double>{{nan_v, 60}}; }) == "straight.sound_speed_mps");
     CHECK(named([] { sss::propagation::straight<double>{{1500, -1}}; }) == "straight.absorption_db_per_km");
     CHECK(named([] { sss::scattering::lambertian<double>{-3.0}; }) == "lambertian.mu_db[0]");
-    CHECK(named([] { sss::scattering::lambertian<double>{{-27.0, nan_v}}; }) == "lambertian.mu_db[1]");
+    CHECK(named([] { sss::scattering::lambertian<double>({.mu_db = {-27.0, nan_v}}); }) == "lambertian.mu_db[1]");
     sss::motion::straight_line_params<double> m;
     m.ping_interval_s = 0;
     CHECK(named([&] { sss::motion::straight_line<double>{m}; }) == "straight_line.ping_interval_s");

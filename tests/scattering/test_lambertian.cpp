@@ -62,7 +62,7 @@ TEST_CASE("a Lambertian surface with mu = 1/pi scatters exactly the power it rec
 }
 
 TEST_CASE("the Lambertian policy keeps one parameter per material and rejects energy-creating ones") {
-    const lambertian<float> s({-27.0f, -10.0f});
+    const lambertian<float> s({.mu_db = {-27.0f, -10.0f}});
     CHECK(s.material_count() == 2);
     CHECK(s.mu(0) == doctest::Approx(std::pow(10.0, -2.7)));
     CHECK(s.mu(1) == doctest::Approx(0.1));
@@ -70,7 +70,7 @@ TEST_CASE("the Lambertian policy keeps one parameter per material and rejects en
     CHECK(s.backscatter(1.0f, std::numeric_limits<std::uint32_t>::max()) == s.backscatter(1.0f, 1));
     CHECK_NOTHROW(lambertian<double>{-4.97});
     try {
-        const lambertian<double> bad({-27.0, -3.0});
+        const lambertian<double> bad({.mu_db = {-27.0, -3.0}});
         FAIL("no exception");
     } catch (const sss::invalid_parameter& e) {
         CHECK(e.parameter() == "lambertian.mu_db[1]");

@@ -124,7 +124,7 @@ TEST_CASE("a sphere above a flat seabed returns a second echo at the seabed-boun
     sss::receiver_params rx;
     rx.max_range_m = 40;
     const sss::beam::ideal_fan<double> fan({.along_width_deg = 1.0, .vertical_width_deg = 80.0, .depression_deg = 40.0});
-    const sss::motion::straight_line<double> still({{0.0, 0.0}, 0.0, 0.0, 10.0, 0.1});
+    const sss::motion::straight_line<double> still({.start_m = {0.0, 0.0}, .heading_deg = 0.0, .speed_mps = 0.0, .altitude_m = 10.0, .ping_interval_s = 0.1});
     const sim_t<jackson_d> plain(sand(), {}, fan, still, rx);
     const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, fan, still, rx);
     const auto pose = plain.motion().pose_at(0);

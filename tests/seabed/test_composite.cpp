@@ -166,7 +166,7 @@ TEST_CASE("composite seabed: each region carries its id and its own texture's ro
     ripple_params<double> rp;
     rp.wavelength_m = 0.5;
     rp.height_m = 0.04;
-    rp.crest_direction_rad = 0.4;
+    rp.crest_heading_deg = 90.0 - sss::rad_to_deg(0.4);
     textures[2].ripples.push_back(rp);
     const auto c = compose(idx, textures, 0.0, 5);
     std::set<std::uint32_t> ids(c.regions.values.begin(), c.regions.values.end());

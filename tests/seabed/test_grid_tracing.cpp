@@ -34,7 +34,7 @@ struct plane {
     vec3<double> normal() const { return glm::normalize(vec3<double>{-bx, -by, 1}); }
 };
 
-template <class T> height_field<T> plane_field({.nx = std::size_t nx, .ny = std::size_t ny, .cell_m = double cell, .origin_m = vec2<double> o, .heights_m = plane p}) {
+template <class T> height_field<T> plane_field(std::size_t nx, std::size_t ny, double cell, vec2<double> o, plane p) {
     std::vector<T> h(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t ix = 0; ix < nx; ++ix)

@@ -147,12 +147,12 @@ TEST_CASE("ripples have the requested wavelength and crest direction (spectral p
         ripple_params<double> p;
         p.wavelength_m = c.lambda_m;
         p.height_m = 0.05;
-        p.crest_direction_rad = sss::deg_to_rad(c.crest_deg);
+        p.crest_heading_deg = 90.0 - c.crest_deg;
         p.symmetry_index = c.rsi;
         const auto h = ripple_field<double>(256, 256, 0.05, p, 1);
         const auto [kx, ky] = spectral_peak(h, 1.0, 1e9);
         CHECK(2 * pi / std::hypot(kx, ky) == doctest::Approx(c.lambda_m).epsilon(0.005).scale(0));
-        CHECK(sss::rad_to_deg(line_angle_diff(crest_direction(kx, ky), p.crest_direction_rad)) < 0.5);
+        CHECK(sss::rad_to_deg(line_angle_diff(crest_direction(kx, ky), sss::heading_to_ccw_from_east_rad(p.crest_heading_deg))) < 0.5);
     }
 }
 
@@ -162,7 +162,7 @@ TEST_CASE("ripple height: crest-to-trough H and RMS H / (2 sqrt 2)") {
         p.wavelength_m = 0.8;
         p.height_m = 0.06;
         p.symmetry_index = rsi;
-        p.crest_direction_rad = sss::deg_to_rad(90.0);
+        p.crest_heading_deg = 0;
         const auto h = ripple_field<double>(160, 8, 0.01, p, 1);
         const auto [lo, hi] = std::minmax_element(h.values.begin(), h.values.end());
         CHECK(*hi - *lo == doctest::Approx(0.06).epsilon(0.01).scale(0));
@@ -178,11 +178,11 @@ TEST_CASE("ripple asymmetry: lee slopes are RSI times the stoss slopes and the l
             ripple_params<double> p;
             p.wavelength_m = 0.6;
             p.height_m = 0.04;
-            p.crest_direction_rad = sss::deg_to_rad(crest_deg);
+            p.crest_heading_deg = 90.0 - crest_deg;
             p.symmetry_index = rsi;
             // 300 cells = 5 whole wavelengths along x: every phase equally represented at 90 degrees.
             const auto h = ripple_field<double>(300, 300, 0.01, p, 1);
-            const double mx = std::sin(p.crest_direction_rad), my = -std::cos(p.crest_direction_rad);
+            const double mx = std::sin(sss::heading_to_ccw_from_east_rad(p.crest_heading_deg)), my = -std::cos(sss::heading_to_ccw_from_east_rad(p.crest_heading_deg));
             double n_rise = 0, n_fall = 0, max_rise = 0, max_fall = 0;
             for (double s : slopes_along(h, mx, my)) {
                 if (s > 0)
@@ -205,7 +205,7 @@ TEST_CASE("crest sinuosity displaces the crests sinusoidally along the crest lin
     ripple_params<double> p;
     p.wavelength_m = 0.8; // 16 cells: each row holds 16 whole wavelengths
     p.height_m = 0.05;
-    p.crest_direction_rad = sss::deg_to_rad(90.0); // crests along y, migration along +x
+    p.crest_heading_deg = 0; // crests along y, migration along +x
     p.sinuosity_m = 0.1;
     p.sinuosity_wavelength_m = 6.4;
     const auto h = ripple_field<double>(256, 256, 0.05, p, 1);
@@ -227,7 +227,7 @@ TEST_CASE("fractal perturbation displaces crests and varies heights by the reque
     ripple_params<double> p;
     p.wavelength_m = 0.4; // 8 cells
     p.height_m = 0.03;
-    p.crest_direction_rad = sss::deg_to_rad(90.0);
+    p.crest_heading_deg = 0;
     p.perturbation_m = 0.03;
     p.height_variation = 0.15;
     p.perturbation_scale_m = 3.2;
@@ -255,10 +255,10 @@ TEST_CASE("two superposed ripple sets show both wavelengths and directions") {
     std::vector<ripple_params<double>> sets(2);
     sets[0].wavelength_m = 0.3;
     sets[0].height_m = 0.015;
-    sets[0].crest_direction_rad = sss::deg_to_rad(20.0);
+    sets[0].crest_heading_deg = 70;
     sets[1].wavelength_m = 1.5;
     sets[1].height_m = 0.1;
-    sets[1].crest_direction_rad = sss::deg_to_rad(100.0);
+    sets[1].crest_heading_deg = -10;
     sets[1].symmetry_index = 2.0;
     const auto h = ripple_field<double>(256, 256, 0.04, std::span<const ripple_params<double>>(sets), 9);
     for (const auto& s : sets) {
@@ -266,7 +266,7 @@ TEST_CASE("two superposed ripple sets show both wavelengths and directions") {
         const double k = 2 * pi / s.wavelength_m;
         const auto [kx, ky] = spectral_peak(h, 0.7 * k, 1.4 * k);
         CHECK(2 * pi / std::hypot(kx, ky) == doctest::Approx(s.wavelength_m).epsilon(0.005).scale(0));
-        CHECK(sss::rad_to_deg(line_angle_diff(crest_direction(kx, ky), s.crest_direction_rad)) < 0.5);
+        CHECK(sss::rad_to_deg(line_angle_diff(crest_direction(kx, ky), sss::heading_to_ccw_from_east_rad(s.crest_heading_deg))) < 0.5);
     }
 }
 

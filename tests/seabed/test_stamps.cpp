@@ -38,7 +38,7 @@ TEST_CASE("mound: cos^2 profile of the given height, volume pi a b H (1/2 - 2/pi
     m.center_y_m = 2.0;
     m.radius_u_m = 1.2;
     m.radius_v_m = 0.6;
-    m.heading_rad = sss::deg_to_rad(90.0); // long axis along y
+    m.heading_deg = 0; // long axis along y
     m.height_m = 0.4;
     stamp(h, m);
     CHECK(at(h, 2.0, 2.0) == doctest::Approx(1.4));
@@ -94,7 +94,7 @@ TEST_CASE("scour pit: depth at the centre, volume pi a b D / 3, raised rim beyon
     sc.center_y_m = 2.0;
     sc.radius_u_m = 1.0;
     sc.radius_v_m = 0.5;
-    sc.heading_rad = sss::deg_to_rad(30.0);
+    sc.heading_deg = 60;
     sc.depth_m = 0.25;
     stamp(h, sc);
     CHECK(at(h, 2.0, 2.0) == doctest::Approx(-0.25));
@@ -125,13 +125,13 @@ TEST_CASE("plate: flat top at the mean seabed under it plus its height, area L W
     pl.center_y_m = 2.6;
     pl.length_m = 2.0;
     pl.width_m = 0.6;
-    pl.heading_rad = sss::deg_to_rad(30.0);
+    pl.heading_deg = 60;
     pl.top_m = 0.15;
     auto ids = make_raster<std::uint32_t, double>(256, 256, 0.02, 0u);
     stamp(h, ids, pl, 7);
     // Samples well inside share one height, the footprint mean of the seabed plus 0.15 m; samples
     // clear of the edges outside are untouched; the label covers the L x W rectangle.
-    const double c = std::cos(pl.heading_rad), s = std::sin(pl.heading_rad);
+    const double c = std::cos(sss::heading_to_ccw_from_east_rad(pl.heading_deg)), s = std::sin(sss::heading_to_ccw_from_east_rad(pl.heading_deg));
     const double top = at(h, 2.5, 2.6);
     double inside_spread = 0, outside_change = 0, mean_before = 0, n_in = 0;
     std::size_t labelled = 0;
@@ -165,7 +165,7 @@ TEST_CASE("plate coverage anti-aliases its edges: the covered area is L W to sub
         pl.center_y_m = 4.97;
         pl.length_m = 3.3;
         pl.width_m = 1.1;
-        pl.heading_rad = sss::deg_to_rad(heading_deg);
+        pl.heading_deg = 90.0 - heading_deg;
         pl.top_m = 1.0;
         stamp(h, pl);
         CHECK(volume_m3(h) == doctest::Approx(3.3 * 1.1).epsilon(0.01).scale(0));

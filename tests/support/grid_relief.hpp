@@ -81,7 +81,7 @@ inline std::vector<std::uint32_t> cell_ids(std::size_t nx, std::size_t ny) {
 /// - The noise (0.1 m) makes every cell's triangles different, so a hit in the wrong cell shows.
 /// Every cell's region id is its index (cell_ids), so a hit's label names its cell.
 template <class T>
-sss::scene::height_field<T> rough_field({.nx = std::size_t nx, .ny = std::size_t ny, .cell_m = double cell_m, .origin_m = sss::vec2<double> origin, .heights_m = std::uint64_t seed}) {
+sss::scene::height_field<T> rough_field(std::size_t nx, std::size_t ny, double cell_m, sss::vec2<double> origin, std::uint64_t seed) {
     rng noise{seed};
     auto h = sample_heights<T>(nx, ny, cell_m, [&noise](double x, double y) {
         double z = 1.2 * std::sin(0.11 * x + 0.05 * y) + 0.35 * std::sin(0.9 * x - 0.6 * y + 1) +
@@ -101,7 +101,7 @@ sss::scene::height_field<T> rough_field({.nx = std::size_t nx, .ny = std::size_t
 /// that makes every cell's triangles and normals different. Cell c has region c and material c % 5, so a
 /// hit's label names its cell and its material can be checked against that label.
 template <class T>
-sss::scene::height_field<T> rolling_field({.nx = std::size_t nx, .ny = std::size_t ny, .cell_m = double cell_m, .origin_m = sss::vec2<double> origin, .heights_m = std::uint64_t seed}) {
+sss::scene::height_field<T> rolling_field(std::size_t nx, std::size_t ny, double cell_m, sss::vec2<double> origin, std::uint64_t seed) {
     rng noise{seed};
     auto h = sample_heights<T>(nx, ny, cell_m, [&noise](double x, double y) {
         return 1.1 * std::sin(0.13 * x + 0.04 * y) + 0.3 * std::sin(0.8 * x - 0.7 * y + 1) +

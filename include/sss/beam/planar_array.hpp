@@ -53,8 +53,8 @@ template <Real T> struct array_axis {
 
 /// The element layout of one array (transmit or receive).
 template <Real T> struct array_layout {
-    array_axis<T> along{1, T(0.5), T(0), {}};     ///< along-track axis (body x)
-    array_axis<T> vertical{1, T(0.02), T(0), {}}; ///< axis in the tilted across-track plane
+    array_axis<T> along{.count = 1, .element_m = T(0.5)};      ///< along-track axis (body x)
+    array_axis<T> vertical{.count = 1, .element_m = T(0.02)};  ///< axis in the tilted across-track plane
 };
 
 template <Real T> struct planar_array_params {

@@ -13,6 +13,12 @@ template <Real T> inline constexpr T ln10_v = T(2.302585092994045684017991454684
 
 /// Degrees to radians.
 template <Real T> [[nodiscard]] constexpr T deg_to_rad(T deg) noexcept { return deg * (pi_v<T> / T(180)); }
+/// A heading or direction as users give it (deg, clockwise from north: docs/conventions.md) as the angle
+/// counter-clockwise from east (rad) that the trigonometry of plan geometry uses: 90 deg - heading. The unit
+/// vector of the heading, world (x east, y north), is (cos, sin) of the result.
+template <Real T> [[nodiscard]] constexpr T heading_to_ccw_from_east_rad(T heading_deg) noexcept {
+    return deg_to_rad(T(90) - heading_deg);
+}
 /// Radians to degrees.
 template <Real T> [[nodiscard]] constexpr T rad_to_deg(T rad) noexcept { return rad * (T(180) / pi_v<T>); }
 

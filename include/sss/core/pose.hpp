@@ -2,6 +2,9 @@
 /// \file
 /// The towfish pose at one ping: time, world position and attitude.
 ///
+/// Units: a pose is the pipeline's own form, so its angles are radians (`*_rad`), as docs/conventions.md
+/// allows inside the pipeline; settings users write (the motion policies' parameters) are in degrees.
+///
 /// Attitude follows the marine convention: yaw (heading) clockwise from north, pitch bow-up positive, roll
 /// starboard-down positive, applied as R = Rz(yaw) Ry(pitch) Rx(roll) from body (FRD) to north-east-down,
 /// then mapped to the world's east-north-up axes.

@@ -28,6 +28,7 @@
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 #include "sss/motion/concept.hpp"
+#include "sss/motion/straight_line.hpp"
 
 namespace sss::motion {
 
@@ -81,12 +82,7 @@ public:
     perturbed() : perturbed(perturbed_params<T>{}) {}
 
     explicit perturbed(const perturbed_params<T>& p) : p_(p) {
-        sss::require_finite(p.start_m.x, "perturbed.start_m.x");
-        sss::require_finite(p.start_m.y, "perturbed.start_m.y");
-        sss::require_finite(p.heading_deg, "perturbed.heading_deg");
-        sss::require_non_negative(p.speed_mps, "perturbed.speed_mps");
-        sss::require_positive(p.altitude_m, "perturbed.altitude_m");
-        sss::require_positive(p.ping_interval_s, "perturbed.ping_interval_s");
+        detail::validate_nominal_track(p, "perturbed");
         check(p.yaw_deg, "perturbed.yaw_deg");
         check(p.sway_m, "perturbed.sway_m");
         check(p.pitch_deg, "perturbed.pitch_deg");

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include <string>
+
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 #include "sss/motion/concept.hpp"
@@ -19,6 +21,19 @@ template <Real T> struct straight_line_params {
     T ping_interval_s = T(0.1);  ///< time between pings (s), > 0
 };
 
+namespace detail {
+/// Validates the nominal track every motion policy shares (start_m, heading_deg, speed_mps, altitude_m,
+/// ping_interval_s), naming each field after `who`.
+template <class Params> void validate_nominal_track(const Params& p, const std::string& who) {
+    sss::require_finite(p.start_m.x, who + ".start_m.x");
+    sss::require_finite(p.start_m.y, who + ".start_m.y");
+    sss::require_finite(p.heading_deg, who + ".heading_deg");
+    sss::require_non_negative(p.speed_mps, who + ".speed_mps");
+    sss::require_positive(p.altitude_m, who + ".altitude_m");
+    sss::require_positive(p.ping_interval_s, who + ".ping_interval_s");
+}
+} // namespace detail
+
 template <Real T> class straight_line {
 public:
     using value_type = T;
@@ -27,12 +42,7 @@ public:
     straight_line() : straight_line(straight_line_params<T>{}) {}
 
     explicit straight_line(const straight_line_params<T>& p) : p_(p) {
-        sss::require_finite(p.start_m.x, "straight_line.start_m.x");
-        sss::require_finite(p.start_m.y, "straight_line.start_m.y");
-        sss::require_finite(p.heading_deg, "straight_line.heading_deg");
-        sss::require_non_negative(p.speed_mps, "straight_line.speed_mps");
-        sss::require_positive(p.altitude_m, "straight_line.altitude_m");
-        sss::require_positive(p.ping_interval_s, "straight_line.ping_interval_s");
+        detail::validate_nominal_track(p, "straight_line");
         yaw_rad_ = deg_to_rad(p.heading_deg);
         rotation_ = body_to_world_rotation(T(0), T(0), yaw_rad_);
     }

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// Layered water: rays refracted through a piecewise-linear sound-speed profile, with absorption that depends
-/// on depth and spreading from the ray tube.
+/// on depth and spreading from the ray tube. Design notes, the reasoning behind the choices below and measured
+/// costs: docs/design/layered.md.
 ///
 /// Depth reference. The profile (profile.hpp) is in depth, positive down from the sea surface; the world is
 /// z up. `layered_params::surface_z_m` is the world z of the sea surface, and a point at world z lies at depth
@@ -12,62 +13,23 @@
 /// (turning points included); each arc that can reach the scene (deeper than the scene's top_m) is handed to
 /// the scene as chords of sagitta at most `chord_tolerance_m`, and the chord's hit is moved onto the arc
 /// (arc_intersection.hpp): on planar facets the hit point, path length and time are exact to rounding.
-/// Time and horizontal range are sums of the arcs' closed forms; the arrival direction is the bent ray's
-/// tangent at the hit, so grazing angles come out right. An arc that starts where geometry may be is first
-/// handed to the scene over at most one chord of the length it surely stays in its layer with no trigonometry
-/// (depth changes no faster than arc length: the distance to the nearer boundary), then over the rest of the
-/// length it surely stays (stay_length: exact when it reaches the boundary ahead without turning), before the
-/// layer's exit is worked out: over a flat seabed the first chord holds the hit, which then costs one chord.
+/// The arrival direction is the bent ray's tangent at the hit, so grazing angles come out right.
 ///
-/// Absorption. alpha(z) (dB/km) from Francois & Garrison (1982) or Ainslie & McColm (1998) (absorption.hpp),
-/// with the water's temperature, salinity and pH held constant and the depth varying along the path, is
-/// integrated over each arc by three-point Gauss-Legendre in arc length, exact for alpha quintic in arc length.
-/// alpha varies with depth on kilometre scales (Francois-Garrison's pressure terms are quadratic in depth,
-/// Ainslie-McColm's exponentials have scales of 6 and 17 km), so the rule's error is far below rounding on
-/// sonar paths and about 1e-11 relative on a 1000 m vertical arc (tests/propagation/test_layered.cpp). A last
-/// piece within 1 m of depth and 0.1 mm of sagitta (the usual one after the launch table) takes the midpoint
-/// rule, off by below 1e-8 of that piece's own share (its midpoint depth from the depth change and the sagitta,
-/// dz/2 + kappa s^2 cos(phi0)/8, to 1e-7 m), and the one exponential that turns dB into a ratio becomes a series
-/// when that piece is all that follows the table (below 1e-3 nepers: remainder below 1e-17).
-/// The formula is chosen at run time (`absorption_formula`): the switch costs one predictable branch per
-/// evaluation, three per arc, against about ten transcendental functions per arc for the ray itself, and it keeps
-/// `layered<T>` a template of T alone, as the policy machinery (rebinding a policy to another scalar type)
-/// expects. Francois-Garrison is the default: it is the reference formula, and with its transcendentals
-/// evaluated once at construction it is the cheaper of the two per depth here (Ainslie-McColm needs two
-/// exponentials per depth).
+/// Absorption. alpha(z) (dB/km) from Francois & Garrison (1982, JASA 72, 896-907 and 1879-1890) or Ainslie &
+/// McColm (1998, JASA 103, 1671-1672) (absorption.hpp), with temperature, salinity and pH held constant and the
+/// depth varying along the path, integrated over each arc by three-point Gauss-Legendre in arc length.
 ///
-/// Launch table (launch_table.hpp, on by default). All rays of a ping leave one point, and above the scene's
-/// top_m the water alone decides their paths: a per-thread table over launch angle, built for the current source
-/// depth and scene top (about a thousand exact descents, a fraction of a millisecond; a thread keeps its last four)
-/// and validated interval by interval against exact tracing (to 1e-10 relative in double, 64 epsilons in float),
-/// gives each ray its state where the geometry begins (absorption also as a ratio, so that no exponential is
-/// left), from where it is traced exactly. A result depends only on the ray, the scene's top and the water (the
-/// table is a function of them, not of which rays came before or of the thread). Against exact tracing all the
-/// way, range, time, spreading and absorption differ by at most 1.2e-10 relative over five waters and two scenes
-/// (tests/propagation/test_layered_table.cpp; 2e-5 in float). Rays the table does not cover (upward, grazing
-/// below 1e-3 rad, or in an interval that failed validation) are traced exactly. Turn it off
-/// (`launch_table = false`) for rays from ever-changing origins, where it would be rebuilt for nearly every ray.
-///
-/// Batches (`trace_many`, the BatchPropagation method). The rays of a column share their origin: the table and
-/// the depths it depends on are found once per origin, and the rays are launched (table lookups) sixteen at a time
-/// before they are followed, so that the lookups' latencies overlap. Each ray takes exactly the steps `trace`
-/// takes: the results are the same bit for bit.
+/// Launch table (launch_table.hpp, `launch_table = true` by default). Above the scene's top_m the water alone
+/// decides a ray's path, so rays are looked up in a table over launch angle built for the current source depth
+/// and scene top and validated against exact tracing (1e-10 relative in double, 64 epsilons in float). A result
+/// depends only on the ray, the scene's top and the water, never on which rays came before or on the thread.
+/// Hidden state: the tables live in a `thread_local` cache (the last four per thread, keyed by a per-water id
+/// that copies share), filled by the `const` trace methods. It is invisible in results, holds up to four tables
+/// per thread for the life of the thread, and lets threads share one `layered` without locks; turn the table off
+/// for rays from ever-changing origins, where it would be rebuilt for nearly every ray.
 ///
 /// Spreading (ray_tube.hpp). `path::spreading` is the return leg's S_BA: intensity back at the transducer
-/// relative to that 1 m off the hit. The echo of a footprint needs exactly that one: the outgoing tube S_AB
-/// sets the footprint's area (1/S_AB per steradian) and its incident intensity (S_AB), and the two cancel;
-/// S_BA = (c_hit/c_source)^2 S_AB by reciprocity. In isovelocity water both are 1/r^2. S_AB itself is in
-/// `layered_path::outgoing_spreading`.
-///
-/// Cost (bench/bench_propagation.cpp, flat seabed 10 m below the towfish, ranges 10-60 m, double, one core, best
-/// of interleaved rounds on a shared machine, so good to 10-20%): straight rays about 25 ns each; layered rays with
-/// the launch table about 140-220 ns (five knots, a thermocline or a thousand knots; the thermocline through
-/// trace_many 135-200 ns), and 630-830 ns traced exactly through the thermocline. Of a thermocline ray with the
-/// table (one `trace`, rays in scrambled order): about 45 ns the launch (direction, logarithm, the table's seven
-/// quintics, Snell), 95 ns the one chord and its refinement onto the arc (the arc's set-up and the scene's intersect
-/// included), 35 ns time, spreading and absorption at the hit. Whole pings of a 300 kHz planar array (40 m,
-/// Lambert): 1.36-1.41 times the straight-ray time per ray with the table (2.9-3.2 times tracing exactly); the rest
-/// of a ping's time per ray, about 230 ns (beam pattern, scattering, time sampling), is the same for both.
+/// relative to that 1 m off the hit; S_AB is in `layered_path::outgoing_spreading`.
 
 #include <algorithm>
 #include <array>
@@ -247,14 +209,7 @@ private:
         const T inv_len = T(1) / std::sqrt(h2 + r.direction.z * r.direction.z);
         const T sin0 = -r.direction.z * inv_len, cos0 = hlen * inv_len;
 
-        m.z = depth0;
-        m.phi = T(0);
-        m.sin_phi = sin0;
-        m.cos_phi = cos0;
-        m.phi_known = false;
-        m.t = m.x = m.s = m.absorption_db = T(0);
-        m.absorption_ratio = T(1);
-        m.arcs = m.chords = 0;
+        m.set_out(depth0, sin0, cos0);
         T source_speed_mps;
         if (st.table && sin0 > T(0)) {
             const table_entry& e = *st.table;
@@ -304,6 +259,19 @@ private:
         T absorption_db;            ///< absorption (dB) since then
         ray_tube<T> tube;           ///< its source_speed_mps is c at the source
         std::size_t arcs, chords;   ///< layer arcs followed, calls to the scene's intersect
+
+        /// The set-up every trace starts from (launch and the launch table's descents): at depth z_m, inclination
+        /// (sin_phi0, cos_phi0) with the angle not yet known, nothing travelled. The caller sets layer and tube.
+        void set_out(T z_m, T sin_phi0, T cos_phi0) noexcept {
+            z = z_m;
+            phi = T(0);
+            sin_phi = sin_phi0;
+            cos_phi = cos_phi0;
+            phi_known = false;
+            t = x = s = absorption_db = T(0);
+            absorption_ratio = T(1);
+            arcs = chords = 0;
+        }
     };
 
     /// What trace_path reports beyond the path.
@@ -492,15 +460,10 @@ private:
     /// going down all the way (nullopt if it turns or levels off first): the launch table's exact trace.
     [[nodiscard]] std::optional<descent_state<T>> descend(T z_a, T z_h, T sin_phi0, T cos_phi0) const noexcept {
         march m;
+        m.set_out(z_a, sin_phi0, cos_phi0);
         m.layer = profile_.layer_index(z_a, vertical_direction::down);
-        m.z = z_a;
-        m.sin_phi = sin_phi0;
-        m.cos_phi = cos_phi0;
         m.phi = std::atan2(sin_phi0, cos_phi0);
         m.phi_known = true;
-        m.t = m.x = m.s = m.absorption_db = T(0);
-        m.absorption_ratio = T(1);
-        m.arcs = m.chords = 0;
         m.tube = ray_tube<T>{layers_[m.layer].speed_mps(z_a), sin_phi0};
         for (std::size_t n = 0; n <= layers_.size(); ++n) {
             gradient_layer<T> layer = layers_[std::min(m.layer, layers_.size() - 1)];

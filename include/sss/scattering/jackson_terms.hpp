@@ -193,7 +193,7 @@ template <Real T> inline constexpr T gauss_hermite3_weight_outer = T(0.295408975
 template <Real T> inline constexpr T gauss_hermite3_weight_centre = T(1.1816359006036774);
 
 /// Average of sigma(theta) over the large-scale slopes in the plane of incidence (TR 9407):
-///   <sigma>(theta) = (1/sqrt(pi)) sum_j w_j sigma(theta - x_j theta_s),  angles clipped to [0, pi/2],
+///   avg sigma(theta) = (1/sqrt(pi)) sum_j w_j sigma(theta - x_j theta_s),  angles clipped to [0, pi/2],
 /// with the 3-point Gauss-Hermite rule (x_j, w_j) and theta_s = s (rad; "s in degrees" in the report,
 /// which works in degrees). `sigma` is any callable T -> T of the grazing angle (rad).
 template <Real T, class F> [[nodiscard]] inline T gauss_hermite_slope_average(F&& sigma, T graze_rad, T theta_s_rad) {
@@ -245,10 +245,10 @@ template <Real T>
 /// Each term of the backscattering cross section at one angle (linear, dimensionless).
 template <Real T> struct jackson_terms {
     T kirchhoff{};       ///< sigma_kr
-    T composite{};       ///< sigma_cr = S <sigma_pr>
+    T composite{};       ///< sigma_cr = S avg(sigma_pr), avg the slope average below
     T large_roughness{}; ///< sigma_lr
     T roughness{};       ///< sigma_r, the blend of the three above
-    T volume{};          ///< sigma_v = S <sigma_pv>
+    T volume{};          ///< sigma_v = S avg(sigma_pv)
     T total{};           ///< sigma_r + sigma_v
 };
 

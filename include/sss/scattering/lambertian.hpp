@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -42,12 +41,9 @@ public:
     lambertian() : lambertian(T(-27)) {}
 
     /// One Lambert parameter for every material, given in dB (10 log10 mu).
-    explicit lambertian(T mu_db) : lambertian({mu_db}) {}
+    explicit lambertian(T mu_db) : lambertian(lambertian_params<T>{.mu_db = {mu_db}}) {}
 
-    /// One Lambert parameter per material id, in dB; ids beyond the list use the last entry.
-    lambertian(std::initializer_list<T> mu_db_by_material)
-        : lambertian(lambertian_params<T>{.mu_db = std::vector<T>(mu_db_by_material)}) {}
-
+    /// One Lambert parameter per material id, in dB (`lambertian<T>({.mu_db = {T(-27), T(-8)}})`).
     explicit lambertian(const lambertian_params<T>& p) {
         sss::require(!p.mu_db.empty(), "lambertian.mu_db", "needs at least one material");
         for (std::size_t i = 0; i < p.mu_db.size(); ++i) {

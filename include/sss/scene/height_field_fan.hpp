@@ -78,13 +78,7 @@ template <Real T> [[nodiscard]] inline fan_run find_fan_run(std::span<const ray<
         if (!(hx * r.direction.x + hy * r.direction.y > T(0))) break;
         const T tau = -r.direction.z * inv_h;
         if (!std::isfinite(tau)) break;
-        const int step = tau < tau_prev ? 1 : (tau > tau_prev ? -1 : 0);
-        if (step != 0) {
-            if (order == 0)
-                order = step;
-            else if (step != order)
-                break;
-        }
+        if (!keeps_order(tau, tau_prev, order)) break;
         tau_prev = tau;
         slopes[run.count] = fan_slope<T>{tau, inv_h};
         ++run.count;

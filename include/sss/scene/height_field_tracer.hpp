@@ -59,6 +59,19 @@ template <Real T> struct height_bounds {
 
 namespace detail {
 
+/// Whether tau keeps a run of rays monotone: the first change fixes the run's order (`order` 0: not yet known,
+/// 1: falling, -1: rising), a later change against it ends the run (false). Fan and wedge runs share it.
+template <Real T> [[nodiscard]] inline bool keeps_order(T tau, T tau_prev, int& order) noexcept {
+    const int step = tau < tau_prev ? 1 : (tau > tau_prev ? -1 : 0);
+    if (step != 0) {
+        if (order == 0)
+            order = step;
+        else if (step != order)
+            return false;
+    }
+    return true;
+}
+
 /// A ray in grid units: u(s) = u0 + du s, v(s) = v0 + dv s, z(s) = z0 + dz s, s in metres.
 template <Real T> struct grid_ray {
     T u0, v0, z0;

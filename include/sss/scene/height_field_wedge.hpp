@@ -91,13 +91,7 @@ template <Real T>
         if (!(hi - lo <= max_spread)) break;
         const T tau = -r.direction.z * inv_h;
         if (!std::isfinite(tau)) break;
-        const int step = tau < tau_prev ? 1 : (tau > tau_prev ? -1 : 0);
-        if (step != 0) {
-            if (order == 0)
-                order = step;
-            else if (step != order)
-                break;
-        }
+        if (!keeps_order(tau, tau_prev, order)) break;
         run.sin_lo = lo;
         run.sin_hi = hi;
         tau_prev = tau;

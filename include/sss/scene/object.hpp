@@ -9,10 +9,10 @@
 /// one by one behind a test of its bounding box; for many objects, or objects of many primitives (a long
 /// pipeline), put them in an object_set, whose hierarchy spans every primitive.
 ///
-/// Frames: the object frame is right-handed; `placement(position, heading, pitch, roll)` follows the
-/// seabed features' convention (stamps.hpp): heading counter-clockwise from world +x (east) about +z (up),
-/// then pitch raises the object's +x end, then roll turns it about its own +x axis (right-handed), i.e.
-/// R = Rz(heading) Ry(-pitch) Rx(roll).
+/// Frames: the object frame is right-handed (+x forward, +y left, +z up); `placement({.position_m, .heading_deg,
+/// .pitch_deg, .roll_deg})` follows docs/conventions.md: heading clockwise from north turns the object's +x
+/// axis (90 deg: east, the unturned frame), then pitch raises its +x end, then roll turns it about its own
+/// +x axis (right-handed: the right side goes down), i.e. R = Rz(90 deg - heading) Ry(-pitch) Rx(roll).
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +26,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
@@ -44,11 +45,12 @@ template <Real T> struct rigid_transform {
     [[nodiscard]] vec3<T> vector(const vec3<T>& local) const noexcept { return rotation * local; }
 };
 
-/// The placement R = Rz(heading) Ry(-pitch) Rx(roll) at `position_m` (angles in rad; see the file comment).
+namespace detail {
+/// The placement R = Rz(theta) Ry(-pitch) Rx(roll) at `position_m`, theta counter-clockwise from east (all rad).
 template <Real T>
-[[nodiscard]] rigid_transform<T> placement(const vec3<T>& position_m, T heading_rad = T(0), T pitch_rad = T(0),
-                                           T roll_rad = T(0)) noexcept {
-    const T ch = std::cos(heading_rad), sh = std::sin(heading_rad);
+[[nodiscard]] rigid_transform<T> placement_ccw_rad(const vec3<T>& position_m, T theta_rad = T(0), T pitch_rad = T(0),
+                                                   T roll_rad = T(0)) noexcept {
+    const T ch = std::cos(theta_rad), sh = std::sin(theta_rad);
     const T cp = std::cos(pitch_rad), sp = std::sin(pitch_rad);
     const T cr = std::cos(roll_rad), sr = std::sin(roll_rad);
     // Columns are the images of the local axes (GLM: m[col][row]).
@@ -59,6 +61,21 @@ template <Real T>
     x.rotation = mat3<T>(ex, ey, ez);
     x.translation_m = position_m;
     return x;
+}
+} // namespace detail
+
+/// Where an object stands: its frame's origin and attitude (see the file comment).
+template <Real T> struct placement_params {
+    vec3<T> position_m{};   ///< world position of the object frame's origin (m)
+    T heading_deg = T(90);  ///< direction of the object's +x axis, clockwise from north (deg); 90: east (no turn)
+    T pitch_deg = T(0);     ///< +x end up positive (deg)
+    T roll_deg = T(0);      ///< about +x, the +y (left) side up positive, i.e. the right side down (deg)
+};
+
+/// The placement R = Rz(90 deg - heading) Ry(-pitch) Rx(roll) at `position_m`.
+template <Real T> [[nodiscard]] rigid_transform<T> placement(const placement_params<T>& p) noexcept {
+    return detail::placement_ccw_rad(p.position_m, heading_to_ccw_from_east_rad(p.heading_deg), deg_to_rad(p.pitch_deg),
+                                     deg_to_rad(p.roll_deg));
 }
 
 /// Throws invalid_parameter naming `name` unless `x` is finite and its rotation is proper to within

@@ -3,8 +3,9 @@
 /// Sand ripples: periodic crests with a stoss/lee profile, crest sinuosity and fractal perturbation;
 /// several sets (e.g. small ripples on large ones) superpose.
 ///
-/// Geometry. Crests run along c = (cos theta, sin theta), theta = `crest_direction_rad` (counter-clockwise
-/// from +x, east). The ripples migrate along the normal n = (sin theta, -cos theta) (c turned clockwise by
+/// Geometry. Crests run along `crest_heading_deg` (clockwise from north, docs/conventions.md; 0: crests run
+/// north-south), i.e. along c = (cos theta, sin theta) with theta = 90 deg - crest_heading_deg the angle
+/// counter-clockwise from +x (east). The ripples migrate along the normal n = (sin theta, -cos theta) (c turned clockwise by
 /// 90 degrees): the gentle stoss side faces -n (upstream), the steep lee side faces +n. At raster-local
 /// position x the phase is
 ///   s(x) = [x . n + d(x)] / lambda + phase_rad / (2 pi),
@@ -43,7 +44,7 @@ namespace sss::seabed {
 template <Real T> struct ripple_params {
     T wavelength_m = T(0.5);         ///< crest-to-crest spacing lambda (m), >= 2 cells
     T height_m = T(0.05);            ///< crest-to-trough height H (m), >= 0
-    T crest_direction_rad = T(0);    ///< direction along the crests, counter-clockwise from +x (rad)
+    T crest_heading_deg = T(90);     ///< direction along the crests, clockwise from north (deg); 90: crests run east
     T symmetry_index = T(1);         ///< RSI = stoss length / lee length, > 0 (1: symmetric)
     T phase_rad = T(0);              ///< shift of the crests along n, as a phase (rad)
     T sinuosity_m = T(0);            ///< amplitude of the regular crest meander along n (m), >= 0
@@ -61,7 +62,7 @@ template <Real T> void validate(const ripple_params<T>& p, T cell_m, const std::
                     [&] { return "must be at least 2 cells (" + std::to_string(T(2) * cell_m) + " m) to be resolved, got " +
                         std::to_string(p.wavelength_m); });
     sss::require_non_negative(p.height_m, who + ".height_m");
-    sss::require_finite(p.crest_direction_rad, who + ".crest_direction_rad");
+    sss::require_finite(p.crest_heading_deg, who + ".crest_heading_deg");
     sss::require_positive(p.symmetry_index, who + ".symmetry_index");
     sss::require_finite(p.phase_rad, who + ".phase_rad");
     sss::require_non_negative(p.sinuosity_m, who + ".sinuosity_m");
@@ -89,7 +90,7 @@ template <Real T> void add_ripples(raster<T>& h, const ripple_params<T>& p, std:
     sss::require(h.values.size() == h.nx * h.ny, "add_ripples.h.values", "size differs from nx * ny");
     validate(p, h.cell_m, "add_ripples.params");
     const double lambda = static_cast<double>(p.wavelength_m);
-    const double theta = static_cast<double>(p.crest_direction_rad);
+    const double theta = heading_to_ccw_from_east_rad(static_cast<double>(p.crest_heading_deg));
     const double cx = std::cos(theta), cy = std::sin(theta); // along the crests
     const double mx = cy, my = -cx;                          // migration direction n
     const double rsi = static_cast<double>(p.symmetry_index);

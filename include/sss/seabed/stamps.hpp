@@ -3,8 +3,8 @@
 /// Features pressed into a height raster: plate, trench, mound and scour pit.
 ///
 /// Each feature is a plain struct placed in raster-local metres (sample (ix, iy) at x = ix cell_m,
-/// y = iy cell_m; see raster.hpp) and rotated by `heading_rad` (counter-clockwise from +x). In its own
-/// frame, u runs along the heading and v across it. `stamp(h, feature)` modifies the heights;
+/// y = iy cell_m; see raster.hpp) and turned to `heading_deg` (clockwise from north, docs/conventions.md). In
+/// its own frame, u runs along the heading and v across it (to the left of the heading). `stamp(h, feature)` modifies the heights;
 /// `stamp(h, regions, feature, id)` also writes `id` into the region raster wherever the feature covers at
 /// least half of a cell (its footprint, defined per feature below).
 ///
@@ -47,7 +47,7 @@ template <Real T> struct plate {
     T center_x_m = T(0), center_y_m = T(0); ///< centre of the rectangle (m, raster-local)
     T length_m = T(1);                      ///< side along the heading (m), > 0
     T width_m = T(1);                       ///< side across the heading (m), > 0
-    T heading_rad = T(0);                   ///< direction of the length, counter-clockwise from +x (rad)
+    T heading_deg = T(90);                  ///< direction of the length, clockwise from north (deg); 90: east
     T top_m = T(0.1);                       ///< top above the mean seabed under the plate (m); any sign
 };
 
@@ -67,7 +67,7 @@ template <Real T> struct mound {
     T center_x_m = T(0), center_y_m = T(0); ///< centre (m)
     T radius_u_m = T(1);                    ///< semi-axis along the heading (m), > 0
     T radius_v_m = T(1);                    ///< semi-axis across the heading (m), > 0
-    T heading_rad = T(0);                   ///< direction of the u axis, counter-clockwise from +x (rad)
+    T heading_deg = T(90);                  ///< direction of the u axis, clockwise from north (deg); 90: east
     T height_m = T(0.3);                    ///< height at the centre (m), >= 0
 };
 
@@ -76,7 +76,7 @@ template <Real T> struct scour {
     T center_x_m = T(0), center_y_m = T(0); ///< centre (m)
     T radius_u_m = T(1);                    ///< semi-axis of the pit along the heading (m), > 0
     T radius_v_m = T(1);                    ///< semi-axis across the heading (m), > 0
-    T heading_rad = T(0);                   ///< direction of the u axis, counter-clockwise from +x (rad)
+    T heading_deg = T(90);                  ///< direction of the u axis, clockwise from north (deg); 90: east
     T depth_m = T(0.3);                     ///< depth at the centre (m), >= 0
     T rim_height_m = T(0);                  ///< rim height (m), >= 0
     T rim_width_m = T(0);                   ///< rim width at the mean radius (m), > 0 when rim_height_m > 0
@@ -87,7 +87,7 @@ template <Real T> void validate(const plate<T>& s, const std::string& who) {
     sss::require_finite(s.center_y_m, who + ".center_y_m");
     sss::require_positive(s.length_m, who + ".length_m");
     sss::require_positive(s.width_m, who + ".width_m");
-    sss::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::require_finite(s.heading_deg, who + ".heading_deg");
     sss::require_finite(s.top_m, who + ".top_m");
 }
 
@@ -111,7 +111,7 @@ template <Real T> void validate(const mound<T>& s, const std::string& who) {
     sss::require_finite(s.center_y_m, who + ".center_y_m");
     sss::require_positive(s.radius_u_m, who + ".radius_u_m");
     sss::require_positive(s.radius_v_m, who + ".radius_v_m");
-    sss::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::require_finite(s.heading_deg, who + ".heading_deg");
     sss::require_non_negative(s.height_m, who + ".height_m");
 }
 
@@ -120,7 +120,7 @@ template <Real T> void validate(const scour<T>& s, const std::string& who) {
     sss::require_finite(s.center_y_m, who + ".center_y_m");
     sss::require_positive(s.radius_u_m, who + ".radius_u_m");
     sss::require_positive(s.radius_v_m, who + ".radius_v_m");
-    sss::require_finite(s.heading_rad, who + ".heading_rad");
+    sss::require_finite(s.heading_deg, who + ".heading_deg");
     sss::require_non_negative(s.depth_m, who + ".depth_m");
     sss::require_non_negative(s.rim_height_m, who + ".rim_height_m");
     sss::require_non_negative(s.rim_width_m, who + ".rim_width_m");
@@ -162,7 +162,7 @@ struct ellipse_frame {
 
 /// The frame of an elliptical feature (mound or scour): centre, heading and semi-axes.
 template <class Feature> [[nodiscard]] ellipse_frame frame_of(const Feature& s) noexcept {
-    const double heading = static_cast<double>(s.heading_rad);
+    const double heading = heading_to_ccw_from_east_rad(static_cast<double>(s.heading_deg));
     return {static_cast<double>(s.center_x_m), static_cast<double>(s.center_y_m), std::cos(heading), std::sin(heading),
             static_cast<double>(s.radius_u_m), static_cast<double>(s.radius_v_m)};
 }
@@ -199,7 +199,8 @@ template <Real T> void require_raster(const raster<T>& h, const std::string& who
 template <Real T> void stamp(raster<T>& h, const plate<T>& s) {
     detail::require_raster(h, "stamp.h");
     validate(s, "stamp.plate");
-    const double c = std::cos(static_cast<double>(s.heading_rad)), sn = std::sin(static_cast<double>(s.heading_rad));
+    const double theta = heading_to_ccw_from_east_rad(static_cast<double>(s.heading_deg));
+    const double c = std::cos(theta), sn = std::sin(theta);
     const double hl = 0.5 * static_cast<double>(s.length_m), hw = 0.5 * static_cast<double>(s.width_m);
     const double cx = static_cast<double>(s.center_x_m), cy = static_cast<double>(s.center_y_m);
     const double reach_x = hl * std::abs(c) + hw * std::abs(sn) + static_cast<double>(h.cell_m);
@@ -334,7 +335,8 @@ template <Real T> void require_same_grid(const raster<T>& h, const region_raster
 template <Real T> void stamp(raster<T>& h, region_raster<T>& regions, const plate<T>& s, std::uint32_t id) {
     detail::require_same_grid(h, regions);
     stamp(h, s);
-    const double c = std::cos(static_cast<double>(s.heading_rad)), sn = std::sin(static_cast<double>(s.heading_rad));
+    const double theta = heading_to_ccw_from_east_rad(static_cast<double>(s.heading_deg));
+    const double c = std::cos(theta), sn = std::sin(theta);
     const double hl = 0.5 * static_cast<double>(s.length_m), hw = 0.5 * static_cast<double>(s.width_m);
     const double cx = static_cast<double>(s.center_x_m), cy = static_cast<double>(s.center_y_m);
     detail::label(regions, cx, cy, hl + hw, hl + hw, id, [&](double x, double y) {

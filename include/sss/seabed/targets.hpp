@@ -4,8 +4,8 @@
 /// with free spans, a cylinder lying on the seabed at any heading, and a seeded debris cluster.
 ///
 /// Every builder reads the seabed through a height function h(x_m, y_m) -> world z (m): any callable, e.g.
-/// `seabed_height_of(scene)` for anything that models sss::Scene. Headings are counter-clockwise from world
-/// +x (east), as for the seabed features (stamps.hpp). All hits of one target carry its object id and class
+/// `seabed_height_of(scene)` for anything that models sss::Scene. Headings are in degrees clockwise from
+/// north, as everywhere (docs/conventions.md). All hits of one target carry its object id and class
 /// id (the ground-truth label); materials are per part.
 ///
 /// Resting on a seabed is decided in the vertical plane through the target's axis (or route), from the
@@ -57,8 +57,8 @@ template <Real T> struct tethered_mine_params {
     mine_case shape = mine_case::sphere;
     T case_radius_m = T(0.5);        ///< radius of the case (m), > 0
     T case_length_m = T(1.5);        ///< cylindrical case: length along its axis (m), > 0
-    T case_heading_rad = T(0);       ///< cylindrical case: heading of its axis (rad)
-    T case_tilt_rad = T(0);          ///< cylindrical case: axis elevation above horizontal (rad), in [0, pi/2]
+    T case_heading_deg = T(90);      ///< cylindrical case: direction of its axis, clockwise from north (deg)
+    T case_tilt_deg = T(0);          ///< cylindrical case: axis elevation above horizontal (deg), in [0, 90]
     T tether_radius_m = T(0.01);     ///< tether radius (m), > 0 and < case and anchor radii
     T anchor_radius_m = T(0.4);      ///< anchor: a short vertical cylinder of this radius (m), > 0
     T anchor_height_m = T(0.3);      ///< and this height (m), > 0
@@ -86,10 +86,11 @@ template <Real T, HeightFunction<T> F>
     vec3<T> axis{T(0), T(0), T(1)};
     if (p.shape == mine_case::cylinder) {
         require_positive(p.case_length_m, "tethered_mine.case_length_m");
-        sss::require_finite(p.case_heading_rad, "tethered_mine.case_heading_rad");
-        sss::require_in_range(p.case_tilt_rad, T(0), half_pi_v<T>, "tethered_mine.case_tilt_rad");
-        const T ct = std::cos(p.case_tilt_rad), st = std::sin(p.case_tilt_rad);
-        axis = vec3<T>{ct * std::cos(p.case_heading_rad), ct * std::sin(p.case_heading_rad), st};
+        sss::require_finite(p.case_heading_deg, "tethered_mine.case_heading_deg");
+        sss::require_in_range(p.case_tilt_deg, T(0), T(90), "tethered_mine.case_tilt_deg");
+        const T tilt = deg_to_rad(p.case_tilt_deg), az = heading_to_ccw_from_east_rad(p.case_heading_deg);
+        const T ct = std::cos(tilt), st = std::sin(tilt);
+        axis = vec3<T>{ct * std::cos(az), ct * std::sin(az), st};
         down_m = std::numeric_limits<T>::infinity();
         if (ct > T(0)) down_m = p.case_radius_m / ct;
         if (st > T(0)) down_m = std::min(down_m, p.case_length_m / (T(2) * st));
@@ -120,7 +121,7 @@ template <Real T, HeightFunction<T> F>
     else cylinders.emplace_back(c - axis * (p.case_length_m / T(2)), c + axis * (p.case_length_m / T(2)), p.case_radius_m, case_ids);
     cylinders.emplace_back(vec3<T>{T(0), T(0), p.anchor_height_m}, c, p.tether_radius_m, tether_ids);
     cylinders.emplace_back(vec3<T>{T(0), T(0), T(0)}, vec3<T>{T(0), T(0), p.anchor_height_m}, p.anchor_radius_m, anchor_ids);
-    return scene::object<T>(spheres, cylinders, scene::placement(vec3<T>{x, y, base}));
+    return scene::object<T>(spheres, cylinders, scene::detail::placement_ccw_rad(vec3<T>{x, y, base}));
 }
 
 // --------------------------------------------------------------------------------------------------
@@ -132,7 +133,7 @@ template <Real T> struct pipeline_params {
     T profile_step_m = T(0.1);                ///< seabed sample spacing along the route (m), > 0
     T max_span_m = std::numeric_limits<T>::infinity(); ///< reach of the taut string (m), > 0 (see the file comment)
     T tolerance_m = T(0.001);                 ///< straight runs merged while the axis moves less than this (m), >= 0
-    scene::surface_ids ids{1, 0, 2};          ///< material, object id, class id
+    scene::surface_ids ids{.material = 1, .object = 0, .label = 2}; ///< the pipe's ids
 };
 
 /// A stretch where the pipe does not touch the seabed.
@@ -284,26 +285,28 @@ template <Real T, HeightFunction<T> F>
 
 template <Real T> struct lying_cylinder_params {
     vec2<T> center_m{T(0), T(0)}; ///< world (x, y) of the middle of its axis (m)
-    T heading_rad = T(0);         ///< heading of its axis (rad)
+    T heading_deg = T(90);        ///< direction of its axis, clockwise from north (deg); 90: east
     T length_m = T(2);            ///< length (m), > 0
     T radius_m = T(0.25);         ///< radius (m), > 0
     T profile_step_m = T(0.05);   ///< seabed sample spacing along the axis (m), > 0
-    scene::surface_ids ids{1, 0, 3};
+    scene::surface_ids ids{.material = 1, .object = 0, .label = 3}; ///< the cylinder's ids
 };
 
-/// A rigid cylinder resting on the seabed: in the vertical plane of its axis its lower edge lies on the
+namespace detail {
+
+/// lying_cylinder with its axis along the unit plan vector `dir` (p.heading_deg unused). A rigid cylinder resting on
+/// the seabed: in the vertical plane of its axis its lower edge lies on the
 /// edge of the profile's upper hull (the taut string) under its middle, the lowest position of its middle
 /// that keeps it above the seabed; its axis is that edge lifted by the radius, perpendicular to it.
 template <Real T, HeightFunction<T> F>
-[[nodiscard]] scene::object<T> lying_cylinder(const lying_cylinder_params<T>& p, const F& seabed_height_m) {
+[[nodiscard]] scene::object<T> lying_cylinder_along(const lying_cylinder_params<T>& p, const vec2<T>& dir,
+                                                    const F& seabed_height_m) {
     sss::require_finite(p.center_m.x, "lying_cylinder.center_m.x");
     sss::require_finite(p.center_m.y, "lying_cylinder.center_m.y");
-    sss::require_finite(p.heading_rad, "lying_cylinder.heading_rad");
     sss::require_positive(p.length_m, "lying_cylinder.length_m");
     sss::require_positive(p.radius_m, "lying_cylinder.radius_m");
     sss::require_positive(p.profile_step_m, "lying_cylinder.profile_step_m");
     sss::require(p.length_m / p.profile_step_m < T(1e7), "lying_cylinder.profile_step_m", "gives more than 1e7 samples");
-    const vec2<T> dir{std::cos(p.heading_rad), std::sin(p.heading_rad)};
     const auto n = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(p.length_m / p.profile_step_m)) + 1);
     std::vector<T> s(n), z(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -326,6 +329,18 @@ template <Real T, HeightFunction<T> F>
     const vec2<T> q0 = p.center_m + dir * (sc - half * cos_a), q1 = p.center_m + dir * (sc + half * cos_a);
     const vec3<T> e0{q0.x, q0.y, zc - half * sin_a}, e1{q1.x, q1.y, zc + half * sin_a};
     return scene::object<T>({}, {scene::cylinder<T>(e0, e1, p.radius_m, p.ids)});
+}
+
+} // namespace detail
+
+/// A rigid cylinder resting on the seabed: in the vertical plane of its axis its lower edge lies on the
+/// edge of the profile's upper hull (the taut string) under its middle, the lowest position of its middle
+/// that keeps it above the seabed; its axis is that edge lifted by the radius, perpendicular to it.
+template <Real T, HeightFunction<T> F>
+[[nodiscard]] scene::object<T> lying_cylinder(const lying_cylinder_params<T>& p, const F& seabed_height_m) {
+    sss::require_finite(p.heading_deg, "lying_cylinder.heading_deg");
+    const T theta = heading_to_ccw_from_east_rad(p.heading_deg);
+    return detail::lying_cylinder_along(p, vec2<T>{std::cos(theta), std::sin(theta)}, seabed_height_m);
 }
 
 // --------------------------------------------------------------------------------------------------
@@ -369,7 +384,8 @@ template <Real T, HeightFunction<T> F>
         const T x = p.center_m.x + static_cast<T>(rr * std::cos(az)), y = p.center_m.y + static_cast<T>(rr * std::sin(az));
         const T d = static_cast<T>(g.uniform(double(p.min_size_m), double(p.max_size_m)));
         const double kind = g.uniform(), u1 = g.uniform(), u2 = g.uniform();
-        const scene::surface_ids ids{p.material, p.first_object_id + static_cast<std::uint32_t>(k), p.class_id};
+        const scene::surface_ids ids{
+            .material = p.material, .object = p.first_object_id + static_cast<std::uint32_t>(k), .label = p.class_id};
         if (kind < 1.0 / 3.0) { // rock
             const T r = d / T(2), buried = static_cast<T>(u1) * p.max_burial * d;
             const T zc = static_cast<T>(seabed_height_m(x, y)) + r - buried;
@@ -378,12 +394,12 @@ template <Real T, HeightFunction<T> F>
         } else if (kind < 2.0 / 3.0) { // bar
             lying_cylinder_params<T> c;
             c.center_m = {x, y};
-            c.heading_rad = static_cast<T>(two_pi_v<double> * u1);
+            const T az_piece = static_cast<T>(two_pi_v<double> * u1); // its axis, counter-clockwise from east
             c.length_m = d;
             c.radius_m = d * static_cast<T>(0.06 + 0.14 * u2);
             c.profile_step_m = std::min(c.radius_m, d / T(8));
             c.ids = ids;
-            out.push_back(lying_cylinder(c, seabed_height_m));
+            out.push_back(detail::lying_cylinder_along(c, vec2<T>{std::cos(az_piece), std::sin(az_piece)}, seabed_height_m));
         } else { // drum
             const T r = d * static_cast<T>(0.25 + 0.2 * u1);
             T base = static_cast<T>(seabed_height_m(x, y));
