@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fails when a source file that CMake picks up by globbing is not named in the matching Meson list:
-#   tests/<area>/test_*.cpp  in tests/<area>/meson.build (and <area> in the area list of tests/meson.build)
+#   tests/<dir>/test_*.cpp   in tests/<dir>/meson.build (and <dir> in the table tests/areas.txt)
 #   bench/bench_*.cpp        in bench/meson.build
 #   examples/*.cpp           in examples/meson.build
 # so that the two builds compile and run the same things.
@@ -22,14 +22,16 @@ complain() {
 }
 
 shopt -s nullglob
+# The test directories named in tests/areas.txt (first field up to any '/').
+dirs=$(sed 's/#.*//' "$src/tests/areas.txt" | awk 'NF { split($1, p, "/"); print p[1] }' | sort -u)
 for file in "$src"/tests/*/test_*.cpp; do
-    area=$(basename "$(dirname "$file")")
+    dir=$(basename "$(dirname "$file")")
     name=$(basename "$file")
     checked=$((checked + 1))
-    if ! listed "$src/tests/$area/meson.build" "$name"; then
-        complain "tests/$area/$name: not listed in tests/$area/meson.build"
-    elif ! listed "$src/tests/meson.build" "$area"; then
-        complain "tests/$area/$name: area '$area' is not in the area list of tests/meson.build"
+    if ! listed "$src/tests/$dir/meson.build" "$name"; then
+        complain "tests/$dir/$name: not listed in tests/$dir/meson.build"
+    elif ! grep -qx "$dir" <<<"$dirs"; then
+        complain "tests/$dir/$name: directory '$dir' has no line in tests/areas.txt"
     fi
 done
 for file in "$src"/bench/bench_*.cpp; do

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rewrites the Meson source lists from the files present, so that Meson builds what CMake globs:
-#   tests/<area>/meson.build : <area>_tests = files(...)    from tests/<area>/test_*.cpp
+#   tests/<dir>/meson.build  : <dir>_tests = files(...)     from tests/<dir>/test_*.cpp (dirs: tests/areas.txt)
 #   bench/meson.build        : bench_sources = files(...)   from bench/bench_*.cpp
 #   examples/meson.build     : example_sources = files(...) from examples/*.cpp
 # Only the lines between "<var> = files(" and the closing ")" change. Run it after adding or removing
@@ -43,11 +43,11 @@ names() {
     (cd "$1" && shopt -s nullglob && for f in $2; do echo "$f"; done) | LC_ALL=C sort
 }
 
-areas=$(sed 's/#.*//' "$src/tests/meson.build" |
-        awk '/^test_areas = \[/,/\]/' | grep -o "'[a-z_]*'" | tr -d "'")
-for area in $areas; do
-    mapfile -t files < <(names "$src/tests/$area" 'test_*.cpp')
-    rewrite "$src/tests/$area/meson.build" "${area}_tests" "${files[@]}"
+# The test directories: the first field of tests/areas.txt up to any '/', in order, once each.
+dirs=$(sed 's/#.*//' "$src/tests/areas.txt" | awk 'NF { split($1, p, "/"); if (!seen[p[1]]++) print p[1] }')
+for dir in $dirs; do
+    mapfile -t files < <(names "$src/tests/$dir" 'test_*.cpp')
+    rewrite "$src/tests/$dir/meson.build" "${dir}_tests" "${files[@]}"
 done
 mapfile -t files < <(names "$src/bench" 'bench_*.cpp')
 rewrite "$src/bench/meson.build" bench_sources "${files[@]}"
