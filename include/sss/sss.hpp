@@ -46,9 +46,13 @@
 
 #include "sss/sampling/launch_angles.hpp"
 
+#include "sss/io/geodetic.hpp"
 #include "sss/io/height_field_io.hpp"
+#include "sss/io/npy.hpp"
+#include "sss/io/png.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "sss/io/xtf.hpp"
 
 #include "sss/propagation/arc_intersection.hpp"
 #include "sss/propagation/launch_table.hpp"
