@@ -48,6 +48,7 @@
 
 #include "sss/io/geodetic.hpp"
 #include "sss/io/height_field_io.hpp"
+#include "sss/io/labels.hpp"
 #include "sss/io/npy.hpp"
 #include "sss/io/png.hpp"
 #include "sss/io/sound_speed_profile.hpp"
@@ -87,3 +88,5 @@
 #include "sss/seabed/targets.hpp"
 
 #include "sss/simulator.hpp"
+
+#include "sss/labels/ground_truth.hpp"
