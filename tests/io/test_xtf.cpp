@@ -301,3 +301,37 @@ TEST_CASE("The geodetic mapping has the published lengths of a degree on WGS 84 
     CHECK(e == doctest::Approx(1234.5).epsilon(1e-12));
     CHECK(n == doctest::Approx(-678.9).epsilon(1e-12));
 }
+
+TEST_CASE("Corrupted XTF bytes read as a file or give a file_error, never anything else") {
+    const render r = small_render();
+    const auto good = bytes_of(io::make_xtf<double>(r.w, r.poses, params(io::xtf_sample_format::u16, io::xtf_nav_units::projected_m)));
+    std::uint64_t s = 12345;
+    auto next = [&s] { // splitmix64 (Steele, Lea & Flood, 2014)
+        std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    };
+    std::size_t read = 0, rejected = 0, other = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+        auto b = good;
+        // A few bytes changed in the headers' range (where the lengths and counts live), sometimes a cut.
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t packet = 1024 + (next() % 6) * detail::get_le<std::uint32_t>(good.data(), 1024 + 10);
+            const std::size_t at = next() % 2 ? next() % 1024 : packet + next() % (256 + 64);
+            b[std::min(at, b.size() - 1)] = static_cast<std::uint8_t>(next());
+        }
+        if (next() % 4 == 0) b.resize(next() % b.size());
+        try {
+            (void)io::parse_xtf(b, "fuzz.xtf");
+            ++read;
+        } catch (const file_error&) {
+            ++rejected;
+        } catch (...) {
+            ++other;
+        }
+    }
+    MESSAGE(read << " corrupted files read, " << rejected << " rejected");
+    CHECK(other == 0u);
+    CHECK(rejected > 100u);
+}
