@@ -166,7 +166,10 @@ TEST_CASE("A sphere in the water column: its highlight before the first bottom r
 
 TEST_CASE("On rough relief every box encloses the samples its object's echo dominates, and the label image, COCO and YOLO agree") {
     const survey s = rough_survey();
-    const label_image img = label_render(s.sim, s.world, 0, s.pings);
+    const label_image img = label_render(s.sim, s.world, 0, s.pings, {.threads = 2});
+    // The same labels on one thread (the first pings).
+    const label_image one = label_render(s.sim, s.world, 0, 8, {.threads = 1});
+    CHECK(std::equal(one.values.begin(), one.values.end(), img.values.begin()));
     const auto boxes = io::object_boxes(img, io::box_extent::highlight);
     const auto full = io::object_boxes(img, io::box_extent::highlight_and_shadow);
     REQUIRE(boxes.size() == 3u);

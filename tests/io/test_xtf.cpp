@@ -103,6 +103,7 @@ TEST_CASE("An XTF round trip of a render keeps every header field, navigation va
     io::write_xtf("float.xtf", f);
     const xtf_file g = io::read_xtf("float.xtf");
     check_same_header(f.header, g.header);
+    CHECK(detail::get_chars(detail::read_file_bytes("float.xtf").data(), 100, 64) == "float.xtf"); // ThisFileName
     REQUIRE(g.pings.size() == 6u);
     for (std::size_t i = 0; i < 6; ++i) {
         check_same_navigation(f.pings[i], g.pings[i]);
@@ -170,7 +171,7 @@ TEST_CASE("XTF bytes sit at the format's fixed offsets and the record lengths su
         CHECK(h[0] == 0x7B);
         CHECK(h[1] == 1);
         CHECK(std::string(reinterpret_cast<const char*>(h + 10)) == "223");
-        CHECK(detail::get_le<std::uint16_t>(h, 164) == 3);  // NavUnits: latitude/longitude
+        CHECK(detail::get_le<std::uint16_t>(h, 164) == 3); // NavUnits: latitude/longitude
         CHECK(detail::get_le<std::uint16_t>(h, 166) == 2);  // two sonar channels
         CHECK(detail::get_le<std::uint16_t>(h, 168) == 0);
         CHECK(h[256] == 1);       // port

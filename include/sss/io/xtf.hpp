@@ -315,8 +315,11 @@ namespace sss::io {
 }
 
 /// Writes `f` to `path` (through a temporary renamed when complete: a failure leaves no file).
+/// ThisFileName (file header byte 100) holds the path's last component.
 inline void write_xtf(const std::string& path, const xtf_file& f) {
-    const std::vector<std::uint8_t> bytes = encode_xtf(f);
+    std::vector<std::uint8_t> bytes = encode_xtf(f);
+    const std::size_t slash = path.find_last_of("/\\");
+    sss::detail::put_chars(bytes.data(), 100, slash == std::string::npos ? path : path.substr(slash + 1), 64);
     sss::detail::write_file_atomically(path, bytes.data(), bytes.size());
 }
 

@@ -26,7 +26,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <limits>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -69,6 +72,7 @@ struct label_image {
 struct label_params {
     double highlight_fraction = 0.5; ///< an object's least share of a sample's echo energy to label it, in (0, 1]
     double shadow_fraction = 0.5;    ///< least share of the bare seabed's energy blocked for a shadow, in (0, 1]
+    unsigned threads = 0;            ///< label_render: pings labelled on this many threads (0: hardware concurrency)
 };
 
 } // namespace sss
@@ -212,7 +216,8 @@ template <class Sim, class Seabed>
     return out;
 }
 
-/// The labels of pings [first, first + count) at the simulator's motion poses, in the waterfall's geometry.
+/// The labels of pings [first, first + count) at the simulator's motion poses, in the waterfall's geometry, on
+/// `lp.threads` threads (the result does not depend on their number).
 template <class Sim, class Seabed>
 [[nodiscard]] label_image label_render(const Sim& sim, const scene::scene<Seabed>& sc, std::size_t first, std::size_t count,
                                        const label_params& lp = {}) {
@@ -221,7 +226,7 @@ template <class Sim, class Seabed>
     img.samples = sim.samples_per_line();
     img.dt_s = sim.dt_s();
     img.values.resize(count * img.width());
-    for (std::size_t i = 0; i < count; ++i) {
+    auto work = [&](std::size_t i) {
         const auto p = sim.motion().pose_at(first + i);
         const auto port = label_line(sim, sc, p, side::port, lp);
         const auto stbd = label_line(sim, sc, p, side::starboard, lp);
@@ -230,7 +235,26 @@ template <class Sim, class Seabed>
             row[img.samples - 1 - k] = port[k];
             row[img.samples + k] = stbd[k];
         }
+    };
+    unsigned threads = lp.threads != 0 ? lp.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+    if (threads <= 1) {
+        for (std::size_t i = 0; i < count; ++i) work(i);
+        return img;
     }
+    std::vector<std::thread> pool;
+    std::exception_ptr failure;
+    std::mutex failure_lock;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&, t] {
+        try {
+            for (std::size_t i = t; i < count; i += threads) work(i);
+        } catch (...) {
+            const std::lock_guard<std::mutex> hold(failure_lock);
+            if (!failure) failure = std::current_exception();
+        }
+    });
+    for (auto& th : pool) th.join();
+    if (failure) std::rethrow_exception(failure);
     return img;
 }
 
