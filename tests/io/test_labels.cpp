@@ -139,6 +139,28 @@ TEST_CASE("The shadow label of a cylinder lying along the track ends where the r
     CHECK(std::none_of(port.begin(), port.end(), [](const sample_label& s) { return s.object != no_object; }));
 }
 
+TEST_CASE("In ground range, the flat-bottom mapping puts the lying cylinder's shadow between its tangent rays' landing points") {
+    const double a = 0.5, x0 = 20.0;
+    std::vector<object<double>> objs{object<double>({}, {cylinder<double>({x0, -15, a}, {x0, 15, a}, a, {1, 5, 3})})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+    const auto sim = make_simulator(40.0, 4.0); // towfish at (0, 0, H) heading north: starboard is +x
+    const label_image slant = label_render(sim, sc, 0, 1);
+    const double cell = 0.05;
+    const label_image g = ground_range_labels(slant, {H}, {.cell_m = cell, .cells = 0, .sound_speed_mps = c_mps});
+    const double x_front = H / std::tan(tangent_depression(x0, a, a, +1)), x_end = H / std::tan(tangent_depression(x0, a, a, -1));
+    std::size_t first = g.samples, last = 0;
+    for (std::size_t j = 0; j < g.samples; ++j)
+        if (g.at(0, g.samples + j).kind == sample_class::shadow) first = std::min(first, j), last = j;
+    MESSAGE("ground-range shadow " << double(first) * cell << "-" << double(last + 1) * cell << " m, geometry " << x_front << "-" << x_end << " m");
+    // One slant sample (c dt / 2 = 3.75 cm) spans about 4.2 cm of ground here: within two 5 cm cells.
+    CHECK(std::abs(double(first) * cell - x_front) <= 2 * cell);
+    CHECK(std::abs(double(last + 1) * cell - x_end) <= 2 * cell);
+    // The mapping starts at the first bottom return (r = H): no ground cell is water column.
+    CHECK(std::none_of(g.values.begin(), g.values.end(), [](const sample_label& l) { return l.kind == sample_class::water_column; }));
+    // Port mirrors: the same cell mapping on the left, seabed only.
+    CHECK(g.at(0, g.samples - 1 - std::size_t(x_end / cell) - 3).kind == sample_class::seabed);
+}
+
 TEST_CASE("A sphere in the water column: its highlight before the first bottom return, its shadow between its tangent rays") {
     const double a = 0.5, x0 = 5.0, cz = 6.0;
     std::vector<object<double>> objs{object<double>({sphere<double>({x0, 0, cz}, a, {1, 8, 4})}, {})};
