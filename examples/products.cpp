@@ -8,6 +8,7 @@
 //   products_labels_class.png     per-sample class (0 no coverage, 1 water, 2 seabed, 3 highlight, 4 shadow),
 //   products_labels_instance.png  object id + 1 on highlight and shadow (16 bits), products_labels_legend.json
 //   products_labels_view.png      the class image spread over the grey range, to look at
+//   products_ground_labels_*      the labels on a 5 cm ground-range grid (flat-bottom mapping), same three files
 // No dependency beyond the library (its PNG writer needs no libpng).
 
 #include <sss/sss.hpp>
@@ -120,6 +121,9 @@ int main(int argc, char** argv) try {
     std::vector<std::uint8_t> view = io::class_pixels(labels);
     for (auto& v : view) v = static_cast<std::uint8_t>(v * 63);
     io::write_png_grey8(stem + "_labels_view.png", labels.width(), labels.pings, view);
+    // The same labels on a 5 cm ground-range grid (flat-bottom mapping at each ping's altitude).
+    const label_image ground_labels = ground_range_labels(labels, alt, {.cell_m = 0.05, .cells = 0, .sound_speed_mps = 1500.0});
+    io::write_label_images(stem + "_ground_labels", ground_labels, classes);
     const auto t4 = std::chrono::steady_clock::now();
 
     auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
