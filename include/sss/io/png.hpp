@@ -2,14 +2,14 @@
 /// \file
 /// Greyscale PNG images, 8 or 16 bits, with no dependency, and the display mapping of a waterfall to grey.
 ///
-/// Optional: no core header includes it. The encoder writes valid, uncompressed PNG: the PNG specification
-/// (W3C, 2003, "Portable Network Graphics (PNG) Specification, Second Edition", ISO/IEC 15948) allows the zlib
-/// stream (Deutsch & Gailly, 1996, RFC 1950) of IDAT to use deflate's "stored" blocks (Deutsch, 1996, RFC 1951,
-/// section 3.2.4), which need no compressor: each row is filter byte 0 and its samples (16-bit big-endian),
-/// cut into blocks of at most 65535 bytes, with the zlib header 78 01 and the Adler-32 check; every chunk ends
-/// with its CRC-32 (the PNG specification's Annex D). Files are about the size of the raw samples (a sonar
-/// image compresses by about 1.5 to 2 with zlib); in exchange any consumer of the library can write images
-/// without libpng or zlib, and every decoder reads them.
+/// Optional: no core header includes it. The encoder is the library's own (io/detail/deflate.hpp): the PNG
+/// specification (W3C, 2003, "Portable Network Graphics (PNG) Specification, Second Edition", ISO/IEC 15948)
+/// stores rows (filter byte 0, then the samples, 16-bit big-endian) in a zlib stream (Deutsch & Gailly, 1996,
+/// RFC 1950) of deflate data (Deutsch, 1996, RFC 1951); here one block with deflate's fixed Huffman codes and
+/// greedy LZ77 matching; every chunk ends with its CRC-32 (the PNG specification's Annex D). Chosen over libpng
+/// so that any consumer of the library writes images with no dependency. On the products example the waterfall
+/// comes out 1.27 times the size zlib (level 6) makes of it, the label images 65 to 120 times smaller than their
+/// raw samples (1.8 to 3.6 times zlib's size).
 ///
 /// Display mapping (`to_grey_db`): the level 10 log10(v) of each value over the window
 /// [top_db - dynamic_range_db, top_db] goes linearly to [0, max grey] (255 or 65535); top_db is the peak's level
@@ -27,6 +27,7 @@
 
 #include "sss/core/error.hpp"
 #include "sss/io/detail/bytes.hpp"
+#include "sss/io/detail/deflate.hpp"
 
 namespace sss::detail {
 
@@ -79,25 +80,7 @@ template <class U>
             }
         }
     }
-    std::vector<std::uint8_t> z{0x78, 0x01}; // zlib: deflate, 32 KiB window, no dictionary, check bits
-    std::uint32_t a = 1, b = 0;              // Adler-32
-    for (std::size_t at = 0; at < raw.size() || at == 0;) {
-        const std::size_t n = std::min<std::size_t>(65535, raw.size() - at);
-        const bool last = at + n == raw.size();
-        z.push_back(last ? 1 : 0);
-        z.push_back(static_cast<std::uint8_t>(n & 0xffu));
-        z.push_back(static_cast<std::uint8_t>(n >> 8));
-        z.push_back(static_cast<std::uint8_t>(~n & 0xffu));
-        z.push_back(static_cast<std::uint8_t>((~n >> 8) & 0xffu));
-        z.insert(z.end(), raw.begin() + std::ptrdiff_t(at), raw.begin() + std::ptrdiff_t(at + n));
-        for (std::size_t i = at; i < at + n; ++i) {
-            a = (a + raw[i]) % 65521u;
-            b = (b + a) % 65521u;
-        }
-        at += n;
-        if (last) break;
-    }
-    png_put_be32(z, (b << 16) | a);
+    const std::vector<std::uint8_t> z = zlib_compress(raw);
     std::vector<std::uint8_t> out{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     std::vector<std::uint8_t> ihdr;
     png_put_be32(ihdr, static_cast<std::uint32_t>(width));

@@ -61,7 +61,8 @@ def main():
     check(abs(side["poses"][1]["time_s"] - 0.25) < 1e-12 and abs(side["poses"][0]["heading_deg"] - 120) < 1e-9,
           "sidecar: poses")
     for name, raw, dtype in (("grey8.png", "grey8.raw", np.uint8), ("grey16.png", "grey16.raw", "<u2"),
-                             ("ramp.png", "ramp.raw", np.uint8)):
+                             ("ramp.png", "ramp.raw", np.uint8), ("noise.png", "noise.raw", np.uint8),
+                             ("runs.png", "runs.raw", "<u2")):
         pixels = read_png(name)
         truth = np.fromfile(raw, dtype=dtype)
         check(pixels.size == truth.size and np.array_equal(pixels.reshape(-1).astype(np.int64), truth.astype(np.int64)),
@@ -69,7 +70,7 @@ def main():
     if failures:
         print("\n".join(failures))
         return 1
-    print(f"numpy.load: waterfall {shape} exact in float64 and float32; sidecar and 3 PNG files agree")
+    print(f"numpy.load: waterfall {shape} exact in float64 and float32; sidecar and 5 PNG files agree")
     return 0
 
 

@@ -74,6 +74,19 @@ int main() try {
     for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = static_cast<std::uint8_t>(i * 7 % 251);
     io::write_png_grey8("ramp.png", 300, 400, ramp);
     write_raw("ramp.raw", ramp.data(), ramp.size());
+    // Incompressible noise (literals only) and long runs of 16-bit values (the longest matches).
+    std::vector<std::uint8_t> noise(257 * 131);
+    std::uint32_t state = 2463534242u;
+    for (auto& v : noise) {
+        state ^= state << 13, state ^= state >> 17, state ^= state << 5; // xorshift32 (Marsaglia, 2003)
+        v = static_cast<std::uint8_t>(state >> 24);
+    }
+    io::write_png_grey8("noise.png", 257, 131, noise);
+    write_raw("noise.raw", noise.data(), noise.size());
+    std::vector<std::uint16_t> runs(500 * 40);
+    for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = static_cast<std::uint16_t>((i / 1000) * 3001 + (i % 500 > 480 ? 7 : 0));
+    io::write_png_grey16("runs.png", 500, 40, runs);
+    write_raw("runs.raw", runs.data(), runs.size() * 2);
     return 0;
 } catch (const std::exception& x) {
     std::fprintf(stderr, "fixture: %s\n", x.what());
