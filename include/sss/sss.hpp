@@ -76,9 +76,16 @@
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
 
+#include "sss/io/geodetic.hpp"
 #include "sss/io/height_field_io.hpp"
+#include "sss/io/labels.hpp"
+#include "sss/io/npy.hpp"
+#include "sss/io/png.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "sss/io/xtf.hpp"
 
 #include "sss/policies.hpp"
 #include "sss/simulator.hpp"
+
+#include "sss/labels/ground_truth.hpp"

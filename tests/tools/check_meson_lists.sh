@@ -11,9 +11,10 @@ src=$(cd "${1:?usage: check_meson_lists.sh <sss source dir>}" && pwd)
 missing=0
 checked=0
 
-# listed <meson.build> <file name>: the file name appears quoted outside comments.
+# listed <meson.build> <file name>: the file name appears quoted outside comments. (grep reads all of its input:
+# with `grep -q` it could stop early and sed's SIGPIPE would fail the pipe under pipefail.)
 listed() {
-    [[ -f "$1" ]] && sed 's/#.*//' "$1" | grep -Eq "['\"]$2['\"]"
+    [[ -f "$1" ]] && sed 's/#.*//' "$1" | grep -E "['\"]$2['\"]" >/dev/null
 }
 
 complain() {

@@ -1,0 +1,141 @@
+#pragma once
+/// \file
+/// Greyscale PNG images, 8 or 16 bits, with no dependency, and the display mapping of a waterfall to grey.
+///
+/// Optional: no core header includes it. The encoder is the library's own (io/detail/deflate.hpp): the PNG
+/// specification (W3C, 2003, "Portable Network Graphics (PNG) Specification, Second Edition", ISO/IEC 15948)
+/// stores rows (filter byte 0, then the samples, 16-bit big-endian) in a zlib stream (Deutsch & Gailly, 1996,
+/// RFC 1950) of deflate data (Deutsch, 1996, RFC 1951); here one block with deflate's fixed Huffman codes and
+/// greedy LZ77 matching; every chunk ends with its CRC-32 (the PNG specification's Annex D). Chosen over libpng
+/// so that any consumer of the library writes images with no dependency. On the products example the waterfall
+/// comes out 1.27 times the size zlib (level 6) makes of it, the label images 65 to 120 times smaller than their
+/// raw samples (1.8 to 3.6 times zlib's size).
+///
+/// Display mapping (`to_grey_db`): the level 10 log10(v) of each value over the window
+/// [top_db - dynamic_range_db, top_db] goes linearly to [0, max grey] (255 or 65535); top_db is the peak's level
+/// unless given. Zeros, negatives and NaN map to 0.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sss/core/error.hpp"
+#include "sss/io/detail/bytes.hpp"
+#include "sss/io/detail/deflate.hpp"
+
+namespace sss::detail {
+
+/// CRC-32 (polynomial 0xEDB88320, reflected) as PNG and zlib's gzip use it; `crc` continues a running value.
+[[nodiscard]] inline std::uint32_t png_crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) noexcept {
+    static const std::array<std::uint32_t, 256> table = [] {
+        std::array<std::uint32_t, 256> t{};
+        for (std::uint32_t n = 0; n < 256; ++n) {
+            std::uint32_t c = n;
+            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[n] = c;
+        }
+        return t;
+    }();
+    crc = ~crc;
+    for (const std::uint8_t b : bytes) crc = table[(crc ^ b) & 0xffu] ^ (crc >> 8);
+    return ~crc;
+}
+
+inline void png_put_be32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(v >> s));
+}
+
+inline void png_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], std::span<const std::uint8_t> data) {
+    png_put_be32(out, static_cast<std::uint32_t>(data.size()));
+    const std::size_t start = out.size();
+    out.insert(out.end(), type, type + 4);
+    out.insert(out.end(), data.begin(), data.end());
+    png_put_be32(out, png_crc32(std::span<const std::uint8_t>(out.data() + start, out.size() - start)));
+}
+
+/// A greyscale PNG of `height` rows of `width` samples of `bit_depth` 8 or 16 (`samples`: one value per pixel).
+template <class U>
+[[nodiscard]] std::vector<std::uint8_t> encode_png_grey(std::size_t width, std::size_t height, std::span<const U> samples) {
+    constexpr int bit_depth = 8 * int(sizeof(U));
+    sss::require(width >= 1 && height >= 1 && width <= 0x7fffffffu && height <= 0x7fffffffu, "png size",
+                         "width and height must lie in [1, 2^31 - 1]");
+    sss::require(samples.size() == width * height, "png samples", "must hold width x height values");
+    const std::size_t row_bytes = 1 + width * sizeof(U);
+    std::vector<std::uint8_t> raw(row_bytes * height);
+    for (std::size_t y = 0; y < height; ++y) {
+        std::uint8_t* r = raw.data() + y * row_bytes;
+        r[0] = 0; // filter: none
+        for (std::size_t x = 0; x < width; ++x) {
+            const U v = samples[y * width + x];
+            if constexpr (sizeof(U) == 1) r[1 + x] = v;
+            else {
+                r[1 + 2 * x] = static_cast<std::uint8_t>(v >> 8);
+                r[2 + 2 * x] = static_cast<std::uint8_t>(v & 0xffu);
+            }
+        }
+    }
+    const std::vector<std::uint8_t> z = zlib_compress(raw);
+    std::vector<std::uint8_t> out{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    std::vector<std::uint8_t> ihdr;
+    png_put_be32(ihdr, static_cast<std::uint32_t>(width));
+    png_put_be32(ihdr, static_cast<std::uint32_t>(height));
+    ihdr.insert(ihdr.end(), {static_cast<std::uint8_t>(bit_depth), 0, 0, 0, 0}); // grey, deflate, filter 0, no interlace
+    png_chunk(out, "IHDR", ihdr);
+    png_chunk(out, "IDAT", z);
+    png_chunk(out, "IEND", {});
+    return out;
+}
+
+} // namespace sss::detail
+
+namespace sss::io {
+
+/// Writes an 8-bit greyscale PNG: `height` rows of `width` values, top row first (through a temporary renamed
+/// when complete: a failure leaves no file).
+inline void write_png_grey8(const std::string& path, std::size_t width, std::size_t height, std::span<const std::uint8_t> pixels) {
+    const auto bytes = sss::detail::encode_png_grey<std::uint8_t>(width, height, pixels);
+    sss::detail::write_file_atomically(path, bytes.data(), bytes.size());
+}
+
+/// Writes a 16-bit greyscale PNG (as write_png_grey8).
+inline void write_png_grey16(const std::string& path, std::size_t width, std::size_t height, std::span<const std::uint16_t> pixels) {
+    const auto bytes = sss::detail::encode_png_grey<std::uint16_t>(width, height, pixels);
+    sss::detail::write_file_atomically(path, bytes.data(), bytes.size());
+}
+
+/// The display window of `to_grey_db`.
+struct display_params {
+    double dynamic_range_db = 40.0; ///< width of the window (dB), > 0
+    double top_db = std::numeric_limits<double>::quiet_NaN(); ///< level shown white (dB re the values' unit); NaN: the peak's level
+};
+
+/// Grey levels 0..max(U) of linear values on a decibel window (see the file comment). U: std::uint8_t or
+/// std::uint16_t.
+template <class U, class V> [[nodiscard]] std::vector<U> to_grey_db(std::span<const V> values, const display_params& p = {}) {
+    sss::require_positive(p.dynamic_range_db, "display_params.dynamic_range_db");
+    double top = p.top_db;
+    if (std::isnan(top)) {
+        double peak = 0.0;
+        for (const V v : values)
+            if (std::isfinite(double(v))) peak = std::max(peak, double(v));
+        top = peak > 0.0 ? 10.0 * std::log10(peak) : 0.0;
+    }
+    sss::require_finite(top, "display_params.top_db");
+    const double floor_db = top - p.dynamic_range_db, grey = double(static_cast<U>(~U(0)));
+    std::vector<U> out(values.size(), U(0));
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const double v = double(values[i]);
+        if (!(v > 0.0) || !std::isfinite(v)) continue;
+        const double f = std::clamp((10.0 * std::log10(v) - floor_db) / p.dynamic_range_db, 0.0, 1.0);
+        out[i] = static_cast<U>(std::lround(f * grey));
+    }
+    return out;
+}
+
+} // namespace sss::io

@@ -1,0 +1,296 @@
+#pragma once
+/// \file
+/// Ground truth per sample: what each sample of a rendered line saw, from the provenance of the echo energy and
+/// the geometry of the shadows.
+///
+/// Per ping and side, the simulator's rays are traced twice through `simulator::trace` (its public visitor):
+/// 1. through the scene: every tube of echo energy is spread over the samples its two-way times cover (as the
+///    receiver does, without the pulse's smear), kept apart by the hit it came from: the seabed (by region and
+///    material) and each object (by id);
+/// 2. through the seabed alone (`scene.seabed()`): the echo the seabed would return if no object were there.
+///    For each such tube, the straight segment from the transducer to the seabed point it met is tested against
+///    the objects (`scene.objects().intersect`); an object on it blocks that energy, and the blocked energy is
+///    counted against that object. (Straight segments: exact in isovelocity water; in refracting water the shadow
+///    is the straight-ray one.)
+/// A sample is then, in this order:
+/// - `highlight` of object k: k returns the largest share of the sample's echo energy among objects, and at
+///   least `highlight_fraction` of it;
+/// - `shadow` of object k: objects block at least `shadow_fraction` of the bare seabed's energy in the sample,
+///   k the most;
+/// - `seabed`: the seabed returns energy there (region and material of the largest contribution);
+/// - `water_column`: before the first return of the bare seabed;
+/// - `no_coverage`: anything else (beyond the last seabed return, or outside the beam).
+/// Labels share the waterfall's geometry (receiver/image.hpp): rows are pings, port mirrored on the left.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "sss/core/error.hpp"
+#include "sss/core/hit.hpp"
+#include "sss/core/pose.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/receiver/image.hpp"
+#include "sss/scene/scene.hpp"
+#include "sss/simulator.hpp"
+
+namespace sss {
+
+/// What a sample saw (values as written to label images).
+enum class sample_class : std::uint8_t { no_coverage = 0, water_column = 1, seabed = 2, highlight = 3, shadow = 4 };
+
+/// The label of one sample.
+struct sample_label {
+    sample_class kind = sample_class::no_coverage;
+    std::uint32_t object = no_object; ///< highlight, shadow: the object's id; else no_object
+    std::uint32_t label = 0;          ///< highlight, shadow: the object's class id; seabed: its region id; else 0
+    std::uint32_t material = 0;       ///< highlight, seabed: the material of the largest echo; else 0
+
+    friend bool operator==(const sample_label&, const sample_label&) = default;
+};
+
+/// Labels in the waterfall's geometry: pings x (2 samples), port mirrored on the left.
+struct label_image {
+    std::size_t pings = 0;
+    std::size_t samples = 0; ///< per side
+    double dt_s = 0.0;
+    std::vector<sample_label> values;
+
+    [[nodiscard]] std::size_t width() const noexcept { return 2 * samples; }
+    [[nodiscard]] const sample_label& at(std::size_t ping, std::size_t column) const noexcept { return values[ping * width() + column]; }
+};
+
+/// Thresholds of the classification (see the file comment).
+struct label_params {
+    double highlight_fraction = 0.5; ///< an object's least share of a sample's echo energy to label it, in (0, 1]
+    double shadow_fraction = 0.5;    ///< least share of the bare seabed's energy blocked for a shadow, in (0, 1]
+    unsigned threads = 0;            ///< label_render: pings labelled on this many threads (0: hardware concurrency)
+};
+
+} // namespace sss
+
+namespace sss::detail {
+
+/// Energy per sample, kept apart by source.
+struct label_accumulator {
+    std::size_t n = 0;
+    double dt = 1.0;
+    std::vector<double> seabed, bare;           ///< seabed echo in the scene; the bare seabed's echo
+    std::vector<double> seabed_best;            ///< largest single seabed contribution, with its ids:
+    std::vector<std::uint32_t> seabed_region, seabed_material;
+    std::vector<double> bare_best;
+    std::vector<std::uint32_t> bare_region, bare_material;
+    std::vector<std::uint32_t> ids;             ///< objects met on this line
+    std::vector<std::uint32_t> classes;         ///< their class ids
+    std::vector<std::vector<double>> echo, blocked, best_echo;
+    std::vector<std::vector<std::uint32_t>> echo_material;
+    double first_bare_s = std::numeric_limits<double>::infinity();
+
+    explicit label_accumulator(std::size_t samples, double dt_s)
+        : n(samples), dt(dt_s), seabed(samples), bare(samples), seabed_best(samples), seabed_region(samples),
+          seabed_material(samples), bare_best(samples), bare_region(samples), bare_material(samples) {}
+
+    std::size_t slot(std::uint32_t id, std::uint32_t cls) {
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            if (ids[i] == id) return i;
+        ids.push_back(id);
+        classes.push_back(cls);
+        echo.emplace_back(n, 0.0);
+        blocked.emplace_back(n, 0.0);
+        best_echo.emplace_back(n, 0.0);
+        echo_material.emplace_back(n, 0u);
+        return ids.size() - 1;
+    }
+
+    /// Calls f(k, share) for every sample k that [t0, t1] covers, share: the fraction of the span in it.
+    template <class F> void spread(double t0, double t1, F&& f) const {
+        if (t1 < t0) std::swap(t0, t1);
+        const double a = t0 / dt, b = t1 / dt;
+        if (!(a < double(n)) || !(b >= 0.0)) return;
+        if (b - a <= 0.0) {
+            f(static_cast<std::size_t>(a), 1.0);
+            return;
+        }
+        const auto k0 = static_cast<std::size_t>(std::max(0.0, a));
+        const std::size_t k1 = std::min(n - 1, static_cast<std::size_t>(b));
+        for (std::size_t k = k0; k <= k1; ++k) {
+            const double lo = std::max(a, double(k)), hi = std::min(b, double(k + 1));
+            if (hi > lo) f(k, (hi - lo) / (b - a));
+        }
+    }
+};
+
+} // namespace sss::detail
+
+namespace sss {
+
+/// The labels of one side of one ping (see the file comment): `samples_per_line()` labels, near range first.
+template <class Sim, class Seabed>
+[[nodiscard]] std::vector<sample_label> label_line(const Sim& sim, const scene::scene<Seabed>& sc, const pose<typename Sim::value_type>& p,
+                                                   side sd, const label_params& lp = {}) {
+    using T = typename Sim::value_type;
+    sss::require(lp.highlight_fraction > 0.0 && lp.highlight_fraction <= 1.0, "label_params.highlight_fraction", "must lie in (0, 1]");
+    sss::require(lp.shadow_fraction > 0.0 && lp.shadow_fraction <= 1.0, "label_params.shadow_fraction", "must lie in (0, 1]");
+    const std::size_t n = sim.samples_per_line();
+    sss::detail::label_accumulator acc(n, sim.dt_s());
+    sim.trace(sc, p, sd, [&](const tube_echo<T>& e) {
+        if (!(e.power > 0.0)) return;
+        const hit<T>& h = e.surface;
+        if (h.object == no_object) {
+            acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
+                const double w = share * e.power;
+                acc.seabed[k] += w;
+                if (w > acc.seabed_best[k]) {
+                    acc.seabed_best[k] = w;
+                    acc.seabed_region[k] = h.label;
+                    acc.seabed_material[k] = h.material;
+                }
+            });
+        } else {
+            const std::size_t s = acc.slot(h.object, h.label);
+            acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
+                const double w = share * e.power;
+                acc.echo[s][k] += w;
+                if (w > acc.best_echo[s][k]) {
+                    acc.best_echo[s][k] = w;
+                    acc.echo_material[s][k] = h.material;
+                }
+            });
+        }
+    });
+    const auto& objects = sc.objects();
+    sim.trace(sc.seabed(), p, sd, [&](const tube_echo<T>& e) {
+        if (!(e.power > 0.0)) return;
+        const hit<T>& h = e.surface;
+        acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
+        std::size_t blocker = std::numeric_limits<std::size_t>::max();
+        if (!objects.empty()) {
+            const vec3<T> d = h.point - p.position;
+            const T len = glm::length(d);
+            if (len > T(0)) {
+                if (const auto o = objects.intersect(ray<T>{p.position, d / len}, len * T(0.9999))) blocker = acc.slot(o->object, o->label);
+            }
+        }
+        acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
+            const double w = share * e.power;
+            acc.bare[k] += w;
+            if (w > acc.bare_best[k]) {
+                acc.bare_best[k] = w;
+                acc.bare_region[k] = h.label;
+                acc.bare_material[k] = h.material;
+            }
+            if (blocker != std::numeric_limits<std::size_t>::max()) acc.blocked[blocker][k] += w;
+        });
+    });
+    std::vector<sample_label> out(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        sample_label& l = out[k];
+        double total = acc.seabed[k], best = 0.0, blocked = 0.0, most_blocked = 0.0;
+        std::size_t top = 0, shade = 0;
+        for (std::size_t s = 0; s < acc.ids.size(); ++s) {
+            total += acc.echo[s][k];
+            blocked += acc.blocked[s][k];
+            if (acc.echo[s][k] > best) { best = acc.echo[s][k]; top = s; }
+            if (acc.blocked[s][k] > most_blocked) { most_blocked = acc.blocked[s][k]; shade = s; }
+        }
+        if (best > 0.0 && best >= lp.highlight_fraction * total) {
+            l = {sample_class::highlight, acc.ids[top], acc.classes[top], acc.echo_material[top][k]};
+        } else if (acc.bare[k] > 0.0 && blocked >= lp.shadow_fraction * acc.bare[k]) {
+            l = {sample_class::shadow, acc.ids[shade], acc.classes[shade], 0};
+        } else if (acc.seabed[k] > 0.0) {
+            l = {sample_class::seabed, no_object, acc.seabed_region[k], acc.seabed_material[k]};
+        } else if (acc.bare[k] > 0.0) { // lit in the bare seabed, unlit here, too little blocked for a shadow
+            l = {sample_class::seabed, no_object, acc.bare_region[k], acc.bare_material[k]};
+        } else if (double(k + 1) * acc.dt <= acc.first_bare_s) {
+            l = {sample_class::water_column, no_object, 0, 0};
+        }
+    }
+    return out;
+}
+
+/// The labels of pings [first, first + count) at the simulator's motion poses, in the waterfall's geometry, on
+/// `lp.threads` threads (the result does not depend on their number).
+template <class Sim, class Seabed>
+[[nodiscard]] label_image label_render(const Sim& sim, const scene::scene<Seabed>& sc, std::size_t first, std::size_t count,
+                                       const label_params& lp = {}) {
+    label_image img;
+    img.pings = count;
+    img.samples = sim.samples_per_line();
+    img.dt_s = sim.dt_s();
+    img.values.resize(count * img.width());
+    auto work = [&](std::size_t i) {
+        const auto p = sim.motion().pose_at(first + i);
+        const auto port = label_line(sim, sc, p, side::port, lp);
+        const auto stbd = label_line(sim, sc, p, side::starboard, lp);
+        sample_label* row = img.values.data() + i * img.width();
+        for (std::size_t k = 0; k < img.samples; ++k) {
+            row[img.samples - 1 - k] = port[k];
+            row[img.samples + k] = stbd[k];
+        }
+    };
+    unsigned threads = lp.threads != 0 ? lp.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+    if (threads <= 1) {
+        for (std::size_t i = 0; i < count; ++i) work(i);
+        return img;
+    }
+    std::vector<std::thread> pool;
+    std::exception_ptr failure;
+    std::mutex failure_lock;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&, t] {
+        try {
+            for (std::size_t i = t; i < count; i += threads) work(i);
+        } catch (...) {
+            const std::lock_guard<std::mutex> hold(failure_lock);
+            if (!failure) failure = std::current_exception();
+        }
+    });
+    for (auto& th : pool) th.join();
+    if (failure) std::rethrow_exception(failure);
+    return img;
+}
+
+/// Labels on a ground-range grid, by the flat-bottom mapping: ground cell j of width `cell_m` (centre
+/// y = (j + 1/2) cell_m) takes the label of the slant-range sample at r = sqrt(y^2 + H^2), H the towfish's
+/// altitude at that ping (`altitude_m[i]`, m), r in samples of c dt / 2 (`sound_speed_mps`, m/s). Columns: `cells`
+/// per side, port mirrored on the left as in the slant-range image; cells past the last sample are no_coverage.
+struct ground_range_params {
+    double cell_m = 0.05;            ///< ground-range cell (m), > 0
+    std::size_t cells = 0;           ///< cells per side; 0: enough for the slant range at zero altitude
+    double sound_speed_mps = 1500.0; ///< (m/s), > 0
+};
+
+[[nodiscard]] inline label_image ground_range_labels(const label_image& slant, const std::vector<double>& altitude_m,
+                                                     const ground_range_params& g) {
+    sss::require_positive(g.cell_m, "ground_range_params.cell_m");
+    sss::require_positive(g.sound_speed_mps, "ground_range_params.sound_speed_mps");
+    sss::require(altitude_m.size() == slant.pings, "altitude_m", "must hold one altitude per ping");
+    const double dr = 0.5 * g.sound_speed_mps * slant.dt_s;
+    label_image out;
+    out.pings = slant.pings;
+    out.dt_s = slant.dt_s;
+    out.samples = g.cells != 0 ? g.cells : static_cast<std::size_t>(std::ceil(double(slant.samples) * dr / g.cell_m));
+    out.values.resize(out.pings * out.width());
+    for (std::size_t i = 0; i < out.pings; ++i) {
+        const double h = altitude_m[i];
+        for (std::size_t j = 0; j < out.samples; ++j) {
+            const double y = (double(j) + 0.5) * g.cell_m;
+            const double k = std::floor(std::sqrt(y * y + h * h) / dr);
+            if (!(k < double(slant.samples))) continue;
+            const auto s = static_cast<std::size_t>(k);
+            out.values[i * out.width() + out.samples - 1 - j] = slant.at(i, slant.samples - 1 - s);
+            out.values[i * out.width() + out.samples + j] = slant.at(i, slant.samples + s);
+        }
+    }
+    return out;
+}
+
+} // namespace sss

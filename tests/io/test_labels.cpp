@@ -1,0 +1,360 @@
+// Ground-truth labels: the shadows they mark agree with the geometry of the shadow to within one sample (a cylinder
+// lying on a flat seabed, a sphere in the water column); on rough relief with a lying cylinder, a tethered mine
+// and a pipeline span, every box encloses the samples its object's echo dominates; the label image, the COCO file
+// and the YOLO file agree; the COCO file has every field the format requires, consistent; an image without an
+// object gets empty label files.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sss/io/labels.hpp"
+#include "sss/scene/flat_seabed.hpp"
+#include "sss/scene/height_field.hpp"
+#include "sss/scene/scene.hpp"
+#include "sss/seabed/targets.hpp"
+#include "sss/simulator.hpp"
+#include "support/grid_relief.hpp"
+
+namespace {
+
+using namespace sss;
+using scene::cylinder;
+using scene::object;
+using scene::object_set;
+using scene::sphere;
+
+constexpr double c_mps = 1500.0, fs_hz = 20000.0, dt_s = 1.0 / fs_hz, H = 10.0;
+
+using sim_t = simulator<scattering::lambertian<double>, propagation::straight<double>, beam::ideal_fan<double>, motion::straight_line<double>>;
+
+sim_t make_simulator(double max_range_m, double per_sample, motion::straight_line_params<double> tow = {}) {
+    receiver_params rp;
+    rp.sample_rate_hz = fs_hz;
+    rp.max_range_m = max_range_m;
+    rp.pulse.length_s = 100e-6;
+    beam::ideal_fan_params<double> fan;
+    fan.along_width_deg = 1.0;
+    fan.vertical_width_deg = 90.0;
+    fan.depression_deg = 45.0;
+    return sim_t(scattering::lambertian<double>({-27.0, -10.0}), propagation::straight<double>(), beam::ideal_fan<double>(fan),
+                 motion::straight_line<double>(tow), rp, ray_density{.along = 4, .across = 0, .per_sample = per_sample});
+}
+
+pose<double> towfish() { return make_pose<double>(0.0, vec3<double>{0, 0, H}, 0, 0, 0); }
+
+double sample_of(double range_m) { return 2 * range_m / c_mps / dt_s; }
+
+// Depression of the ray from (0, H) grazing the circle of radius a at (x0, cz): far (-1) or near (+1) side.
+double tangent_depression(double x0, double cz, double a, int side) {
+    return std::atan2(H - cz, x0) + side * std::asin(a / std::hypot(x0, H - cz));
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// The rough-relief survey: a lying cylinder, a tethered mine and a pipeline over rough_field, 40 pings north.
+struct survey {
+    scene::scene<scene::height_field<double>> world;
+    sim_t sim;
+    std::size_t pings;
+};
+
+survey rough_survey() {
+    namespace sb = sss::seabed;
+    auto bed = sss_test::rough_field<double>(161, 121, 0.25, {0.0, 0.0}, 7); // 40 m x 30 m
+    const auto h = sb::seabed_height_of(bed);
+    std::vector<object<double>> objs;
+    objs.push_back(sb::lying_cylinder(sb::lying_cylinder_params<double>{.center_m = {16.0, 12.0}, .heading_rad = 0.3, .length_m = 2.0,
+                                                                        .radius_m = 0.3, .profile_step_m = 0.05, .ids = {1, 1, 1}},
+                                      h));
+    sb::tethered_mine_params<double> mine;
+    mine.anchor_m = {24.0, 17.0};
+    mine.case_height_m = 3.0;
+    mine.object_id = 2;
+    mine.class_id = 2;
+    objs.push_back(sb::tethered_mine(mine, h));
+    sb::pipeline_params<double> pipe;
+    pipe.route_m = {{31.0, 1.0}, {33.0, 29.0}};
+    pipe.radius_m = 0.25;
+    pipe.ids = {1, 3, 3};
+    objs.push_back(sb::pipeline(pipe, h));
+    const double z0 = bed.seabed_height_m(4.0, 10.0);
+    scene::scene world(std::move(bed), object_set<double>(std::move(objs)));
+    motion::straight_line_params<double> tow{.start_m = {4.0, 5.0}, .heading_deg = 0.0, .speed_mps = 2.5, .altitude_m = z0 + 9.0,
+                                             .ping_interval_s = 0.2};
+    return {std::move(world), make_simulator(35.0, 1.0, tow), 40};
+}
+
+} // namespace
+
+TEST_CASE("The shadow label of a cylinder lying along the track ends where the ray grazing its top meets the seabed") {
+    const double a = 0.5, x0 = 20.0;
+    std::vector<object<double>> objs{object<double>({}, {cylinder<double>({x0, -15, a}, {x0, 15, a}, a, {1, 5, 3})})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+    const auto sim = make_simulator(40.0, 4.0);
+    const auto l = label_line(sim, sc, towfish(), side::starboard);
+    const double k_end = sample_of(H / std::sin(tangent_depression(x0, a, a, -1)));
+    const double k_near = sample_of(std::hypot(x0, H - a) - a);
+    const double k_top = sample_of(std::sqrt(x0 * x0 + (H - a) * (H - a) - a * a)); // far tangent point
+    std::size_t first_hl = l.size(), last_hl = 0, first_sh = l.size(), last_sh = 0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+        if (l[k].kind == sample_class::highlight) first_hl = std::min(first_hl, k), last_hl = k;
+        if (l[k].kind == sample_class::shadow) first_sh = std::min(first_sh, k), last_sh = k;
+    }
+    MESSAGE("highlight " << first_hl << "-" << last_hl << " (geometry " << k_near << "-" << k_top << "), shadow " << first_sh << "-"
+                         << last_sh << " (ends at " << k_end << ")");
+    CHECK(std::abs(double(first_hl) - k_near) <= 1.0);
+    CHECK(std::abs(double(last_hl + 1) - k_top) <= 1.0);
+    CHECK(std::abs(double(last_sh + 1) - k_end) <= 1.0);
+    // The shadow starts where the ray grazing the cylinder's near side meets the seabed: the seabed in front of the
+    // cylinder is lit up to there, its echo arriving just after the highlight's.
+    const double k_front = sample_of(H / std::sin(tangent_depression(x0, a, a, +1)));
+    CHECK(std::abs(double(first_sh) - k_front) <= 1.0);
+    for (std::size_t k = last_hl + 1; k < first_sh; ++k) CHECK(l[k].kind == sample_class::seabed);
+    for (std::size_t k = first_sh; k <= last_sh; ++k) {
+        CHECK(l[k].kind == sample_class::shadow);
+        CHECK(l[k].object == 5u);
+        CHECK(l[k].label == 3u);
+    }
+    for (std::size_t k = first_hl; k <= last_hl; ++k) CHECK(l[k].object == 5u);
+    // Before the first bottom return: water column; lit seabed carries its region; port sees no object.
+    CHECK(l[std::size_t(sample_of(H)) - 2].kind == sample_class::water_column);
+    CHECK(l[std::size_t(k_end) + 3].kind == sample_class::seabed);
+    CHECK(l[std::size_t(k_end) + 3].label == 2u);
+    const auto port = label_line(sim, sc, towfish(), side::port);
+    CHECK(std::none_of(port.begin(), port.end(), [](const sample_label& s) { return s.object != no_object; }));
+}
+
+TEST_CASE("In ground range, the flat-bottom mapping puts the lying cylinder's shadow between its tangent rays' landing points") {
+    const double a = 0.5, x0 = 20.0;
+    std::vector<object<double>> objs{object<double>({}, {cylinder<double>({x0, -15, a}, {x0, 15, a}, a, {1, 5, 3})})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+    const auto sim = make_simulator(40.0, 4.0); // towfish at (0, 0, H) heading north: starboard is +x
+    const label_image slant = label_render(sim, sc, 0, 1);
+    const double cell = 0.05;
+    const label_image g = ground_range_labels(slant, {H}, {.cell_m = cell, .cells = 0, .sound_speed_mps = c_mps});
+    const double x_front = H / std::tan(tangent_depression(x0, a, a, +1)), x_end = H / std::tan(tangent_depression(x0, a, a, -1));
+    std::size_t first = g.samples, last = 0;
+    for (std::size_t j = 0; j < g.samples; ++j)
+        if (g.at(0, g.samples + j).kind == sample_class::shadow) first = std::min(first, j), last = j;
+    MESSAGE("ground-range shadow " << double(first) * cell << "-" << double(last + 1) * cell << " m, geometry " << x_front << "-" << x_end << " m");
+    // One slant sample (c dt / 2 = 3.75 cm) spans about 4.2 cm of ground here: within two 5 cm cells.
+    CHECK(std::abs(double(first) * cell - x_front) <= 2 * cell);
+    CHECK(std::abs(double(last + 1) * cell - x_end) <= 2 * cell);
+    // The mapping starts at the first bottom return (r = H): no ground cell is water column.
+    CHECK(std::none_of(g.values.begin(), g.values.end(), [](const sample_label& l) { return l.kind == sample_class::water_column; }));
+    // Port mirrors: the same cell mapping on the left, seabed only.
+    CHECK(g.at(0, g.samples - 1 - std::size_t(x_end / cell) - 3).kind == sample_class::seabed);
+}
+
+TEST_CASE("A sphere in the water column: its highlight before the first bottom return, its shadow between its tangent rays") {
+    const double a = 0.5, x0 = 5.0, cz = 6.0;
+    std::vector<object<double>> objs{object<double>({sphere<double>({x0, 0, cz}, a, {1, 8, 4})}, {})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+    const auto sim = make_simulator(40.0, 4.0);
+    const auto l = label_line(sim, sc, towfish(), side::starboard);
+    const double k_hl = sample_of(std::hypot(x0, H - cz) - a);
+    const double k1 = sample_of(H / std::sin(tangent_depression(x0, cz, a, +1)));
+    const double k2 = sample_of(H / std::sin(tangent_depression(x0, cz, a, -1)));
+    std::size_t first_hl = l.size(), first_sh = l.size(), last_sh = 0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+        if (l[k].kind == sample_class::highlight) first_hl = std::min(first_hl, k);
+        if (l[k].kind == sample_class::shadow) first_sh = std::min(first_sh, k), last_sh = k;
+    }
+    MESSAGE("highlight from " << first_hl << " (geometry " << k_hl << "), shadow " << first_sh << "-" << last_sh << " (geometry " << k1
+                              << "-" << k2 << ")");
+    CHECK(std::abs(double(first_hl) - k_hl) <= 1.0);
+    CHECK(l[first_hl].object == 8u);
+    CHECK(std::abs(double(first_sh) - k1) <= 1.0);
+    CHECK(std::abs(double(last_sh + 1) - k2) <= 1.0);
+    for (std::size_t k = first_sh; k <= last_sh; ++k) CHECK(l[k].kind == sample_class::shadow);
+    // Between the sphere's echo and the seabed: water column.
+    CHECK(l[std::size_t(sample_of(H)) - 2].kind == sample_class::water_column);
+}
+
+TEST_CASE("On rough relief every box encloses the samples its object's echo dominates, and the label image, COCO and YOLO agree") {
+    const survey s = rough_survey();
+    const label_image img = label_render(s.sim, s.world, 0, s.pings, {.threads = 2});
+    // The same labels on one thread (the first pings).
+    const label_image one = label_render(s.sim, s.world, 0, 8, {.threads = 1});
+    CHECK(std::equal(one.values.begin(), one.values.end(), img.values.begin()));
+    const auto boxes = io::object_boxes(img, io::box_extent::highlight);
+    const auto full = io::object_boxes(img, io::box_extent::highlight_and_shadow);
+    REQUIRE(boxes.size() == 3u);
+    REQUIRE(full.size() == 3u);
+    // Independently of the labeller: the samples where an object returns at least half the echo energy.
+    std::map<std::uint32_t, std::vector<std::pair<std::size_t, std::size_t>>> dominant;
+    for (std::size_t i = 0; i < s.pings; ++i)
+        for (const side sd : {side::port, side::starboard}) {
+            std::map<std::uint32_t, std::vector<double>> e;
+            std::vector<double> total(img.samples, 0.0);
+            s.sim.trace(s.world, s.sim.motion().pose_at(i), sd, [&](const tube_echo<double>& t) {
+                const double a = t.t0_s / dt_s, b = t.t1_s / dt_s;
+                auto& mine = e[t.surface.object];
+                mine.resize(img.samples, 0.0);
+                for (auto k = std::size_t(a); k < img.samples && double(k) <= b; ++k) {
+                    const double w = b > a ? (std::min(b, double(k + 1)) - std::max(a, double(k))) / (b - a) : 1.0;
+                    if (w > 0) mine[k] += w * t.power, total[k] += w * t.power;
+                }
+            });
+            for (auto& [id, v] : e)
+                if (id != no_object)
+                    for (std::size_t k = 0; k < img.samples; ++k)
+                        if (v[k] > 0 && v[k] >= 0.5 * total[k] * (1 + 1e-9))
+                            dominant[id].push_back({i, sd == side::port ? img.samples - 1 - k : img.samples + k});
+        }
+    for (std::size_t b = 0; b < 3; ++b) {
+        const auto& box = boxes[b];
+        CAPTURE(box.object);
+        CHECK(box.object == b + 1);
+        CHECK(box.class_id == b + 1);
+        REQUIRE(!dominant[box.object].empty());
+        for (const auto& [row, col] : dominant[box.object]) {
+            CHECK(row >= box.y);
+            CHECK(row < box.y + box.height);
+            CHECK(col >= box.x);
+            CHECK(col < box.x + box.width);
+        }
+        // The box with the shadow holds the highlight's box and has a shadow (every object stands on or over the seabed).
+        CHECK(full[b].x <= box.x);
+        CHECK(full[b].y <= box.y);
+        CHECK(full[b].x + full[b].width >= box.x + box.width);
+        CHECK(full[b].y + full[b].height >= box.y + box.height);
+        CHECK(full[b].area > box.area);
+    }
+    // The pipeline runs the length of the survey; the mine's case floats clear of the seabed: its box with the shadow
+    // reaches further out in range than its highlight.
+    CHECK(boxes[2].height == s.pings);
+    CHECK(full[1].x + full[1].width > boxes[1].x + boxes[1].width + 5);
+
+    // Files: COCO and YOLO from the same labels.
+    const std::vector<io::label_class> classes{{1, "cylinder"}, {2, "mine"}, {3, "pipeline"}};
+    for (const auto extent : {io::box_extent::highlight, io::box_extent::highlight_and_shadow}) {
+        const auto& bx = extent == io::box_extent::highlight ? boxes : full;
+        const std::vector<io::coco_image> set{{"survey.png", &img}};
+        io::write_text("survey_coco.json", io::coco_json(set, classes, extent));
+        io::write_text("survey.txt", io::yolo_txt(img, classes, extent));
+        const auto coco = nlohmann::json::parse(slurp("survey_coco.json"));
+        // Every field the format requires, with its type; ids unique and cross-referenced.
+        REQUIRE(coco.contains("images"));
+        REQUIRE(coco.contains("annotations"));
+        REQUIRE(coco.contains("categories"));
+        std::set<long> image_ids, category_ids, annotation_ids;
+        for (const auto& im : coco["images"]) {
+            CHECK(im["id"].is_number_integer());
+            CHECK(im["file_name"] == "survey.png");
+            CHECK(im["width"] == img.width());
+            CHECK(im["height"] == img.pings);
+            CHECK(image_ids.insert(im["id"].get<long>()).second);
+        }
+        for (const auto& c : coco["categories"]) {
+            CHECK(c["name"].is_string());
+            CHECK(c["supercategory"].is_string());
+            CHECK(category_ids.insert(c["id"].get<long>()).second);
+        }
+        CHECK(category_ids == std::set<long>{1, 2, 3});
+        REQUIRE(coco["annotations"].size() == 3u);
+        std::size_t n = 0;
+        for (const auto& an : coco["annotations"]) {
+            CHECK(annotation_ids.insert(an["id"].get<long>()).second);
+            CHECK(image_ids.count(an["image_id"].get<long>()) == 1u);
+            CHECK(category_ids.count(an["category_id"].get<long>()) == 1u);
+            CHECK(an["iscrowd"] == 0);
+            const auto bb = an["bbox"].get<std::vector<double>>();
+            REQUIRE(bb.size() == 4u);
+            CHECK(bb[0] >= 0);
+            CHECK(bb[1] >= 0);
+            CHECK(bb[2] > 0);
+            CHECK(bb[3] > 0);
+            CHECK(bb[0] + bb[2] <= double(img.width()));
+            CHECK(bb[1] + bb[3] <= double(img.pings));
+            // The mask: runs down the columns, starting with zeros; its area is the annotation's, inside its box.
+            const auto& seg = an["segmentation"];
+            CHECK(seg["size"] == std::vector<std::size_t>{img.pings, img.width()});
+            const auto counts = seg["counts"].get<std::vector<std::size_t>>();
+            std::size_t pos = 0, ones = 0, mismatches = 0, outside = 0;
+            bool inside = false;
+            for (const std::size_t run : counts) {
+                for (std::size_t r = 0; r < run; ++r, ++pos) {
+                    const std::size_t col = pos / img.pings, row = pos % img.pings;
+                    mismatches += io::in_mask(img.at(row, col), bx[n].object, extent) != inside;
+                    if (inside) {
+                        ++ones;
+                        outside += double(col) < bb[0] || double(col) >= bb[0] + bb[2] || double(row) < bb[1] || double(row) >= bb[1] + bb[3];
+                    }
+                }
+                inside = !inside;
+            }
+            CHECK(pos == img.pings * img.width());
+            CHECK(mismatches == 0u);
+            CHECK(outside == 0u);
+            CHECK(an["area"] == ones);
+            CHECK(double(ones) <= bb[2] * bb[3]);
+            // The same box as the label image's.
+            CHECK(an["category_id"] == bx[n].class_id);
+            CHECK(bb == std::vector<double>{double(bx[n].x), double(bx[n].y), double(bx[n].width), double(bx[n].height)});
+            ++n;
+        }
+        // YOLO: the same boxes, normalised, class index in the list's order.
+        std::istringstream yolo(slurp("survey.txt"));
+        std::size_t cls = 0, lines = 0;
+        double xc = 0, yc = 0, w = 0, h = 0;
+        while (yolo >> cls >> xc >> yc >> w >> h) {
+            REQUIRE(lines < bx.size());
+            const auto& b = bx[lines++];
+            CHECK(classes[cls].id == b.class_id);
+            CHECK(std::abs(w * double(img.width()) - double(b.width)) < 1e-3); // pixels
+            CHECK(std::abs(h * double(img.pings) - double(b.height)) < 1e-3);
+            CHECK(std::abs((xc - w / 2) * double(img.width()) - double(b.x)) < 1e-3);
+            CHECK(std::abs((yc - h / 2) * double(img.pings) - double(b.y)) < 1e-3);
+        }
+        CHECK(lines == 3u);
+    }
+    // Ground range: the flat-bottom mapping keeps every object's highlight.
+    std::vector<double> alt(s.pings, 9.0);
+    const auto ground = ground_range_labels(img, alt, {.cell_m = 0.05, .cells = 0, .sound_speed_mps = c_mps});
+    CHECK(io::object_boxes(ground, io::box_extent::highlight).size() == 3u);
+}
+
+TEST_CASE("An image with no object in the swath gets an empty YOLO file and a COCO file without annotations") {
+    // The sphere lies 200 m east: outside the 40 m range.
+    std::vector<object<double>> objs{object<double>({sphere<double>({200, 0, 1}, 0.5, {1, 4, 1})}, {})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0), object_set<double>(std::move(objs)));
+    const auto sim = make_simulator(40.0, 1.0);
+    const label_image img = label_render(sim, sc, 0, 3);
+    const std::vector<io::label_class> classes{{1, "sphere"}};
+    io::write_text("empty.txt", io::yolo_txt(img, classes, io::box_extent::highlight_and_shadow));
+    const std::vector<io::coco_image> set{{"empty.png", &img}};
+    io::write_text("empty_coco.json", io::coco_json(set, classes, io::box_extent::highlight_and_shadow));
+    io::write_label_images("empty", img, classes);
+    CHECK(slurp("empty.txt").empty());
+    const auto coco = nlohmann::json::parse(slurp("empty_coco.json"));
+    CHECK(coco["annotations"].empty());
+    CHECK(coco["images"].size() == 1u);
+    const auto legend = nlohmann::json::parse(slurp("empty_legend.json"));
+    CHECK(legend["class_png"]["4"] == "shadow");
+    CHECK(legend["instance_png"].size() == 1u);
+    // And the label image is only water column, seabed and no coverage.
+    std::size_t water = 0, seabed = 0;
+    for (const auto& l : img.values) {
+        water += l.kind == sample_class::water_column;
+        seabed += l.kind == sample_class::seabed;
+        CHECK(l.object == no_object);
+    }
+    CHECK(water > 0u);
+    CHECK(seabed > 0u);
+}
