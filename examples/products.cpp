@@ -47,18 +47,18 @@ int main(int argc, char** argv) try {
     sb::fractal_params<T> rough;
     rough.spectrum = sb::jackson_spectrum(T(0.004446), T(3.25), T(20));
     const auto bed = sb::fractal_surface<T>(nx, ny, cell, rough, 11);
-    const scene::height_field<T> seabed(nx, ny, cell, {T(0), T(0)}, bed.values);
+    const scene::height_field<T> seabed({.nx = nx, .ny = ny, .cell_m = cell, .heights_m = bed.values});
     const auto h = sb::seabed_height_of(seabed);
 
     // Targets, starboard of a track at x = 30 m: a 2 m cylinder at 15 m ground range, a moored mine at 25 m, a
     // pipeline at 38 m; on port, a second cylinder at 20 m. Class ids 1 cylinder, 2 mine, 3 pipeline.
     const T track_x = T(30);
     std::vector<scene::object<T>> objects;
-    objects.push_back(sb::lying_cylinder(sb::lying_cylinder_params<T>{.center_m = {track_x + 15, T(20)}, .heading_rad = T(1.2),
-                                                                      .length_m = T(2), .radius_m = T(0.3), .ids = {1, 1, 1}},
+    objects.push_back(sb::lying_cylinder(sb::lying_cylinder_params<T>{.center_m = {track_x + 15, T(20)}, .heading_deg = T(21.25),
+                                                                      .length_m = T(2), .radius_m = T(0.3), .ids = {.material = 1, .object = 1, .label = 1}},
                                          h));
-    objects.push_back(sb::lying_cylinder(sb::lying_cylinder_params<T>{.center_m = {track_x - 20, T(30)}, .heading_rad = T(0.2),
-                                                                      .length_m = T(1.5), .radius_m = T(0.25), .ids = {1, 4, 1}},
+    objects.push_back(sb::lying_cylinder(sb::lying_cylinder_params<T>{.center_m = {track_x - 20, T(30)}, .heading_deg = T(78.54),
+                                                                      .length_m = T(1.5), .radius_m = T(0.25), .ids = {.material = 1, .object = 4, .label = 1}},
                                          h));
     sb::tethered_mine_params<T> mine;
     mine.anchor_m = {track_x + 25, T(26)};
@@ -69,16 +69,16 @@ int main(int argc, char** argv) try {
     sb::pipeline_params<T> pipe;
     pipe.route_m = {{track_x + 38, T(1)}, {track_x + 39, T(50)}};
     pipe.radius_m = T(0.3);
-    pipe.ids = {1, 3, 3};
+    pipe.ids = {.material = 1, .object = 3, .label = 3};
     objects.push_back(sb::pipeline(pipe, h));
     const scene::scene world(seabed, scene::object_set<T>(std::move(objects)));
     const std::vector<io::label_class> classes{{1, "cylinder"}, {2, "mine"}, {3, "pipeline"}};
 
     // Sonar: Lambertian (-27 dB sand, -8 dB targets), 30 dB/km absorption, 1 x 50 deg fan tilted 20 deg down,
     // 20 kHz sampling to 50 m; the towfish 10 m above the seabed, north at 2 m/s, 10 pings a second.
-    const scattering::lambertian<T> scatter({T(-27), T(-8)});
-    const propagation::straight<T> water({T(1500), T(30)});
-    const beam::ideal_fan<T> fan({T(1), T(50), T(20)});
+    const scattering::lambertian<T> scatter({.mu_db = {T(-27), T(-8)}});
+    const propagation::straight<T> water({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)});
+    const beam::ideal_fan<T> fan({.along_width_deg = T(1), .vertical_width_deg = T(50), .depression_deg = T(20)});
     const T altitude = T(10), ground = seabed.seabed_height_m(track_x, T(25));
     const motion::straight_line<T> tow(
         {.start_m = {track_x, T(12)}, .heading_deg = T(0), .speed_mps = T(2), .altitude_m = ground + altitude, .ping_interval_s = T(0.1)});

@@ -46,7 +46,7 @@ sim_t make_simulator(double max_range_m, double per_sample, motion::straight_lin
     fan.along_width_deg = 1.0;
     fan.vertical_width_deg = 90.0;
     fan.depression_deg = 45.0;
-    return sim_t(scattering::lambertian<double>({-27.0, -10.0}), propagation::straight<double>(), beam::ideal_fan<double>(fan),
+    return sim_t(scattering::lambertian<double>({.mu_db = {-27.0, -10.0}}), propagation::straight<double>(), beam::ideal_fan<double>(fan),
                  motion::straight_line<double>(tow), rp, ray_density{.along = 4, .across = 0, .per_sample = per_sample});
 }
 
@@ -78,8 +78,8 @@ survey rough_survey() {
     auto bed = sss_test::rough_field<double>(161, 121, 0.25, {0.0, 0.0}, 7); // 40 m x 30 m
     const auto h = sb::seabed_height_of(bed);
     std::vector<object<double>> objs;
-    objs.push_back(sb::lying_cylinder(sb::lying_cylinder_params<double>{.center_m = {16.0, 12.0}, .heading_rad = 0.3, .length_m = 2.0,
-                                                                        .radius_m = 0.3, .profile_step_m = 0.05, .ids = {1, 1, 1}},
+    objs.push_back(sb::lying_cylinder(sb::lying_cylinder_params<double>{.center_m = {16.0, 12.0}, .heading_deg = 72.81, .length_m = 2.0,
+                                                                        .radius_m = 0.3, .profile_step_m = 0.05, .ids = {.material = 1, .object = 1, .label = 1}},
                                       h));
     sb::tethered_mine_params<double> mine;
     mine.anchor_m = {24.0, 17.0};
@@ -90,7 +90,7 @@ survey rough_survey() {
     sb::pipeline_params<double> pipe;
     pipe.route_m = {{31.0, 1.0}, {33.0, 29.0}};
     pipe.radius_m = 0.25;
-    pipe.ids = {1, 3, 3};
+    pipe.ids = {.material = 1, .object = 3, .label = 3};
     objs.push_back(sb::pipeline(pipe, h));
     const double z0 = bed.seabed_height_m(4.0, 10.0);
     scene::scene world(std::move(bed), object_set<double>(std::move(objs)));
