@@ -17,6 +17,8 @@
 /// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
 /// (receiver/time_sampler.hpp).
 /// The result is the mean received power in each time sample, relative to the source level reference.
+/// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
+/// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +40,7 @@
 #include "sss/propagation/concept.hpp"
 #include "sss/propagation/straight.hpp"
 #include "sss/receiver/image.hpp"
+#include "sss/receiver/line_stage.hpp"
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
 #include "sss/sampling/launch_angles.hpp"
@@ -66,7 +69,7 @@ template <Real T> struct tube_echo {
 };
 
 template <Scattering S = scattering::lambertian<double>, Propagation P = propagation::straight<double>,
-          Beam B = beam::ideal_fan<double>, Motion M = motion::straight_line<double>>
+          Beam B = beam::ideal_fan<double>, Motion M = motion::straight_line<double>, class Stage = no_line_stage>
 class simulator {
 public:
     using value_type = typename S::value_type;
@@ -74,11 +77,12 @@ public:
     static_assert(std::is_same_v<T, typename P::value_type> && std::is_same_v<T, typename B::value_type> &&
                       std::is_same_v<T, typename M::value_type>,
                   "sss::simulator: all policies must share one scalar type");
+    static_assert(LineStage<Stage, T>, "sss::simulator: the line stage needs process(std::vector<T>&, const line_context<T>&) const");
 
     explicit simulator(S scattering = S{}, P propagation = P{}, B beam = B{}, M motion = M{},
-                       receiver_params receiver = {}, ray_density density = {})
+                       receiver_params receiver = {}, ray_density density = {}, Stage stage = Stage{})
         : scattering_(std::move(scattering)), propagation_(std::move(propagation)), beam_(std::move(beam)),
-          motion_(std::move(motion)), receiver_(receiver), density_(density) {
+          motion_(std::move(motion)), receiver_(receiver), density_(density), stage_(std::move(stage)) {
         receiver_.validate();
         sss::detail::require(density_.along >= 1, "ray_density.along", "must be >= 1");
         sss::detail::require(density_.along <= 4096, "ray_density.along", "must be <= 4096");
@@ -99,6 +103,7 @@ public:
     [[nodiscard]] const M& motion() const noexcept { return motion_; }
     [[nodiscard]] const receiver_params& receiver() const noexcept { return receiver_; }
     [[nodiscard]] const ray_density& density() const noexcept { return density_; }
+    [[nodiscard]] const Stage& stage() const noexcept { return stage_; }
     [[nodiscard]] std::size_t samples_per_line() const noexcept { return samples_; }
     [[nodiscard]] double dt_s() const noexcept { return dt_; }
 
@@ -116,7 +121,9 @@ public:
         for (side sd : {side::port, side::starboard}) {
             sampler.clear();
             accumulate(scene, p, sd, sampler);
-            sampler.render(sd == side::port ? lines.port : lines.starboard);
+            std::vector<T>& line = sd == side::port ? lines.port : lines.starboard;
+            sampler.render(line);
+            if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
         }
         return lines;
     }
@@ -240,6 +247,14 @@ public:
 private:
     /// True when the scattering policy switches on one specular bounce (scattering/specular_bounce.hpp).
     static constexpr bool bouncing = requires { S::specular_bounce_enabled; };
+    /// True when a line stage is asked for.
+    static constexpr bool has_stage = !std::is_same_v<Stage, no_line_stage>;
+
+    template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
+        return line_context<T>{p, sd, dt_, c_ref_,
+                               double(p.position.z - scene.seabed_height_m(p.position.x, p.position.y)),
+                               receiver_.pulse, receiver_.source_level_db};
+    }
 
     struct ray_end {
         bool valid = false;
@@ -332,6 +347,7 @@ private:
     M motion_;
     receiver_params receiver_;
     ray_density density_;
+    [[no_unique_address]] Stage stage_;
     double c_ref_ = 1500.0;
     std::size_t samples_ = 0;
     double dt_ = 0.0;

@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// Line stages: what the receiver does to a line after the time sampler has rendered its mean power.
+///
+/// A simulator's last template parameter names a stage; it is called once per ping and side with the line of
+/// mean powers and the context below, and may rewrite the line in place (speckle, noise, gain, digitisation).
+/// The default, `no_line_stage`, is never called: a simulator that asks for nothing pays nothing and renders
+/// the mean power exactly as without stages.
+///
+///   | expression                          | meaning                                                    |
+///   |-------------------------------------|------------------------------------------------------------|
+///   | `st.process(line, ctx)` (const)     | rewrite `line` (std::vector<T>&, sample k over [k dt, (k+1) dt)) |
+///
+/// A stage must give the same result for the same inputs whatever thread calls it (render runs pings in
+/// parallel): randomness is keyed by what it belongs to (the seabed, the ping's pose), never drawn from a
+/// generator's state.
+
+#include <concepts>
+#include <vector>
+
+#include "sss/core/pose.hpp"
+#include "sss/core/types.hpp"
+#include "sss/receiver/pulse.hpp"
+
+namespace sss {
+
+/// What a line stage knows about the line it processes.
+template <Real T> struct line_context {
+    sss::pose<T> pose{};          ///< the ping's pose
+    side line_side = side::port;  ///< which line
+    double dt_s = 0.0;            ///< sample interval (s)
+    double c_mps = 1500.0;        ///< reference sound speed turning two-way time into range (m/s)
+    double altitude_m = 0.0;      ///< towfish height above the seabed straight below it (m)
+    sss::pulse pulse{};           ///< transmitted pulse
+    double source_level_db = 0.0; ///< the render's source level reference (receiver_params::source_level_db)
+};
+
+/// A line stage (table above).
+template <class St, class T>
+concept LineStage = Real<T> && requires(const St& st, std::vector<T>& line, const line_context<T>& ctx) {
+    st.process(line, ctx);
+};
+
+/// The stage that does nothing, and is never called.
+struct no_line_stage {
+    template <Real T> void process(std::vector<T>&, const line_context<T>&) const noexcept {}
+};
+
+} // namespace sss

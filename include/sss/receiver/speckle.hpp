@@ -1,0 +1,241 @@
+#pragma once
+/// \file
+/// Speckle that belongs to the seabed: Rayleigh (fully developed) and K-distributed, on top of the mean power.
+///
+/// A resolution cell holds many scatterers whose echoes add with random phases, so the received complex
+/// amplitude is circular Gaussian and the intensity exponential about its mean (Goodman, "Speckle Phenomena in
+/// Optics", 2007). Here the scatterers are complex Gaussian amplitudes a_c of unit power fixed to a lattice on
+/// the seabed (cells keyed by seed, lattice index and survey epoch through a counter-based hash: no generator
+/// state), and the field of sample k of a ping is the linear filter
+///
+///     z_k = sum_c h(u_c) w(t_k - t_c) a_c,    E|z_k|^2 = sum_c h(u_c)^2 w(t_k - t_c)^2,
+///
+/// with t_c the cell's two-way time (flat seabed at the towfish's altitude), w the pulse's amplitude envelope
+/// (sqrt of its power envelope) and h the two-way along-track co-array of a transducer of length L: the
+/// triangle h(u) = max(0, 1 - 2|u|/L) of the transmit and receive apertures' phase-centre positions. Then
+///
+/// - across track, samples dt apart share the cells of both their pulse windows: intensity correlation
+///   |rho_a(dt)|^2, rho_a the pulse's normalised amplitude autocorrelation (rectangular CW: 1 - |dt|/tau);
+/// - along track, pings d apart see the same cells through apertures shifted by d: field correlation is the
+///   normalised overlap of the co-array with its shifted copy, with u = 2d/L,
+///       rho(d) = 1 - 3u^2/2 + 3u^3/4 (u <= 1),  (2 - u)^3/4 (1 <= u <= 2),  0 beyond (d >= L)
+///   (the translated-aperture principle of the van Cittert-Zernike theorem, as used for synthetic aperture sonar
+///   micronavigation: Bellettini & Pinto, IEEE J. Oceanic Eng. 27(4), 2002);
+/// - the same ground seen again from the same place gives the same speckle, whatever the ping's index, thread
+///   or pass; `survey_time_s` moves the scatterers slowly: within an epoch of `decorrelation_time_s` the field is
+///   cos(theta) a_e + sin(theta) a_(e+1), theta = (pi/2) (t / T - e), continuous in time and of unit power.
+///
+/// The received intensity is mean_k tex_k |z_k|^2 / E|z_k|^2: its expectation is the ray tracer's mean power
+/// exactly. With a K shape nu, tex is a Gamma(nu) texture of unit mean attached to the seabed in square
+/// patches (Jakeman & Pusey, IEEE Trans. Antennas Propag. 24, 1976; Abraham & Lyons, IEEE J. Oceanic Eng. 27(4),
+/// 2002): intensity K-distributed with <I^2>/<I>^2 = 2 (1 + 1/nu). With a scatterer density the shape follows
+/// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse).
+///
+/// The lattice is world-fixed in a frame turned to the nearest of 64 headings (5.625 degrees apart): a pass on
+/// the same heading sees the same cells; another aspect sees other speckle, as a real seabed does. Along track it
+/// is spaced L/4 (the overlap above is then met to within 0.003), across track c tau_eff / (2 cells_per_pulse).
+/// Cells within a pulse window are summed by prefix sums for a rectangular pulse (cost per sample independent of
+/// the window), one by one otherwise. Samples with mean power but no seabed cell in their window (an object in
+/// the water column) get an independent Gaussian keyed by the ping's place and the sample.
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "sss/core/constants.hpp"
+#include "sss/core/error.hpp"
+#include "sss/receiver/detail/counter_random.hpp"
+#include "sss/receiver/line_stage.hpp"
+
+namespace sss {
+
+struct speckle_params {
+    double transducer_length_m = 0.5;        ///< along-track length L of the transducer (m), > 0
+    double k_shape = 0.0;                    ///< K-distribution shape nu (> 0); 0: Rayleigh (nu infinite)
+    double scatterer_density_per_m2 = 0.0;   ///< > 0: nu from the cell's area instead (scatterers per m^2)
+    double along_beamwidth_rad = 0.0;        ///< along-track beam width for that area (rad); > 0 with a density
+    double texture_patch_m = 1.0;            ///< side of the square seabed patches one texture value covers (m)
+    double survey_time_s = 0.0;              ///< time of the survey (s): speckle drifts as it grows
+    double decorrelation_time_s = 0.0;       ///< time over which the scatterers renew (s); 0: never
+    double cells_per_pulse = 8.0;            ///< seabed cells per pulse length across track, >= 2
+
+    void validate() const {
+        sss::detail::require_positive(transducer_length_m, "speckle.transducer_length_m");
+        sss::detail::require_non_negative(k_shape, "speckle.k_shape");
+        sss::detail::require_non_negative(scatterer_density_per_m2, "speckle.scatterer_density_per_m2");
+        if (scatterer_density_per_m2 > 0.0)
+            sss::detail::require_positive(along_beamwidth_rad, "speckle.along_beamwidth_rad");
+        sss::detail::require_positive(texture_patch_m, "speckle.texture_patch_m");
+        sss::detail::require_finite(survey_time_s, "speckle.survey_time_s");
+        sss::detail::require_non_negative(decorrelation_time_s, "speckle.decorrelation_time_s");
+        sss::detail::require_in_range(cells_per_pulse, 2.0, 64.0, "speckle.cells_per_pulse");
+    }
+};
+
+/// Normalised overlap of the two-way co-array of a transducer of length L with its copy shifted by d: the
+/// ping-to-ping field correlation of speckle (see the file comment). Zero for d >= L.
+[[nodiscard]] inline double coarray_overlap(double d_m, double length_m) noexcept {
+    const double u = 2.0 * std::abs(d_m) / length_m;
+    if (u <= 1.0) return 1.0 - 1.5 * u * u + 0.75 * u * u * u;
+    if (u <= 2.0) return (2.0 - u) * (2.0 - u) * (2.0 - u) / 4.0;
+    return 0.0;
+}
+
+/// The seabed's speckle field for one line at a time.
+class seabed_speckle {
+public:
+    seabed_speckle() : seabed_speckle(speckle_params{}) {}
+    /// Speckle of the given statistics; another seed, other speckle.
+    explicit seabed_speckle(const speckle_params& p, std::uint64_t seed = 1) : p_(p), seed_(seed) { p_.validate(); }
+
+    [[nodiscard]] const speckle_params& params() const noexcept { return p_; }
+    [[nodiscard]] std::uint64_t seed() const noexcept { return seed_; }
+
+    /// Complex amplitudes out[k] with E|out[k]|^2 = mean[k] (the expectation over seeds), for the line `ctx` names.
+    template <Real T>
+    void amplitudes(const std::vector<T>& mean, const line_context<T>& ctx, std::vector<std::complex<double>>& out) const {
+        const std::size_t n = mean.size();
+        out.assign(n, {0.0, 0.0});
+        if (n == 0) return;
+        const auto& table = sss::detail::half_normal_table();
+        const double c = ctx.c_mps, dt = ctx.dt_s, tau = ctx.pulse.length_s;
+        const double H = std::max(double(ctx.altitude_m), 1e-3);
+        const double L = p_.transducer_length_m;
+        const double s_a = 0.25 * L;
+        const double s_c = c * tau / (2.0 * p_.cells_per_pulse);
+        // The lattice frame: the nearest of 64 headings. delta: the ping's heading from it.
+        const double step = 2.0 * pi_v<double> / 64.0;
+        const double yaw = double(ctx.pose.yaw_rad);
+        const double bin = std::round(yaw / step);
+        const double yb = bin * step, delta = yaw - yb;
+        const std::uint64_t heading_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(bin) & 63);
+        const double fx = std::sin(yb), fy = std::cos(yb);  // along track
+        const double nx = std::cos(yb), ny = -std::sin(yb); // starboard
+        const double px = double(ctx.pose.position.x), py = double(ctx.pose.position.y);
+        const double a_p = px * fx + py * fy, c_p = px * nx + py * ny;
+        const double sigma = ctx.line_side == side::starboard ? 1.0 : -1.0;
+        const double cd = std::cos(delta), sd = std::sin(delta);
+        // Bin-frame coordinates of the ground point at along offset u and ground range g on this side.
+        const double along_per_g = -sigma * sd, cross_per_u = sd, cross_per_g = sigma * cd;
+
+        // Survey epoch and the weights of its two scatterer sets.
+        std::int64_t epoch = 0;
+        double w_now = 1.0, w_next = 0.0;
+        if (p_.decorrelation_time_s > 0.0) {
+            const double e = p_.survey_time_s / p_.decorrelation_time_s;
+            const double fl = std::floor(e);
+            epoch = static_cast<std::int64_t>(fl);
+            const double theta = 0.5 * pi_v<double> * (e - fl);
+            w_now = std::cos(theta);
+            w_next = std::sin(theta);
+        }
+        const std::uint64_t base = sss::detail::mix(sss::detail::mix(seed_, 0x5bec1eULL), heading_key);
+
+        // Ground points: rows along track at the lattice's cell centres within the co-array, columns across at
+        // its cell centres from nadir out to the line's last range.
+        const double r_max = 0.5 * c * dt * double(n);
+        const double g_max = std::sqrt(std::max(0.0, r_max * r_max - H * H));
+        const double dg = s_c / cd;
+        const double i_first = sigma > 0 ? std::ceil(c_p / s_c - 0.5) : std::floor(c_p / s_c - 0.5);
+        const double g0 = sigma * ((i_first + 0.5) * s_c - c_p) / cd;
+        const auto points = static_cast<std::size_t>(std::max(0.0, std::ceil((g_max - g0) / dg))) + 1;
+        const double j_lo = std::ceil((a_p - 0.5 * L * cd) / s_a - 0.5), j_hi = std::floor((a_p + 0.5 * L * cd) / s_a - 0.5);
+        std::vector<std::complex<double>> b(points, {0.0, 0.0});
+        double row_power = 0.0; // sum over rows of h^2
+        for (double j = j_lo; j <= j_hi; j += 1.0) {
+            const double u = ((j + 0.5) * s_a - a_p) / cd;
+            const double h = std::max(0.0, 1.0 - 2.0 * std::abs(u) / L);
+            if (h <= 0.0) continue;
+            row_power += h * h;
+            const double a0 = a_p + u * cd, c0 = c_p + u * cross_per_u;
+            for (std::size_t m = 0; m < points; ++m) {
+                const double g = g0 + double(m) * dg;
+                const auto cj = static_cast<std::int64_t>(std::floor((a0 + g * along_per_g) / s_a));
+                const auto ci = static_cast<std::int64_t>(std::floor((c0 + g * cross_per_g) / s_c));
+                const std::uint64_t cell = sss::detail::mix(sss::detail::mix(base, sss::detail::key_word(cj)), sss::detail::key_word(ci));
+                std::complex<double> a = sss::detail::complex_gaussian(sss::detail::mix(cell, sss::detail::key_word(epoch)), table);
+                if (w_next != 0.0)
+                    a = w_now * a + w_next * std::complex<double>(sss::detail::complex_gaussian(
+                                                  sss::detail::mix(cell, sss::detail::key_word(epoch + 1)), table));
+                b[m] += h * a;
+            }
+        }
+        const bool rect = ctx.pulse.shape == pulse_shape::rectangular;
+        if (rect) { // prefix sums: b[m] becomes the sum of points [0, m)
+            std::complex<double> acc{0.0, 0.0};
+            for (std::size_t m = 0; m < points; ++m) {
+                const std::complex<double> v = b[m];
+                b[m] = acc;
+                acc += v;
+            }
+            b.push_back(acc);
+        }
+        const std::uint64_t texture_base = sss::detail::mix(sss::detail::mix(seed_, 0x7e4757eULL), heading_key);
+        const bool textured = p_.k_shape > 0.0 || p_.scatterer_density_per_m2 > 0.0;
+        std::int64_t last_pj = 0, last_pi = 0;
+        double last_nu = -1.0, last_tex = 1.0;
+        const auto index_of = [&](double g) { // first point index at or beyond ground range g
+            return static_cast<std::size_t>(std::clamp(std::ceil((g - g0) / dg), 0.0, double(points)));
+        };
+        for (std::size_t k = 0; k < n; ++k) {
+            const double y = double(mean[k]);
+            if (!(y > 0.0)) continue;
+            const double t_k = (double(k) + 0.5) * dt;
+            const double r_hi = 0.5 * c * t_k, r_lo = std::max(0.0, 0.5 * c * (t_k - tau));
+            const double g_hi = std::sqrt(std::max(0.0, r_hi * r_hi - H * H));
+            const double g_lo = std::sqrt(std::max(0.0, r_lo * r_lo - H * H));
+            const std::size_t m_lo = index_of(g_lo), m_hi = index_of(g_hi);
+            std::complex<double> z{0.0, 0.0};
+            double power = 0.0;
+            if (m_hi > m_lo && row_power > 0.0) {
+                if (rect) {
+                    z = b[m_hi] - b[m_lo];
+                    power = row_power * double(m_hi - m_lo);
+                } else {
+                    for (std::size_t m = m_lo; m < m_hi; ++m) {
+                        const double g = g0 + double(m) * dg;
+                        const double w = std::sqrt(ctx.pulse.power(t_k - 2.0 * std::sqrt(g * g + H * H) / c));
+                        z += w * b[m];
+                        power += w * w;
+                    }
+                    power *= row_power;
+                }
+            }
+            if (!(power > 0.0)) { // no seabed cell in the window: a Gaussian of its own
+                const std::uint64_t key = sss::detail::mix(sss::detail::mix(sss::detail::mix(base, 0xfa11bac4ULL),
+                                                                            sss::detail::key_word(static_cast<std::int64_t>(std::floor(a_p / s_a)))),
+                                                           (std::uint64_t(k) << 1) | (sigma > 0 ? 1U : 0U));
+                z = sss::detail::complex_gaussian(key, table);
+                power = 1.0;
+            }
+            double tex = 1.0;
+            if (textured) {
+                const double g_mid = 0.5 * (g_lo + g_hi);
+                double nu = p_.k_shape;
+                if (p_.scatterer_density_per_m2 > 0.0)
+                    nu = std::max(1e-3, p_.scatterer_density_per_m2 * (0.5 * (r_lo + r_hi) * p_.along_beamwidth_rad) *
+                                            std::max(g_hi - g_lo, s_c));
+                const auto pj = static_cast<std::int64_t>(std::floor((a_p + g_mid * along_per_g) / p_.texture_patch_m));
+                const auto pi = static_cast<std::int64_t>(std::floor((c_p + g_mid * cross_per_g) / p_.texture_patch_m));
+                if (nu != last_nu || pj != last_pj || pi != last_pi) {
+                    last_tex = sss::detail::gamma_unit_mean(
+                        nu, sss::detail::mix(sss::detail::mix(texture_base, sss::detail::key_word(pj)), sss::detail::key_word(pi)));
+                    last_nu = nu;
+                    last_pj = pj;
+                    last_pi = pi;
+                }
+                tex = last_tex;
+            }
+            out[k] = z * std::sqrt(y * tex / power);
+        }
+    }
+
+private:
+    speckle_params p_;
+    std::uint64_t seed_ = 1;
+};
+
+} // namespace sss
