@@ -45,19 +45,26 @@ TEST_CASE("the mean over 64 seeds is the speckle-free render: within 0.1 dB over
     const double peak = *std::max_element(reference.begin(), reference.end());
     double ratio = 0.0;
     std::size_t counted = 0, outside = 0;
+    double worst = 0.0;
     for (std::size_t k = 0; k < reference.size(); ++k) {
         if (!(reference[k] > 1e-6 * peak)) continue; // the seabed's samples
         const double mean = sum[k] / seeds;
         ratio += mean / reference[k];
         ++counted;
         // Exponential intensity: standard deviation = mean, so the standard error of 64 draws is mean / 8.
-        if (std::abs(mean - reference[k]) > 4.0 * reference[k] / std::sqrt(double(seeds))) ++outside;
+        const double z = (mean - reference[k]) / (reference[k] / std::sqrt(double(seeds)));
+        worst = std::max(worst, std::abs(z));
+        if (std::abs(z) > 4.0) ++outside;
     }
     REQUIRE(counted > 500);
     const double line_db = 10.0 * std::log10(ratio / double(counted));
     MESSAGE("mean over 64 seeds / speckle-free, over " << counted << " seabed samples: " << line_db << " dB");
+    MESSAGE(outside << " samples beyond 4 standard errors, the worst at " << worst);
     CHECK(std::abs(line_db) < 0.1);
-    CHECK(outside == 0);
+    // The mean of 64 exponential draws exceeds +4 standard errors with probability about 2e-4 (its skewness is
+    // 1/4): among about 500 independent samples, 0.1 are expected beyond; more than 2 would be a 1-in-1000 event.
+    CHECK(outside <= 2);
+    CHECK(worst < 5.5);
 }
 
 TEST_CASE("same seed, same bytes on 1, 2 and 8 threads and for the pings rendered in two halves; another seed differs") {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
 #include <cstddef>
 #include <vector>
 
@@ -145,7 +146,7 @@ TEST_CASE("adjacent samples correlate as the pulse's |rho_a(dt)|^2: rectangular 
             for (std::size_t k = 0; k + 1 < I.size(); ++k) { a.push_back(I[k]); b.push_back(I[k + 1]); }
         }
         const double r = correlation(a, b);
-        MESSAGE((shape == sss::pulse_shape::rectangular ? "rectangular" : "Hann") << ": adjacent-sample intensity correlation "
+        MESSAGE(std::string(shape == sss::pulse_shape::rectangular ? "rectangular" : "Hann") << ": adjacent-sample intensity correlation "
                 << r << ", |rho_a(dt)|^2 = " << expected);
         CHECK(std::abs(r - expected) < 0.05);
     }

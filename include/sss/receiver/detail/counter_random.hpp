@@ -13,6 +13,7 @@
 ///   (Marsaglia & Tsang, ACM TOMS 26(3), 2000) where exactness matters more than speed.
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -35,8 +36,23 @@ namespace sss::detail {
     return mix(key ^ (value * 0xD6E8FEB86659FD93ULL));
 }
 
+/// A cheaper hash of a well-mixed key and one more coordinate, for the innermost loops: two multiply-xorshift
+/// rounds (the "moremur" constants of Evensen, 2019), enough to decorrelate neighbouring lattice cells.
+[[nodiscard]] constexpr std::uint64_t mix_fast(std::uint64_t key, std::uint64_t value) noexcept {
+    std::uint64_t x = key ^ (value * 0x9E3779B97F4A7C15ULL);
+    x = (x ^ (x >> 27)) * 0x3C79AC492BA7B653ULL;
+    x = (x ^ (x >> 33)) * 0x1C69B3F74AC4AE35ULL;
+    return x ^ (x >> 27);
+}
+
 /// A signed coordinate as a key word.
 [[nodiscard]] constexpr std::uint64_t key_word(std::int64_t v) noexcept { return static_cast<std::uint64_t>(v); }
+
+/// floor(x) as an integer, without a library call (|x| < 2^63).
+[[nodiscard]] inline std::int64_t floor_to_int(double x) noexcept {
+    const auto i = static_cast<std::int64_t>(x);
+    return static_cast<double>(i) > x ? i - 1 : i;
+}
 
 /// Uniform in (0, 1) from 53 bits of a hash.
 [[nodiscard]] inline double uniform_open(std::uint64_t h) noexcept {
@@ -77,12 +93,12 @@ inline constexpr std::size_t gaussian_table_size = std::size_t(1) << gaussian_ta
     return table;
 }
 
-/// Circular complex Gaussian of unit mean power (E|z|^2 = 1) from one hash value.
+/// Circular complex Gaussian of unit mean power (E|z|^2 = 1) from one hash value (signs set without branches).
 [[nodiscard]] inline std::complex<float> complex_gaussian(std::uint64_t h, const std::array<float, gaussian_table_size>& table) noexcept {
     constexpr std::uint64_t mask = gaussian_table_size - 1;
-    const float re = table[h & mask];
-    const float im = table[(h >> 14) & mask];
-    return {(h >> 13) & 1U ? -re : re, (h >> 27) & 1U ? -im : im};
+    const auto re = std::bit_cast<std::uint32_t>(table[h & mask]) ^ (static_cast<std::uint32_t>(h >> 13) & 1U) << 31;
+    const auto im = std::bit_cast<std::uint32_t>(table[(h >> 14) & mask]) ^ (static_cast<std::uint32_t>(h >> 27) & 1U) << 31;
+    return {std::bit_cast<float>(re), std::bit_cast<float>(im)};
 }
 
 /// Standard normal by Box-Muller from two hash values.
