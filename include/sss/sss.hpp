@@ -40,13 +40,16 @@
 #include "sss/motion/trajectory.hpp"
 
 #include "sss/receiver/echo_statistics.hpp"
+#include "sss/receiver/ground_range.hpp"
 #include "sss/receiver/image.hpp"
 #include "sss/receiver/line_stage.hpp"
 #include "sss/receiver/noise.hpp"
 #include "sss/receiver/pulse.hpp"
+#include "sss/receiver/quantise.hpp"
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/speckle.hpp"
 #include "sss/receiver/time_sampler.hpp"
+#include "sss/receiver/tvg.hpp"
 #include "sss/receiver/volume_reverberation.hpp"
 
 #include "sss/sampling/launch_angles.hpp"

@@ -16,6 +16,8 @@
 /// generator's state.
 
 #include <concepts>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "sss/core/pose.hpp"
@@ -44,6 +46,23 @@ concept LineStage = Real<T> && requires(const St& st, std::vector<T>& line, cons
 /// The stage that does nothing, and is never called.
 struct no_line_stage {
     template <Real T> void process(std::vector<T>&, const line_context<T>&) const noexcept {}
+};
+
+/// Stages applied in order: e.g. `line_chain<echo_statistics, tvg>` speckles and adds noise, then applies the
+/// time-varied gain, as a receiver does.
+template <class... Stages> class line_chain {
+public:
+    line_chain() = default;
+    explicit line_chain(Stages... stages) : stages_(std::move(stages)...) {}
+
+    [[nodiscard]] const std::tuple<Stages...>& stages() const noexcept { return stages_; }
+
+    template <Real T> void process(std::vector<T>& line, const line_context<T>& ctx) const {
+        std::apply([&](const Stages&... st) { (st.process(line, ctx), ...); }, stages_);
+    }
+
+private:
+    std::tuple<Stages...> stages_;
 };
 
 } // namespace sss
