@@ -70,12 +70,13 @@ public:
             const std::uint64_t noise_key = sss::detail::mix(ping, 0x0015eULL);
             const std::uint64_t volume_key = sss::detail::mix(ping, 0x7011eULL);
             const double sl = std::pow(10.0, ctx.source_level_db / 10.0);
+            const double pulse_energy_s = p_.volume ? ctx.pulse.energy_s() : 0.0; // tau of c tau / 2
             for (std::size_t k = 0; k < n; ++k) {
                 if (p_.noise)
                     s[k] += sqrt_noise * std::complex<double>(sss::detail::complex_gaussian(sss::detail::mix(noise_key, k), table));
                 if (p_.volume) {
                     const double r = 0.5 * ctx.c_mps * (double(k) + 0.5) * ctx.dt_s;
-                    const double v = sl * volume_reverberation(*p_.volume, r, ctx.c_mps, ctx.pulse.length_s);
+                    const double v = sl * volume_reverberation(*p_.volume, r, ctx.c_mps, pulse_energy_s);
                     s[k] += std::sqrt(v) * std::complex<double>(sss::detail::complex_gaussian(sss::detail::mix(volume_key, k), table));
                 }
             }

@@ -11,7 +11,8 @@
 ///     z_k = sum_c h(u_c) w(t_k - t_c) a_c,    E|z_k|^2 = sum_c h(u_c)^2 w(t_k - t_c)^2,
 ///
 /// with t_c the cell's two-way time (flat seabed at the towfish's altitude), w the pulse's amplitude envelope
-/// (sqrt of its power envelope) and h the two-way along-track co-array of a transducer of length L: the
+/// (sqrt of its power envelope; for a compressed chirp its signed autocorrelation, main lobe and 8 sidelobes
+/// each side) and h the two-way along-track co-array of a transducer of length L: the
 /// triangle h(u) = max(0, 1 - 2|u|/L) of the transmit and receive apertures' phase-centre positions. Then
 ///
 /// - across track, samples dt apart share the cells of both their pulse windows: intensity correlation
@@ -34,7 +35,7 @@
 /// The lattice is world-fixed in a frame turned to the nearest of 64 headings (5.625 degrees apart): a pass on
 /// the same heading sees the same cells; another aspect sees other speckle, as a real seabed does. Along track it
 /// is spaced L/3 (the overlap above is then met to within 0.003 on average over the pings' places), across
-/// track c tau / (2 cells_per_pulse).
+/// track c tau_res / (2 cells_per_pulse), tau_res the pulse's range resolution time (its length; 1/B for a chirp).
 /// Cells within a pulse window are summed by prefix sums for a rectangular pulse (cost per sample independent of
 /// the window), one by one otherwise. Samples with mean power but no seabed cell in their window (an object in
 /// the water column) get an independent Gaussian keyed by the ping's place and the sample.
@@ -102,11 +103,15 @@ public:
         out.assign(n, {0.0, 0.0});
         if (n == 0) return;
         const auto& table = sss::detail::half_normal_table();
-        const double c = ctx.c_mps, dt = ctx.dt_s, tau = ctx.pulse.length_s;
+        const double c = ctx.c_mps, dt = ctx.dt_s, tau = ctx.pulse.duration_s();
         const double H = std::max(double(ctx.altitude_m), 1e-3);
         const double L = p_.transducer_length_m;
         const double s_a = L / 3.0;
-        const double s_c = c * tau / (2.0 * p_.cells_per_pulse);
+        const double s_c = c * ctx.pulse.resolution_s() / (2.0 * p_.cells_per_pulse);
+        // A compressed chirp's window: its main lobe and 8 sidelobes each side (the rest holds < 1% of its energy).
+        const bool chirp = ctx.pulse.shape == pulse_shape::lfm;
+        const double lag_lo = chirp ? std::max(0.0, ctx.pulse.length_s - 8.0 / ctx.pulse.bandwidth_hz) : 0.0;
+        const double lag_hi = chirp ? std::min(tau, ctx.pulse.length_s + 8.0 / ctx.pulse.bandwidth_hz) : tau;
         // The lattice frame: the nearest of 64 headings. delta: the ping's heading from it.
         const double step = 2.0 * pi_v<double> / 64.0;
         const double yaw = double(ctx.pose.yaw_rad);
@@ -200,7 +205,7 @@ public:
             const double y = double(mean[k]);
             if (!(y > 0.0)) continue;
             const double t_k = (double(k) + 0.5) * dt;
-            const double r_hi = 0.5 * c * t_k, r_lo = std::max(0.0, 0.5 * c * (t_k - tau));
+            const double r_hi = std::max(0.0, 0.5 * c * (t_k - lag_lo)), r_lo = std::max(0.0, 0.5 * c * (t_k - lag_hi));
             const double g_hi = std::sqrt(std::max(0.0, r_hi * r_hi - H * H));
             const double g_lo = std::sqrt(std::max(0.0, r_lo * r_lo - H * H));
             const std::size_t m_lo = index_of(g_lo), m_hi = index_of(g_hi);
@@ -213,7 +218,7 @@ public:
                 } else {
                     for (std::size_t m = m_lo; m < m_hi; ++m) {
                         const double g = g0 + double(m) * dg;
-                        const double w = std::sqrt(ctx.pulse.power(t_k - 2.0 * std::sqrt(g * g + H * H) / c));
+                        const double w = ctx.pulse.amplitude(t_k - 2.0 * std::sqrt(g * g + H * H) / c);
                         z += w * b[m];
                         power += w * w;
                     }

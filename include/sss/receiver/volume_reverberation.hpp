@@ -9,7 +9,8 @@
 ///
 /// S_v the volume scattering strength (dB re 1 m^-1; typically -90 to -70 dB at 100 kHz in coastal water),
 /// Psi the equivalent two-way beam solid angle (sr), alpha the absorption (dB/m), c tau / 2 the pulse's
-/// range extent. Relative to the source level it is S_v Psi (c tau / 2) 10^(-2 alpha r / 10) / r^2.
+/// range extent (for a shaped or compressed pulse, tau is its envelope's energy int p dt with p's peak 1, as the
+/// time sampler convolves it). Relative to the source level it is S_v Psi (c tau / 2) 10^(-2 alpha r / 10) / r^2.
 
 #include <algorithm>
 #include <cmath>
