@@ -15,7 +15,9 @@
 #include "sss/scene/concept.hpp"
 #include "sss/scene/flat_seabed.hpp"
 
+#include "sss/scattering/by_material.hpp"
 #include "sss/scattering/concept.hpp"
+#include "sss/scattering/hard_target.hpp"
 #include "sss/scattering/jackson.hpp"
 #include "sss/scattering/lambertian.hpp"
 #include "sss/scattering/specular_bounce.hpp"
