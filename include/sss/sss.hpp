@@ -89,6 +89,7 @@
 #include "sss/seabed/random.hpp"
 #include "sss/seabed/raster.hpp"
 #include "sss/seabed/ripples.hpp"
+#include "sss/seabed/sediment_region.hpp"
 #include "sss/seabed/stamps.hpp"
 #include "sss/seabed/targets.hpp"
 
