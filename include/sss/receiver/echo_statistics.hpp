@@ -18,6 +18,7 @@
 #include <complex>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "sss/core/error.hpp"
@@ -39,7 +40,7 @@ struct echo_statistics_params {
 class echo_statistics {
 public:
     echo_statistics() : echo_statistics(echo_statistics_params{}) {}
-    explicit echo_statistics(const echo_statistics_params& p) : p_(p) {
+    explicit echo_statistics(echo_statistics_params p) : p_(std::move(p)) {
         if (p_.speckle) speckle_ = seabed_speckle(*p_.speckle, p_.seed);
         if (p_.noise) p_.noise->validate();
         if (p_.volume) p_.volume->validate();
