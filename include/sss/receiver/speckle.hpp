@@ -152,6 +152,32 @@ public:
         const auto points = static_cast<std::size_t>(std::max(0.0, std::ceil((g_max - g0) / dg))) + 1;
         const double j_lo = std::ceil((a_p - 0.5 * L * cd) / s_a - 0.5), j_hi = std::floor((a_p + 0.5 * L * cd) / s_a - 0.5);
         std::vector<std::complex<double>> b(points, {0.0, 0.0});
+        const auto index_of = [&](double g) { // first point index at or beyond ground range g
+            return static_cast<std::size_t>(std::clamp(std::ceil((g - g0) / dg), 0.0, double(points)));
+        };
+        // Ground range of the delays a sample's window holds: sample k sees scatterers at two-way times
+        // [t_k - lag_hi, t_k - lag_lo], t_k its centre.
+        const auto window = [&](std::size_t k, double& g_lo, double& g_hi, double& r_lo, double& r_hi) {
+            const double t_k = (double(k) + 0.5) * dt;
+            r_hi = std::max(0.0, 0.5 * c * (t_k - lag_lo));
+            r_lo = std::max(0.0, 0.5 * c * (t_k - lag_hi));
+            g_hi = std::sqrt(std::max(0.0, r_hi * r_hi - H * H));
+            g_lo = std::sqrt(std::max(0.0, r_lo * r_lo - H * H));
+        };
+        // Only the points some sample with echo power can see need their cells.
+        std::size_t m_begin = points, m_end = 0;
+        {
+            std::size_t k0 = 0, k1 = n;
+            while (k0 < n && !(double(mean[k0]) > 0.0)) ++k0;
+            while (k1 > k0 && !(double(mean[k1 - 1]) > 0.0)) --k1;
+            if (k0 < k1) {
+                double gl = 0, gh = 0, rl = 0, rh = 0;
+                window(k0, gl, gh, rl, rh);
+                m_begin = index_of(gl);
+                window(k1 - 1, gl, gh, rl, rh);
+                m_end = index_of(gh);
+            }
+        }
         double row_power = 0.0; // sum over rows of h^2
         for (double j = j_lo; j <= j_hi; j += 1.0) {
             const double u = ((j + 0.5) * s_a - a_p) / cd;
@@ -162,10 +188,10 @@ public:
             // its row's key (kept while the row index stays) and its column index.
             const double xa0 = (a_p + u * cd + g0 * along_per_g) / s_a, dxa = dg * along_per_g / s_a;
             const double xc0 = (c_p + u * cross_per_u + g0 * cross_per_g) / s_c, dxc = dg * cross_per_g / s_c;
-            std::int64_t row = sss::detail::floor_to_int(xa0);
+            std::int64_t row = sss::detail::floor_to_int(xa0 + double(m_begin) * dxa);
             std::uint64_t row_now = sss::detail::mix(base_now, sss::detail::key_word(row));
             std::uint64_t row_next = sss::detail::mix(base_next, sss::detail::key_word(row));
-            for (std::size_t m = 0; m < points; ++m) {
+            for (std::size_t m = m_begin; m < m_end; ++m) {
                 const double fm = double(m);
                 const std::int64_t cj = sss::detail::floor_to_int(xa0 + fm * dxa);
                 const std::int64_t ci = sss::detail::floor_to_int(xc0 + fm * dxc);
@@ -198,16 +224,12 @@ public:
         const bool textured = p_.k_shape > 0.0 || p_.scatterer_density_per_m2 > 0.0;
         std::int64_t last_pj = 0, last_pi = 0;
         double last_nu = -1.0, last_tex = 1.0;
-        const auto index_of = [&](double g) { // first point index at or beyond ground range g
-            return static_cast<std::size_t>(std::clamp(std::ceil((g - g0) / dg), 0.0, double(points)));
-        };
         for (std::size_t k = 0; k < n; ++k) {
             const double y = double(mean[k]);
             if (!(y > 0.0)) continue;
             const double t_k = (double(k) + 0.5) * dt;
-            const double r_hi = std::max(0.0, 0.5 * c * (t_k - lag_lo)), r_lo = std::max(0.0, 0.5 * c * (t_k - lag_hi));
-            const double g_hi = std::sqrt(std::max(0.0, r_hi * r_hi - H * H));
-            const double g_lo = std::sqrt(std::max(0.0, r_lo * r_lo - H * H));
+            double g_lo = 0, g_hi = 0, r_lo = 0, r_hi = 0;
+            window(k, g_lo, g_hi, r_lo, r_hi);
             const std::size_t m_lo = index_of(g_lo), m_hi = index_of(g_hi);
             std::complex<double> z{0.0, 0.0};
             double power = 0.0;
