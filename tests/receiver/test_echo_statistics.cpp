@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -156,4 +157,36 @@ TEST_CASE("volume reverberation follows SL - 40 log r - 2 alpha r + S_v + 10 log
         sum_abs_db += std::abs(err);
     }
     CHECK(sum_abs_db / bins < 0.5);
+}
+
+TEST_CASE("rendered over a flat seabed: <I^2>/<I>^2 = 2 (Rayleigh) and 2 (1 + 1/nu) (K, nu = 3) about the mean render") {
+    const flat seabed;
+    // Pings 1 m apart (twice the transducer's length): independent speckle from line to line.
+    const line_motion fast(sss::motion::straight_line_params<double>{.speed_mps = 10.0, .altitude_m = 10.0});
+    const plain_sim plain(lambert{}, straight{}, fan{}, fast);
+    const auto mean = plain.ping(seabed, 0).starboard; // the same in every ping over a flat seabed
+    const double peak = *std::max_element(mean.begin(), mean.end());
+    for (double nu : {0.0, 3.0}) {
+        const sss::echo_statistics_params params{.seed = 21, .speckle = sss::speckle_params{.k_shape = nu, .texture_patch_m = 0.05}};
+        const stat_sim sim(lambert{}, straight{}, fan{}, fast, sss::receiver_params{}, sss::ray_density{}, sss::echo_statistics(params));
+        const auto w = sim.render(seabed, 0, 150, 2);
+        double m1 = 0, m2 = 0;
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < w.pings; ++i)
+            for (std::size_t k = 0; k < w.samples; ++k) {
+                if (!(mean[k] > 1e-4 * peak)) continue;
+                for (double v : {w.at(i, w.samples + k), w.at(i, w.samples - 1 - k)}) {
+                    const double x = v / mean[k];
+                    m1 += x;
+                    m2 += x * x;
+                    ++count;
+                }
+            }
+        m1 /= double(count);
+        m2 /= double(count);
+        const double expected = nu > 0.0 ? 2.0 * (1.0 + 1.0 / nu) : 2.0;
+        MESSAGE("nu " << nu << ": <I/mean> " << m1 << ", <I^2>/<I>^2 " << m2 / (m1 * m1) << " (expected " << expected << ") over " << count << " samples");
+        CHECK(m1 == doctest::Approx(1.0).epsilon(0.02));
+        CHECK(m2 / (m1 * m1) == doctest::Approx(expected).epsilon(nu > 0.0 ? 0.05 : 0.03));
+    }
 }
