@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <mutex>
 #include <optional>
@@ -120,10 +121,19 @@ public:
         lines.dt_s = dt_;
         for (side sd : {side::port, side::starboard}) {
             sampler.clear();
-            accumulate(scene, p, sd, sampler);
             std::vector<T>& line = sd == side::port ? lines.port : lines.starboard;
-            sampler.render(line);
-            if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
+            if constexpr (stage_materials) {
+                std::vector<std::uint32_t> materials;
+                accumulate_with_materials(scene, p, sd, sampler, materials);
+                sampler.render(line);
+                line_context<T> ctx = line_context_for(scene, p, sd);
+                ctx.materials = materials;
+                stage_.process(line, ctx);
+            } else {
+                accumulate(scene, p, sd, sampler);
+                sampler.render(line);
+                if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
+            }
         }
         return lines;
     }
@@ -249,6 +259,8 @@ private:
     static constexpr bool bouncing = requires { S::specular_bounce_enabled; };
     /// True when a line stage is asked for.
     static constexpr bool has_stage = !std::is_same_v<Stage, no_line_stage>;
+    /// True when the line stage asks which material dominates each sample (LineStageWithMaterials).
+    static constexpr bool stage_materials = LineStageWithMaterials<Stage>;
 
     template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
         return line_context<T>{p, sd, dt_, c_ref_,
@@ -339,6 +351,27 @@ private:
 
     template <Scene Sc> void accumulate(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler) const {
         trace(scene, p, sd, [&](const tube_echo<T>& t) { sampler.add_span(t.t0_s, t.t1_s, t.power); });
+    }
+
+    /// accumulate, and the material of the strongest echo arriving in each sample (by the tube's mid time);
+    /// samples no echo arrives in take the material of the sample before (the pulse carries it on).
+    template <Scene Sc>
+    void accumulate_with_materials(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler,
+                                   std::vector<std::uint32_t>& materials) const {
+        materials.assign(samples_, 0);
+        std::vector<double> strongest(samples_, 0.0);
+        trace(scene, p, sd, [&](const tube_echo<T>& t) {
+            sampler.add_span(t.t0_s, t.t1_s, t.power);
+            const double k = 0.5 * (t.t0_s + t.t1_s) / dt_;
+            if (!(k >= 0.0) || !(k < double(samples_))) return;
+            const auto i = static_cast<std::size_t>(k);
+            if (t.power > strongest[i]) {
+                strongest[i] = t.power;
+                materials[i] = t.surface.material;
+            }
+        });
+        for (std::size_t k = 1; k < samples_; ++k)
+            if (!(strongest[k] > 0.0)) materials[k] = materials[k - 1];
     }
 
     S scattering_;

@@ -7,10 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <sss/receiver/echo_statistics.hpp>
+#include <sss/scene/cylinder.hpp>
 #include <sss/scene/flat_seabed.hpp>
+#include <sss/scene/object_set.hpp>
+#include <sss/scene/scene.hpp>
 #include <sss/simulator.hpp>
 
 namespace {
@@ -189,4 +193,36 @@ TEST_CASE("rendered over a flat seabed: <I^2>/<I>^2 = 2 (Rayleigh) and 2 (1 + 1/
         CHECK(m1 == doctest::Approx(1.0).epsilon(0.02));
         CHECK(m2 / (m1 * m1) == doctest::Approx(expected).epsilon(nu > 0.0 ? 0.05 : 0.03));
     }
+}
+
+namespace {
+
+// A stage that keeps the materials the simulator hands it and leaves the line alone.
+struct material_probe {
+    static constexpr bool wants_materials = true;
+    std::vector<std::uint32_t>* seen = nullptr;
+    template <class T> void process(std::vector<T>&, const sss::line_context<T>& ctx) const {
+        if (ctx.line_side == sss::side::starboard) seen->assign(ctx.materials.begin(), ctx.materials.end());
+    }
+};
+
+} // namespace
+
+TEST_CASE("a stage that asks is told each sample's dominant material, and the mean line is unchanged") {
+    using sss::scene::cylinder;
+    using sss::scene::object;
+    using sss::scene::object_set;
+    std::vector<object<double>> objs{object<double>({}, {cylinder<double>({25.0, -5.0, 0.5}, {25.0, 5.0, 0.5}, 0.5, {.material = 3, .object = 1})})};
+    const sss::scene::scene sc(flat(0.0, 1), object_set<double>(std::move(objs)));
+    std::vector<std::uint32_t> seen;
+    const sss::simulator<lambert, straight, fan, line_motion, material_probe> probed(
+        lambert{}, straight{}, fan{}, motion_at(10.0), sss::receiver_params{}, sss::ray_density{}, material_probe{&seen});
+    const plain_sim plain(lambert{}, straight{}, fan{}, motion_at(10.0));
+    const auto line = probed.ping(sc, 0).starboard;
+    CHECK(line == plain.ping(sc, 0).starboard);
+    REQUIRE(seen.size() == line.size());
+    // The cylinder's highlight (the peak beyond 20 m of range, sample 533) is material 3; the seabed before it 1.
+    const auto peak = static_cast<std::size_t>(std::max_element(line.begin() + 533, line.end()) - line.begin());
+    CHECK(seen[peak] == 3U);
+    CHECK(seen[peak - 100] == 1U);
 }

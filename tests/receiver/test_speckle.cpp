@@ -9,6 +9,7 @@
 #include <complex>
 #include <string>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <sss/core/constants.hpp>
@@ -202,4 +203,29 @@ TEST_CASE("survey time decorrelates speckle slowly: nearly the same after a tent
     // Field correlation cos(pi/2 x 0.1) = 0.988: intensity correlation 0.976.
     CHECK(correlation(now, soon) > 0.9);
     CHECK(std::abs(correlation(now, later)) < 0.05);
+}
+
+TEST_CASE("a K shape per material: each material's samples follow their own <I^2>/<I>^2") {
+    // Material 0 (the near half of the line) fully developed, material 1 (the far half) K with nu = 1.
+    const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5, .k_shape_by_material = {0.0, 1.0},
+                                                     .texture_patch_m = 0.05}, 31);
+    std::vector<std::uint32_t> materials(n, 0);
+    std::fill(materials.begin() + n / 2 + 100, materials.end(), 1U);
+    double m1[2] = {0, 0}, m2[2] = {0, 0}, count[2] = {0, 0};
+    for (std::size_t i = 0; i < 300; ++i) {
+        auto ctx = context(double(i), 1e-4);
+        ctx.materials = materials;
+        const auto I = intensities(sp, ctx, 0);
+        for (std::size_t k = 400; k < n; ++k) {
+            if (k > n / 2 && k < n / 2 + 200) continue; // leave the boundary's mixed windows out
+            const std::size_t m = materials[k];
+            m1[m] += I[k];
+            m2[m] += I[k] * I[k];
+            count[m] += 1.0;
+        }
+    }
+    const double ratio0 = m2[0] * count[0] / (m1[0] * m1[0]), ratio1 = m2[1] * count[1] / (m1[1] * m1[1]);
+    MESSAGE("material 0: " << ratio0 << " (2), material 1: " << ratio1 << " (4)");
+    CHECK(ratio0 == doctest::Approx(2.0).epsilon(0.03));
+    CHECK(ratio1 == doctest::Approx(4.0).epsilon(0.05));
 }

@@ -39,6 +39,9 @@ struct echo_statistics_params {
 
 class echo_statistics {
 public:
+    /// The simulator tells it which material dominates each sample (for a K shape per material).
+    static constexpr bool wants_materials = true;
+
     echo_statistics() : echo_statistics(echo_statistics_params{}) {}
     explicit echo_statistics(echo_statistics_params p) : p_(std::move(p)) {
         if (p_.speckle) speckle_ = seabed_speckle(*p_.speckle, p_.seed);

@@ -10,12 +10,15 @@
 ///   | expression                          | meaning                                                    |
 ///   |-------------------------------------|------------------------------------------------------------|
 ///   | `st.process(line, ctx)` (const)     | rewrite `line` (std::vector<T>&, sample k over [k dt, (k+1) dt)) |
+///   | `St::wants_materials` (optional)    | true: `ctx.materials` names each sample's dominant material  |
 ///
 /// A stage must give the same result for the same inputs whatever thread calls it (render runs pings in
 /// parallel): randomness is keyed by what it belongs to (the seabed, the ping's pose), never drawn from a
 /// generator's state.
 
 #include <concepts>
+#include <cstdint>
+#include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -35,6 +38,8 @@ template <Real T> struct line_context {
     double altitude_m = 0.0;      ///< towfish height above the seabed straight below it (m)
     sss::pulse pulse{};           ///< transmitted pulse
     double source_level_db = 0.0; ///< the render's source level reference (receiver_params::source_level_db)
+    std::span<const std::uint32_t> materials{}; ///< per sample, the material of its strongest echo: filled only
+                                                ///< for a stage that declares `wants_materials` (else empty)
 };
 
 /// A line stage (table above).
@@ -42,6 +47,11 @@ template <class St, class T>
 concept LineStage = Real<T> && requires(const St& st, std::vector<T>& line, const line_context<T>& ctx) {
     st.process(line, ctx);
 };
+
+/// A stage that asks the simulator which material's echo dominates each sample (`line_context::materials`), e.g.
+/// to give each material its own speckle statistics: it declares `static constexpr bool wants_materials = true`.
+template <class St>
+concept LineStageWithMaterials = requires { requires St::wants_materials; };
 
 /// The stage that does nothing, and is never called.
 struct no_line_stage {
@@ -52,6 +62,9 @@ struct no_line_stage {
 /// time-varied gain, as a receiver does.
 template <class... Stages> class line_chain {
 public:
+    /// Asks for the materials when any of its stages does.
+    static constexpr bool wants_materials = (LineStageWithMaterials<Stages> || ...);
+
     line_chain() = default;
     explicit line_chain(Stages... stages) : stages_(std::move(stages)...) {}
 

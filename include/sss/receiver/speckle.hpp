@@ -29,7 +29,8 @@
 /// The received intensity is mean_k tex_k |z_k|^2 / E|z_k|^2: its expectation is the ray tracer's mean power
 /// exactly. With a K shape nu, tex is a Gamma(nu) texture of unit mean attached to the seabed in square
 /// patches (Jakeman & Pusey, IEEE Trans. Antennas Propag. 24, 1976; Abraham & Lyons, IEEE J. Oceanic Eng. 27(4),
-/// 2002): intensity K-distributed with <I^2>/<I>^2 = 2 (1 + 1/nu). With a scatterer density the shape follows
+/// 2002): intensity K-distributed with <I^2>/<I>^2 = 2 (1 + 1/nu); nu may differ per material (the simulator tells
+/// a stage that asks which material's echo dominates each sample: coarse, patchy beds spikier than fine ones). With a scatterer density the shape follows
 /// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse).
 ///
 /// The lattice is world-fixed in a frame turned to the nearest of 64 headings (5.625 degrees apart): a pass on
@@ -45,6 +46,7 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "sss/core/constants.hpp"
@@ -57,6 +59,8 @@ namespace sss {
 struct speckle_params {
     double transducer_length_m = 0.5;        ///< along-track length L of the transducer (m), > 0
     double k_shape = 0.0;                    ///< K-distribution shape nu (> 0); 0: Rayleigh (nu infinite)
+    std::vector<double> k_shape_by_material{};///< nu per material id (0: Rayleigh; ids beyond: the last);
+                                              ///< empty: k_shape for every material
     double scatterer_density_per_m2 = 0.0;   ///< > 0: nu from the cell's area instead (scatterers per m^2)
     double along_beamwidth_rad = 0.0;        ///< along-track beam width for that area (rad); > 0 with a density
     double texture_patch_m = 1.0;            ///< side of the square seabed patches one texture value covers (m)
@@ -67,6 +71,8 @@ struct speckle_params {
     void validate() const {
         sss::detail::require_positive(transducer_length_m, "speckle.transducer_length_m");
         sss::detail::require_non_negative(k_shape, "speckle.k_shape");
+        for (std::size_t i = 0; i < k_shape_by_material.size(); ++i)
+            sss::detail::require_non_negative(k_shape_by_material[i], "speckle.k_shape_by_material[" + std::to_string(i) + "]");
         sss::detail::require_non_negative(scatterer_density_per_m2, "speckle.scatterer_density_per_m2");
         if (scatterer_density_per_m2 > 0.0)
             sss::detail::require_positive(along_beamwidth_rad, "speckle.along_beamwidth_rad");
@@ -221,7 +227,9 @@ public:
             b.push_back(acc);
         }
         const std::uint64_t texture_base = sss::detail::mix(sss::detail::mix(seed_, 0x7e4757eULL), heading_key);
-        const bool textured = p_.k_shape > 0.0 || p_.scatterer_density_per_m2 > 0.0;
+        const bool by_material = !p_.k_shape_by_material.empty() && ctx.materials.size() == n;
+        const bool textured = p_.k_shape > 0.0 || p_.scatterer_density_per_m2 > 0.0 ||
+                              std::any_of(p_.k_shape_by_material.begin(), p_.k_shape_by_material.end(), [](double v) { return v > 0.0; });
         std::int64_t last_pj = 0, last_pi = 0;
         double last_nu = -1.0, last_tex = 1.0;
         for (std::size_t k = 0; k < n; ++k) {
@@ -258,19 +266,23 @@ public:
             if (textured) {
                 const double g_mid = 0.5 * (g_lo + g_hi);
                 double nu = p_.k_shape;
+                if (by_material)
+                    nu = p_.k_shape_by_material[std::min<std::size_t>(ctx.materials[k], p_.k_shape_by_material.size() - 1)];
                 if (p_.scatterer_density_per_m2 > 0.0)
                     nu = std::max(1e-3, p_.scatterer_density_per_m2 * (0.5 * (r_lo + r_hi) * p_.along_beamwidth_rad) *
                                             std::max(g_hi - g_lo, s_c));
                 const auto pj = static_cast<std::int64_t>(std::floor((a_p + g_mid * along_per_g) / p_.texture_patch_m));
                 const auto pi = static_cast<std::int64_t>(std::floor((c_p + g_mid * cross_per_g) / p_.texture_patch_m));
-                if (nu != last_nu || pj != last_pj || pi != last_pi) {
+                if (!(nu > 0.0)) {
+                    last_nu = -1.0; // Rayleigh here: no texture
+                } else if (nu != last_nu || pj != last_pj || pi != last_pi) {
                     last_tex = sss::detail::gamma_unit_mean(
                         nu, sss::detail::mix(sss::detail::mix(texture_base, sss::detail::key_word(pj)), sss::detail::key_word(pi)));
                     last_nu = nu;
                     last_pj = pj;
                     last_pi = pi;
                 }
-                tex = last_tex;
+                tex = nu > 0.0 ? last_tex : 1.0;
             }
             out[k] = z * std::sqrt(y * tex / power);
         }
