@@ -122,18 +122,20 @@ public:
         for (side sd : {side::port, side::starboard}) {
             sampler.clear();
             std::vector<T>& line = sd == side::port ? lines.port : lines.starboard;
-            if constexpr (stage_materials) {
-                std::vector<std::uint32_t> materials;
-                accumulate_with_materials(scene, p, sd, sampler, materials);
-                sampler.render(line);
-                line_context<T> ctx = line_context_for(scene, p, sd);
-                ctx.materials = materials;
-                stage_.process(line, ctx);
-            } else {
-                accumulate(scene, p, sd, sampler);
-                sampler.render(line);
-                if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
+            if constexpr (LineStageWithMaterials<Stage>) {
+                if (stage_.needs_materials()) {
+                    std::vector<std::uint32_t> materials;
+                    accumulate_with_materials(scene, p, sd, sampler, materials);
+                    sampler.render(line);
+                    line_context<T> ctx = line_context_for(scene, p, sd);
+                    ctx.materials = materials;
+                    stage_.process(line, ctx);
+                    continue;
+                }
             }
+            accumulate(scene, p, sd, sampler);
+            sampler.render(line);
+            if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
         }
         return lines;
     }
@@ -259,8 +261,6 @@ private:
     static constexpr bool bouncing = requires { S::specular_bounce_enabled; };
     /// True when a line stage is asked for.
     static constexpr bool has_stage = !std::is_same_v<Stage, no_line_stage>;
-    /// True when the line stage asks which material dominates each sample (LineStageWithMaterials).
-    static constexpr bool stage_materials = LineStageWithMaterials<Stage>;
 
     template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
         return line_context<T>{p, sd, dt_, c_ref_,

@@ -199,7 +199,7 @@ namespace {
 
 // A stage that keeps the materials the simulator hands it and leaves the line alone.
 struct material_probe {
-    static constexpr bool wants_materials = true;
+    [[nodiscard]] bool needs_materials() const { return true; }
     std::vector<std::uint32_t>* seen = nullptr;
     template <class T> void process(std::vector<T>&, const sss::line_context<T>& ctx) const {
         if (ctx.line_side == sss::side::starboard) seen->assign(ctx.materials.begin(), ctx.materials.end());

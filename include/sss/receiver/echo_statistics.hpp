@@ -39,8 +39,6 @@ struct echo_statistics_params {
 
 class echo_statistics {
 public:
-    /// The simulator tells it which material dominates each sample (for a K shape per material).
-    static constexpr bool wants_materials = true;
 
     echo_statistics() : echo_statistics(echo_statistics_params{}) {}
     explicit echo_statistics(echo_statistics_params p) : p_(std::move(p)) {
@@ -50,6 +48,9 @@ public:
     }
 
     [[nodiscard]] const echo_statistics_params& params() const noexcept { return p_; }
+
+    /// True when the simulator must say which material dominates each sample (a K shape per material).
+    [[nodiscard]] bool needs_materials() const noexcept { return p_.speckle && !p_.speckle->k_shape_by_material.empty(); }
 
     /// Mean noise power per sample on the render's reference (0 without noise).
     [[nodiscard]] double noise_power_per_sample(double dt_s, double render_source_level_db) const {

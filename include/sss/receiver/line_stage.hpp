@@ -10,7 +10,7 @@
 ///   | expression                          | meaning                                                    |
 ///   |-------------------------------------|------------------------------------------------------------|
 ///   | `st.process(line, ctx)` (const)     | rewrite `line` (std::vector<T>&, sample k over [k dt, (k+1) dt)) |
-///   | `St::wants_materials` (optional)    | true: `ctx.materials` names each sample's dominant material  |
+///   | `st.needs_materials()` (optional)   | true: `ctx.materials` names each sample's dominant material  |
 ///
 /// A stage must give the same result for the same inputs whatever thread calls it (render runs pings in
 /// parallel): randomness is keyed by what it belongs to (the seabed, the ping's pose), never drawn from a
@@ -39,7 +39,7 @@ template <Real T> struct line_context {
     sss::pulse pulse{};           ///< transmitted pulse
     double source_level_db = 0.0; ///< the render's source level reference (receiver_params::source_level_db)
     std::span<const std::uint32_t> materials{}; ///< per sample, the material of its strongest echo: filled only
-                                                ///< for a stage that declares `wants_materials` (else empty)
+                                                ///< for a stage whose `needs_materials()` is true (else empty)
 };
 
 /// A line stage (table above).
@@ -48,10 +48,13 @@ concept LineStage = Real<T> && requires(const St& st, std::vector<T>& line, cons
     st.process(line, ctx);
 };
 
-/// A stage that asks the simulator which material's echo dominates each sample (`line_context::materials`), e.g.
-/// to give each material its own speckle statistics: it declares `static constexpr bool wants_materials = true`.
+/// A stage that may ask the simulator which material's echo dominates each sample (`line_context::materials`),
+/// e.g. to give each material its own speckle statistics: `needs_materials()` says whether it does (the
+/// bookkeeping costs a little per ray tube, so it is done only then).
 template <class St>
-concept LineStageWithMaterials = requires { requires St::wants_materials; };
+concept LineStageWithMaterials = requires(const St& st) {
+    { st.needs_materials() } -> std::convertible_to<bool>;
+};
 
 /// The stage that does nothing, and is never called.
 struct no_line_stage {
@@ -63,7 +66,9 @@ struct no_line_stage {
 template <class... Stages> class line_chain {
 public:
     /// Asks for the materials when any of its stages does.
-    static constexpr bool wants_materials = (LineStageWithMaterials<Stages> || ...);
+    [[nodiscard]] bool needs_materials() const {
+        return std::apply([](const Stages&... st) { return (needs(st) || ...); }, stages_);
+    }
 
     line_chain() = default;
     explicit line_chain(Stages... stages) : stages_(std::move(stages)...) {}
@@ -75,6 +80,11 @@ public:
     }
 
 private:
+    template <class St> [[nodiscard]] static bool needs(const St& st) {
+        if constexpr (LineStageWithMaterials<St>) return bool(st.needs_materials());
+        else return false;
+    }
+
     std::tuple<Stages...> stages_;
 };
 
