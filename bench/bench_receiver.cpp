@@ -88,7 +88,8 @@ void stage_alone(benchmark::State& state, const sss::echo_statistics_params& p) 
         const auto pose = sim.motion().pose_at(index++);
         for (sss::side sd : {sss::side::port, sss::side::starboard}) {
             std::vector<T> line = sd == sss::side::port ? mean.port : mean.starboard;
-            sim.stage().process(line, sss::line_context<T>{pose, sd, sim.dt_s(), 1500.0, 10.0, sim.receiver().pulse, 0.0});
+            sim.stage().process(line, sss::line_context<T>{.pose = pose, .line_side = sd, .dt_s = sim.dt_s(), .c_mps = 1500.0,
+                                                           .altitude_m = 10.0, .pulse = sim.receiver().pulse});
             benchmark::DoNotOptimize(line.data());
         }
     }

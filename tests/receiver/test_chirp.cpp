@@ -88,8 +88,9 @@ TEST_CASE("speckle under a chirp: adjacent samples correlate as the compressed p
     const std::vector<double> mean(4000, 1.0);
     std::vector<std::complex<double>> z;
     for (int i = 0; i < 40; ++i) {
-        const sss::line_context<double> ctx{sss::make_pose(0.0, sss::vec3<double>{0.0, double(i), 10.0}, 0.0, 0.0, 0.0),
-                                            sss::side::starboard, sample, 1500.0, 10.0, chirp, 0.0};
+        const sss::line_context<double> ctx{.pose = sss::make_pose(0.0, sss::vec3<double>{0.0, double(i), 10.0}, 0.0, 0.0, 0.0),
+                                            .line_side = sss::side::starboard, .dt_s = sample, .c_mps = 1500.0,
+                                            .altitude_m = 10.0, .pulse = chirp};
         sp.amplitudes(mean, ctx, z);
         for (std::size_t k = 2000; k + 1 < z.size(); ++k) { a.push_back(std::norm(z[k])); b.push_back(std::norm(z[k + 1])); }
     }

@@ -27,8 +27,8 @@ sss::line_context<double> context(double along_m, double tau_s, sss::pulse_shape
                                   sss::side sd = sss::side::starboard, double heading_deg = 0.0) {
     const double yaw = sss::deg_to_rad(heading_deg);
     const sss::vec3<double> pos{along_m * std::sin(yaw), along_m * std::cos(yaw), altitude};
-    return sss::line_context<double>{sss::make_pose(0.0, pos, 0.0, 0.0, yaw), sd, dt, c, altitude,
-                                     sss::pulse{tau_s, shape}, 0.0};
+    return sss::line_context<double>{.pose = sss::make_pose(0.0, pos, 0.0, 0.0, yaw), .line_side = sd, .dt_s = dt, .c_mps = c,
+                                     .altitude_m = altitude, .pulse = sss::pulse{.length_s = tau_s, .shape = shape}};
 }
 
 // Normalised intensities I / mean of one line over a homogeneous seabed (mean 1 everywhere), first sample kept.
