@@ -134,7 +134,7 @@ TEST_CASE("adjacent samples correlate as the pulse's |rho_a(dt)|^2: rectangular 
         const double tau = 4.0 * dt;
         // rho_a(dt) of the amplitude envelope sqrt(p): by quadrature.
         double num = 0, den = 0;
-        const sss::pulse p{tau, shape};
+        const sss::pulse p{.length_s = tau, .shape = shape};
         for (int i = 0; i < 100000; ++i) {
             const double t = (i + 0.5) * tau / 100000;
             num += std::sqrt(p.power(t) * p.power(t + dt));
