@@ -17,11 +17,14 @@
 /// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
 /// (receiver/time_sampler.hpp).
 /// The result is the mean received power in each time sample, relative to the source level reference.
+/// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
+/// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
 
 #include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <mutex>
 #include <optional>
@@ -39,6 +42,7 @@
 #include "sss/propagation/concept.hpp"
 #include "sss/propagation/straight.hpp"
 #include "sss/receiver/image.hpp"
+#include "sss/receiver/line_stage.hpp"
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
 #include "sss/sampling/launch_angles.hpp"
@@ -67,7 +71,7 @@ template <Real T> struct tube_echo {
 };
 
 template <Scattering S = scattering::lambertian<double>, Propagation P = propagation::straight<double>,
-          Beam B = beam::ideal_fan<double>, Motion M = motion::straight_line<double>>
+          Beam B = beam::ideal_fan<double>, Motion M = motion::straight_line<double>, class Stage = no_line_stage>
 class simulator {
 public:
     using value_type = typename S::value_type;
@@ -75,11 +79,12 @@ public:
     static_assert(std::is_same_v<T, typename P::value_type> && std::is_same_v<T, typename B::value_type> &&
                       std::is_same_v<T, typename M::value_type>,
                   "sss::simulator: all policies must share one scalar type");
+    static_assert(LineStage<Stage, T>, "sss::simulator: the line stage needs process(std::vector<T>&, const line_context<T>&) const");
 
     explicit simulator(S scattering = S{}, P propagation = P{}, B beam = B{}, M motion = M{},
-                       receiver_params receiver = {}, ray_density density = {})
+                       receiver_params receiver = {}, ray_density density = {}, Stage stage = Stage{})
         : scattering_(std::move(scattering)), propagation_(std::move(propagation)), beam_(std::move(beam)),
-          motion_(std::move(motion)), receiver_(receiver), density_(density) {
+          motion_(std::move(motion)), receiver_(receiver), density_(density), stage_(std::move(stage)) {
         receiver_.validate();
         sss::require(density_.along >= 1, "ray_density.along", "must be >= 1");
         sss::require(density_.along <= 4096, "ray_density.along", "must be <= 4096");
@@ -100,6 +105,7 @@ public:
     [[nodiscard]] const M& motion() const noexcept { return motion_; }
     [[nodiscard]] const receiver_params& receiver() const noexcept { return receiver_; }
     [[nodiscard]] const ray_density& density() const noexcept { return density_; }
+    [[nodiscard]] const Stage& stage() const noexcept { return stage_; }
     [[nodiscard]] std::size_t samples_per_line() const noexcept { return samples_; }
     [[nodiscard]] double dt_s() const noexcept { return dt_; }
 
@@ -116,8 +122,21 @@ public:
         lines.dt_s = dt_;
         for (side sd : {side::port, side::starboard}) {
             sampler.clear();
+            std::vector<T>& line = sd == side::port ? lines.port : lines.starboard;
+            if constexpr (LineStageWithMaterials<Stage>) {
+                if (stage_.needs_materials()) {
+                    std::vector<std::uint32_t> materials;
+                    accumulate_with_materials(scene, p, sd, sampler, materials);
+                    sampler.render(line);
+                    line_context<T> ctx = line_context_for(scene, p, sd);
+                    ctx.materials = materials;
+                    stage_.process(line, ctx);
+                    continue;
+                }
+            }
             accumulate(scene, p, sd, sampler);
-            sampler.render(sd == side::port ? lines.port : lines.starboard);
+            sampler.render(line);
+            if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
         }
         return lines;
     }
@@ -247,6 +266,14 @@ private:
         else
             return false;
     }();
+    /// True when a line stage is asked for.
+    static constexpr bool has_stage = !std::is_same_v<Stage, no_line_stage>;
+
+    template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
+        return line_context<T>{p, sd, dt_, c_ref_,
+                               double(p.position.z - scene.seabed_height_m(p.position.x, p.position.y)),
+                               receiver_.pulse, receiver_.source_level_db};
+    }
 
     struct ray_end {
         bool valid = false;
@@ -333,12 +360,34 @@ private:
         trace(scene, p, sd, [&](const tube_echo<T>& t) { sampler.add_span(t.t0_s, t.t1_s, t.power); });
     }
 
+    /// accumulate, and the material of the strongest echo arriving in each sample (by the tube's mid time);
+    /// samples no echo arrives in take the material of the sample before (the pulse carries it on).
+    template <Scene Sc>
+    void accumulate_with_materials(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler,
+                                   std::vector<std::uint32_t>& materials) const {
+        materials.assign(samples_, 0);
+        std::vector<double> strongest(samples_, 0.0);
+        trace(scene, p, sd, [&](const tube_echo<T>& t) {
+            sampler.add_span(t.t0_s, t.t1_s, t.power);
+            const double k = 0.5 * (t.t0_s + t.t1_s) / dt_;
+            if (!(k >= 0.0) || !(k < double(samples_))) return;
+            const auto i = static_cast<std::size_t>(k);
+            if (t.power > strongest[i]) {
+                strongest[i] = t.power;
+                materials[i] = t.surface.material;
+            }
+        });
+        for (std::size_t k = 1; k < samples_; ++k)
+            if (!(strongest[k] > 0.0)) materials[k] = materials[k - 1];
+    }
+
     S scattering_;
     P propagation_;
     B beam_;
     M motion_;
     receiver_params receiver_;
     ray_density density_;
+    [[no_unique_address]] Stage stage_;
     double c_ref_ = 1500.0;
     std::size_t samples_ = 0;
     double dt_ = 0.0;

@@ -35,10 +35,13 @@
 #include "sss/seabed/random.hpp"
 #include "sss/seabed/raster.hpp"
 #include "sss/seabed/ripples.hpp"
+#include "sss/seabed/sediment_region.hpp"
 #include "sss/seabed/stamps.hpp"
 #include "sss/seabed/targets.hpp"
 
+#include "sss/scattering/by_material.hpp"
 #include "sss/scattering/concept.hpp"
+#include "sss/scattering/hard_target.hpp"
 #include "sss/scattering/jackson.hpp"
 #include "sss/scattering/jackson_bistatic.hpp"
 #include "sss/scattering/jackson_table.hpp"
@@ -71,10 +74,18 @@
 
 #include "sss/sampling/launch_angles.hpp"
 
+#include "sss/receiver/echo_statistics.hpp"
+#include "sss/receiver/ground_range.hpp"
 #include "sss/receiver/image.hpp"
+#include "sss/receiver/line_stage.hpp"
+#include "sss/receiver/noise.hpp"
 #include "sss/receiver/pulse.hpp"
+#include "sss/receiver/quantise.hpp"
 #include "sss/receiver/receiver.hpp"
+#include "sss/receiver/speckle.hpp"
 #include "sss/receiver/time_sampler.hpp"
+#include "sss/receiver/tvg.hpp"
+#include "sss/receiver/volume_reverberation.hpp"
 
 #include "sss/io/geodetic.hpp"
 #include "sss/io/height_field_io.hpp"

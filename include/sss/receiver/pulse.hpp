@@ -1,13 +1,20 @@
 #pragma once
 /// \file
-/// The transmitted pulse's power envelope p(t), 0 <= t <= length, normalised to a peak of 1.
+/// The transmitted pulse's power envelope p(t), 0 <= t <= duration(), normalised to a peak of 1, as the receiver
+/// sees it (after matched filtering for a chirp).
 ///
 /// - rectangular: p = 1 (a CW burst; energy = length).
 /// - hann: amplitude sin^2(pi t / length), so p = sin^4(pi t / length) (energy = 3/8 length): a tapered burst.
+/// - lfm: a linear FM chirp of duration T = length and bandwidth B, compressed by its matched filter. The filter's
+///   output is the chirp's autocorrelation, of amplitude (Cook & Bernfeld, "Radar Signals", 1967, ch. 6)
+///       chi(s) = (1 - |s|/T) sinc(B s (1 - |s|/T)),  |s| <= T,  sinc(x) = sin(pi x) / (pi x),
+///   so p(t) = chi(t - T)^2 over [0, 2T]: a main lobe 2/B wide at its -4 dB points 1/B apart, a range resolution
+///   c / (2B) whatever T. Its peak comes T after the echo's arrival (the filter's delay, `peak_delay_s`).
 /// A point scatterer at two-way delay s returns power P p(t - s); the receiver sees the echo-power density
-/// convolved with p.
+/// convolved with p. `amplitude` is the signed envelope (chi for a chirp) that speckle's correlation follows.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "sss/core/constants.hpp"
@@ -15,36 +22,88 @@
 
 namespace sss {
 
-enum class pulse_shape : unsigned char { rectangular, hann };
+enum class pulse_shape : unsigned char { rectangular, hann, lfm };
 
 struct pulse {
     double length_s = 100e-6;                     ///< duration (s), > 0
     pulse_shape shape = pulse_shape::rectangular; ///< power envelope
+    double bandwidth_hz = 0.0;                    ///< chirp bandwidth B (Hz) for `lfm`, with B length >= 1
 
     void validate() const {
         sss::require_positive(length_s, "pulse.length_s");
         sss::require(length_s <= 1.0, "pulse.length_s", "must be <= 1 s");
+        if (shape == pulse_shape::lfm) {
+            sss::require_positive(bandwidth_hz, "pulse.bandwidth_hz");
+            sss::require(bandwidth_hz * length_s >= 1.0, "pulse.bandwidth_hz",
+                                 "times pulse.length_s must be >= 1 (a chirp's time-bandwidth product)");
+        }
     }
 
-    /// p(t): power envelope at time t after the start (s), 0 outside [0, length].
-    [[nodiscard]] double power(double t_s) const noexcept {
-        if (t_s < 0.0 || t_s > length_s) return 0.0;
+    /// Support of the envelope the receiver sees (s): the length, twice it for a compressed chirp.
+    [[nodiscard]] double duration_s() const noexcept { return shape == pulse_shape::lfm ? 2.0 * length_s : length_s; }
+
+    /// Delay from an echo's arrival to its envelope's peak (s): 0 for a burst (flat from its arrival), the
+    /// matched filter's delay T for a chirp. (A Hann burst peaks at length/2.)
+    [[nodiscard]] double peak_delay_s() const noexcept {
+        return shape == pulse_shape::lfm ? length_s : (shape == pulse_shape::hann ? 0.5 * length_s : 0.0);
+    }
+
+    /// Range resolution time (s): the length of a burst, 1/B for a compressed chirp.
+    [[nodiscard]] double resolution_s() const noexcept { return shape == pulse_shape::lfm ? 1.0 / bandwidth_hz : length_s; }
+
+    /// Signed amplitude envelope at time t after the echo's arrival: sqrt(p) for bursts, chi(t - T) for a chirp.
+    [[nodiscard]] double amplitude(double t_s) const noexcept {
+        if (t_s < 0.0 || t_s > duration_s()) return 0.0;
         if (shape == pulse_shape::rectangular) return 1.0;
-        const double s = std::sin(pi_v<double> * t_s / length_s);
-        return s * s * s * s;
+        if (shape == pulse_shape::hann) {
+            const double s = std::sin(pi_v<double> * t_s / length_s);
+            return s * s;
+        }
+        const double s = t_s - length_s;
+        const double taper = 1.0 - std::abs(s) / length_s;
+        const double x = pi_v<double> * bandwidth_hz * s * taper;
+        return std::abs(x) < 1e-9 ? taper : taper * std::sin(x) / x;
+    }
+
+    /// p(t): power envelope at time t after the start (s), 0 outside [0, duration].
+    [[nodiscard]] double power(double t_s) const noexcept {
+        if (t_s < 0.0 || t_s > duration_s()) return 0.0;
+        if (shape == pulse_shape::rectangular) return 1.0;
+        if (shape == pulse_shape::hann) {
+            const double s = std::sin(pi_v<double> * t_s / length_s);
+            return s * s * s * s;
+        }
+        const double a = amplitude(t_s);
+        return a * a;
     }
 
     /// Integral of p from 0 to t (s): the envelope's cumulative energy, constant beyond the pulse end.
     [[nodiscard]] double cumulative(double t_s) const noexcept {
-        const double t = std::clamp(t_s, 0.0, length_s);
+        const double t = std::clamp(t_s, 0.0, duration_s());
         if (shape == pulse_shape::rectangular) return t;
-        // int_0^t sin^4(a x) dx = 3t/8 - sin(2 a t)/(4 a) + sin(4 a t)/(32 a), a = pi/length.
-        const double a = pi_v<double> / length_s;
-        return 3.0 * t / 8.0 - std::sin(2.0 * a * t) / (4.0 * a) + std::sin(4.0 * a * t) / (32.0 * a);
+        if (shape == pulse_shape::hann) {
+            // int_0^t sin^4(a x) dx = 3t/8 - sin(2 a t)/(4 a) + sin(4 a t)/(32 a), a = pi/length.
+            const double a = pi_v<double> / length_s;
+            return 3.0 * t / 8.0 - std::sin(2.0 * a * t) / (4.0 * a) + std::sin(4.0 * a * t) / (32.0 * a);
+        }
+        // The compressed chirp: 8-point Gauss-Legendre over pieces a quarter of a sidelobe (1/(4B)) long.
+        static constexpr std::array<double, 8> gx{0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                                   0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                                                   0.8983332387068134, 0.9801449282487681};
+        static constexpr std::array<double, 8> gw{0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
+                                                   0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
+                                                   0.1111905172266872, 0.0506142681451881};
+        const double piece = 0.25 / bandwidth_hz;
+        double sum = 0.0;
+        for (double lo = 0.0; lo < t; lo += piece) {
+            const double hi = std::min(t, lo + piece);
+            for (std::size_t g = 0; g < gx.size(); ++g) sum += (hi - lo) * gw[g] * power(lo + (hi - lo) * gx[g]);
+        }
+        return sum;
     }
 
     /// Total envelope energy, int p dt (s).
-    [[nodiscard]] double energy_s() const noexcept { return cumulative(length_s); }
+    [[nodiscard]] double energy_s() const noexcept { return cumulative(duration_s()); }
 };
 
 } // namespace sss

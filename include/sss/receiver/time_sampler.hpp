@@ -115,7 +115,28 @@ public:
 
 private:
     void build_kernels(const pulse& p) {
-        const double tau = p.length_s / dt_; // pulse length in samples
+        const double tau = p.duration_s() / dt_; // pulse length in samples
+        // A compressed chirp's cumulative energy has no closed form: tabulated once, 64 steps per 1/B, and
+        // interpolated linearly (its derivative, the envelope, is smooth at that scale).
+        std::vector<double> table;
+        double step = 0.0;
+        if (p.shape == pulse_shape::lfm) {
+            step = 1.0 / (64.0 * p.bandwidth_hz);
+            const auto steps = static_cast<std::size_t>(std::ceil(p.duration_s() / step));
+            step = p.duration_s() / double(steps);
+            table.resize(steps + 1, 0.0);
+            for (std::size_t i = 0; i < steps; ++i) {
+                double piece = 0.0;
+                for (std::size_t g = 0; g < 4; ++g) piece += gl4_w[g] * p.power((double(i) + gl4_x[g]) * step);
+                table[i + 1] = table[i] + piece * step;
+            }
+        }
+        const auto cumulative = [&](double t) {
+            if (table.empty()) return p.cumulative(t);
+            const double x = std::clamp(t / step, 0.0, double(table.size() - 1));
+            const auto i = std::min(static_cast<std::size_t>(x), table.size() - 2);
+            return table[i] + (x - double(i)) * (table[i + 1] - table[i]);
+        };
         exact_ = std::abs(tau * double(sub_bins) - std::round(tau * double(sub_bins))) < 1e-9;
         const auto taps = static_cast<std::size_t>(std::ceil(tau)) + 2;
         k0_.assign(taps * sub_bins, 0.0);
@@ -134,7 +155,7 @@ private:
                 // v(x) = [C((d + 1 - x) dt) - C((d - x) dt)] / dt, C the envelope's cumulative energy, x = (r + u)/q.
                 auto v = [&](double u) {
                     const double x = (rr + u) / q;
-                    return (p.cumulative((dd + 1.0 - x) * dt_) - p.cumulative((dd - x) * dt_)) / dt_;
+                    return (cumulative((dd + 1.0 - x) * dt_) - cumulative((dd - x) * dt_)) / dt_;
                 };
                 // v has kinks where its arguments reach 0 or the pulse end: integrate piecewise between them.
                 std::array<double, 6> cuts{0.0, 1.0, q * dd - rr, q * (dd + 1.0) - rr, q * (dd - tau) - rr,
@@ -158,6 +179,10 @@ private:
             }
         }
     }
+
+    // 4-point Gauss-Legendre on [0, 1].
+    static constexpr std::array<double, 4> gl4_x{0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+    static constexpr std::array<double, 4> gl4_w{0.1739274225844904, 0.3260725774155096, 0.3260725774155096, 0.1739274225844904};
 
     std::size_t n_;
     double dt_;
