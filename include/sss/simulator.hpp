@@ -40,6 +40,7 @@
 #include "sss/receiver/image.hpp"
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
+#include "sss/sampling/detail/tube_refinement.hpp"
 #include "sss/sampling/launch_angles.hpp"
 #include "sss/scattering/concept.hpp"
 #include "sss/scattering/lambertian.hpp"
@@ -53,6 +54,12 @@ struct ray_density {
     std::size_t along = 8;         ///< along-track columns per side, at least (a beam may ask for more: Beam concept)
     std::size_t across = 0;        ///< rays per column; 0: `per_sample` rays per time sample of the column's span
     double per_sample = 1.0;       ///< rays per time sample when `across` is 0
+    /// Refine across track where adjacent rays are not neighbours on one surface (an occlusion, an object's edge,
+    /// the end of coverage): bisect the launch angle up to `refine_depth` times (0: never), and at most
+    /// `refine_rays` extra rays per column, so that each side of the edge keeps its energy up to it
+    /// (sampling/tube_refinement.hpp).
+    std::size_t refine_depth = 12;
+    std::size_t refine_rays = 64;  ///< extra rays per column at most, on top of half the column's own rays
 };
 
 /// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
@@ -194,15 +201,14 @@ public:
             ray_end prev, prev_bounce;
             bool in_run = false;
             std::size_t k = 0;
+            const column_context col{p, sd, along, t_max_one_way, column_sr,
+                                     density_.refine_depth == 0 ? 0 : rays.size() / 2 + density_.refine_rays};
+            std::size_t budget = col.max_extra;
             for (const T e : angles) {
                 if (std::isnan(e)) { in_run = false; continue; }
                 ray_end bounce;
                 const ray_end cur = echo(scene, sd, along, e, paths[k++], t_max_one_way, column_sr, bounce);
-                if (in_run) {
-                    const double de = std::abs(cur.e - prev.e);
-                    emit_tube(prev, cur, de, visit);
-                    if constexpr (bouncing) emit_tube(prev_bounce, bounce, de, visit);
-                }
+                if (in_run) refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
                 prev = cur;
                 prev_bounce = bounce;
                 in_run = true;
@@ -244,9 +250,62 @@ private:
     struct ray_end {
         bool valid = false;
         double e = 0.0, t = 0.0, power_per_rad = 0.0;
+        double stretch = 0.0; ///< dt/de the ray's facet predicts for its neighbours: t cot(angle to the facet) (s/rad)
         hit<T> surface{}; ///< where the echo comes from
         hit<T> via{};     ///< for a bounced path: where it bounced
     };
+
+    /// What refining one column needs to trace a ray between two others.
+    struct column_context {
+        const pose<T>& p;
+        side sd;
+        T along;
+        T t_max_one_way;
+        double column_sr;
+        std::size_t max_extra; ///< extra rays this column may trace
+    };
+
+    /// The energy between adjacent rays a and b (and their bounced paths): one tube where they are neighbours on
+    /// one surface; else, while the depth and the column's budget allow and the edge between them is not yet
+    /// located to `edge_tolerance` of a sample, the ray between them is traced and each half refined in turn.
+    /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step.
+    template <Scene Sc, class Visitor>
+    void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
+                const ray_end& b_bounce, std::size_t depth, std::size_t& budget, Visitor& visit) const {
+        const double de = std::abs(b.e - a.e);
+        const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
+                                                          2.0 * double(col.t_max_one_way));
+        if (v == detail::tube_verdict::continuous) {
+            emit_tube(a, b, de, visit);
+            if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
+            return;
+        }
+        const double mid = 0.5 * (a.e + b.e);
+        const T e_mid = static_cast<T>(mid);
+        const bool can_split = v == detail::tube_verdict::split && depth < density_.refine_depth && budget > 0 &&
+                               double(e_mid) != a.e && double(e_mid) != b.e;
+        if (!can_split) {
+            if (depth == 0 && v == detail::tube_verdict::split) emit_tube(a, b, de, visit); // not refined: as before
+            else emit_ends(a, b, de, visit);                                                  // a located edge
+            if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
+            return;
+        }
+        --budget;
+        ray_end m_bounce;
+        const ray_end m = shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce);
+        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit);
+        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit);
+    }
+
+    [[nodiscard]] static detail::tube_end as_tube_end(const ray_end& r) noexcept {
+        return {r.valid, r.t, r.stretch, r.surface.object, r.surface.material};
+    }
+
+    /// Two rays on either side of an edge: each keeps its half of the step as a point.
+    template <class Visitor> static void emit_ends(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
+        if (a.valid) visit(tube_echo<T>{a.t, a.t, 0.5 * a.power_per_rad * de, a.surface});
+        if (b.valid) visit(tube_echo<T>{b.t, b.t, 0.5 * b.power_per_rad * de, b.surface});
+    }
 
     /// The energy between two adjacent rays: a tube spread over their times when both ends meet the same surface
     /// (and bounced on the same surface), else each end's half as a point.
@@ -288,6 +347,7 @@ private:
         r.valid = true;
         r.t = 2.0 * double(traced->time_s);
         r.power_per_rad = w * sigma * loss / double(sin_facet);
+        r.stretch = detail::time_stretch(r.t, double(sin_facet));
         r.surface = h;
         if constexpr (bouncing) bounce_leg(scene, *traced, graze, t_max_one_way, w, bounce);
         return r;
