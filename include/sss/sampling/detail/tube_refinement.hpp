@@ -11,6 +11,9 @@
 /// the next lands beyond the shadow) or that they met different parts of the scene. Such a pair is split by the
 /// ray between them, recursively, until the side with the smaller prediction spans less than 1/16 of a sample:
 /// the edge is then located, and each ray keeps its half of the tiny step as a point.
+/// On one surface, a pair whose echo per radian (beam pattern aside) differs by more than a factor of two
+/// (facets of a rough seabed facing the sonar differently) is split too, down to tubes of a sub-bin of the time
+/// sampler, so that the trapezoid over depression resolves the relief's shading.
 /// A pair whose valid ray's surface would carry on beyond the end of the line (the far edge of coverage) is left
 /// as it is: nothing the receiver records lies between them.
 
@@ -25,6 +28,7 @@ struct tube_end {
     bool valid = false;
     double t_s = 0.0;          ///< two-way time (s)
     double stretch = 0.0;      ///< predicted dt/de of its neighbours (s/rad), see time_stretch
+    double gain = 0.0;         ///< what the scene gives the echo per radian (scattering x loss / sin theta), beam aside
     std::uint32_t object = 0;  ///< object id of the surface it met
     std::uint32_t material = 0;
 };
@@ -32,7 +36,9 @@ struct tube_end {
 enum class tube_verdict : unsigned char {
     continuous, ///< one tube (or, with an end missing, as a tube would be emitted)
     split,      ///< an edge between them not yet located: trace the ray between them
-    located     ///< an edge between them located to a small fraction of a sample: each end keeps its half
+    located,    ///< an edge between them located to a small fraction of a sample: each end keeps its half
+    coarse      ///< one surface, but its echo changes too much between them for a trapezoid: trace the ray between
+                ///< them if the depth and budget allow, else one tube
 };
 
 /// dt/de = t cot theta (s/rad): two-way time `t_s` (s), sin of the angle between ray and facet `sin_facet`.
@@ -47,6 +53,8 @@ enum class tube_verdict : unsigned char {
     constexpr double gap_ratio = 3.0;        // a time gap this many times the prediction is an edge
     const double gap_floor = 0.25 * dt_s;    // a gap below a quarter sample never is
     const double located = dt_s / 16.0;      // an edge is located when its sides span less than this
+    constexpr double gain_ratio = 2.0;       // a tube whose ends' gains differ more is refined
+    const double fine = dt_s / 8.0;          // down to tubes this short (a sub-bin of the time sampler)
     if (!a.valid && !b.valid) return tube_verdict::continuous;
     if (a.valid != b.valid) {
         const tube_end& v = a.valid ? a : b;
@@ -57,7 +65,12 @@ enum class tube_verdict : unsigned char {
     const double predicted = std::min(a.stretch, b.stretch) * de;
     if (a.object != b.object || a.material != b.material)
         return gap <= located || predicted <= located ? tube_verdict::located : tube_verdict::split;
-    if (gap <= gap_floor || gap <= gap_ratio * predicted) return tube_verdict::continuous;
+    if (gap <= gap_floor || gap <= gap_ratio * predicted) {
+        // Facets of a rough surface: the trapezoid over depression is good while the scene's gain changes by
+        // less than gain_ratio between the rays, or once the tube spans less than a sub-bin of the sampler.
+        const double lo = std::min(a.gain, b.gain), hi = std::max(a.gain, b.gain);
+        return hi > gain_ratio * lo && gap > fine ? tube_verdict::coarse : tube_verdict::continuous;
+    }
     return predicted <= located ? tube_verdict::located : tube_verdict::split;
 }
 
