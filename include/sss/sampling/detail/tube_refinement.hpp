@@ -53,7 +53,7 @@ enum class tube_verdict : unsigned char {
     constexpr double gap_ratio = 3.0;        // a time gap this many times the prediction is an edge
     const double gap_floor = 0.25 * dt_s;    // a gap below a quarter sample never is
     const double located = dt_s / 16.0;      // an edge is located when its sides span less than this
-    constexpr double gain_ratio = 2.0;       // a tube whose ends' gains differ more is refined
+    constexpr double gain_ratio = 1.25;      // a tube whose ends' gains differ more is refined
     const double fine = dt_s / 8.0;          // down to tubes this short (a sub-bin of the time sampler)
     if (!a.valid && !b.valid) return tube_verdict::continuous;
     if (a.valid != b.valid) {
