@@ -198,14 +198,6 @@ public:
             }
             return;
         }
-        std::vector<std::vector<tube_echo<T>>> echoes(n_along);
-        std::vector<std::vector<double>> edges(n_along);
-        for (std::size_t j = 0; j < n_along; ++j) {
-            const auto [lo, hi] = bounds(j);
-            auto keep = [&e = echoes[j]](const tube_echo<T>& t) { e.push_back(t); };
-            trace_column(scene, f, lo, hi, scratch, &edges[j], keep);
-            std::sort(edges[j].begin(), edges[j].end());
-        }
         // Two columns agree when every edge of each lies within a sample of an edge of the other.
         const double tolerance_s = dt_;
         auto covered = [&](const std::vector<double>& x, const std::vector<double>& y) {
@@ -218,10 +210,28 @@ public:
         auto differ = [&](const std::vector<double>& x, const std::vector<double>& y) {
             return !covered(x, y) || !covered(y, x);
         };
+        // A column's echoes wait until the next column is traced (two buffers, used in turn); the buffers stay
+        // with the thread, so that a ping allocates (and faults in) nothing after the first.
+        thread_local std::vector<tube_echo<T>> waiting[2];
+        thread_local std::vector<double> edges[3]; // of columns j - 1, j, j + 1 (in turn)
+        auto trace_into = [&](std::size_t j) {
+            std::vector<tube_echo<T>>& w = waiting[j % 2];
+            std::vector<double>& e = edges[j % 3];
+            w.clear();
+            e.clear();
+            const auto [lo, hi] = bounds(j);
+            auto keep = [&w](const tube_echo<T>& t) { w.push_back(t); };
+            trace_column(scene, f, lo, hi, scratch, &e, keep);
+            std::sort(e.begin(), e.end());
+        };
+        trace_into(0);
         for (std::size_t j = 0; j < n_along; ++j) {
-            const bool split = (j > 0 && differ(edges[j], edges[j - 1])) || (j + 1 < n_along && differ(edges[j], edges[j + 1]));
+            if (j + 1 < n_along) trace_into(j + 1);
+            const std::vector<double>& here = edges[j % 3];
+            const bool split = (j > 0 && differ(here, edges[(j + 2) % 3])) ||
+                               (j + 1 < n_along && differ(here, edges[(j + 1) % 3]));
             if (!split) {
-                for (const tube_echo<T>& t : echoes[j]) visit(t);
+                for (const tube_echo<T>& t : waiting[j % 2]) visit(t);
                 continue;
             }
             const auto [lo, hi] = bounds(j);
