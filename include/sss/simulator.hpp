@@ -15,7 +15,12 @@
 /// spread over the facet by 1/sin of the angle between ray and facet). S_back is the propagation's `spreading`. Adjacent rays on the same surface form a tube whose
 /// energy, integrated by the trapezoid rule over depression, is spread evenly over the two-way times between
 /// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
-/// (receiver/time_sampler.hpp).
+/// (receiver/time_sampler.hpp). Where two adjacent rays are not neighbours on one surface (an occlusion, an
+/// object's silhouette) or the surface's echo changes too fast between them (rough facets), the launch angle
+/// between them is bisected until the edge is located to 1/16 of a sample (sampling/detail/tube_refinement.hpp):
+/// each side of an edge then keeps its energy up to it, and shadows stay empty. Columns whose objects' edges
+/// disagree with a neighbour's are traced again as narrower columns (ray_density.along_split). On an open flat
+/// seabed nothing is refined and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 
 #include <algorithm>
