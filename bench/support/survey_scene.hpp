@@ -41,6 +41,7 @@ template <class T> struct survey_params {
     double track_m = 200.0;        ///< length of track the targets are spread along (m)
     double target_band_m = 90.0;   ///< targets lie between 5 m and this far from the track (m)
     double frequency_hz = 100e3;   ///< sonar frequency: array, absorption and Jackson scattering (Hz)
+    double relief_strength = 400.0; ///< the fractal's spectral strength in units of medium sand's (w2 = 0.004446 cm^4)
     std::uint64_t seed = 11;       ///< seabed and target positions
 };
 
@@ -56,12 +57,12 @@ template <class T> struct survey {
 };
 
 /// Fractal relief (Jackson medium sand roughness spectrum, w2 = 0.004446 cm^4, gamma = 3.25, outer scale 50 m,
-/// scaled up 400 times in strength for visible relief) plus ripples of 0.8 m (0.1 m high, crests 30 deg from
+/// its strength scaled by relief_strength for visible relief) plus ripples of 0.8 m (0.1 m high, crests 30 deg from
 /// east) and 0.6 m (0.04 m high, crests 110 deg from east).
 template <class T> sss::scene::height_field<T> survey_seabed(const survey_params<T>& p) {
     const auto n = static_cast<std::size_t>(std::lround(p.size_m / p.cell_m));
     sss::seabed::fractal_params<T> f;
-    f.spectrum = sss::seabed::jackson_spectrum<T>(T(0.004446 * 400.0), T(3.25), T(50));
+    f.spectrum = sss::seabed::jackson_spectrum<T>(T(0.004446 * p.relief_strength), T(3.25), T(50));
     auto h = sss::seabed::fractal_surface<T>(n, n, T(p.cell_m), f, p.seed);
     sss::seabed::add_ripples(h, sss::seabed::ripple_params<T>{.wavelength_m = T(0.8), .height_m = T(0.1),
                                                               .crest_direction_rad = T(30 * std::numbers::pi / 180)},
