@@ -15,7 +15,12 @@
 /// spread over the facet by 1/sin of the angle between ray and facet). S_back is the propagation's `spreading`. Adjacent rays on the same surface form a tube whose
 /// energy, integrated by the trapezoid rule over depression, is spread evenly over the two-way times between
 /// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
-/// (receiver/time_sampler.hpp).
+/// (receiver/time_sampler.hpp). Where two adjacent rays are not neighbours on one surface (an occlusion, an
+/// object's silhouette) or the surface's echo changes too fast between them (rough facets), the launch angle
+/// between them is bisected until the edge is located to 1/16 of a sample (sampling/detail/tube_refinement.hpp):
+/// each side of an edge then keeps its energy up to it, and shadows stay empty. Columns whose objects' edges
+/// disagree with a neighbour's are traced again as narrower columns (ray_density.along_split). On an open flat
+/// seabed nothing is refined and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
 /// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
@@ -31,6 +36,7 @@
 #include <span>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "sss/beam/concept.hpp"
@@ -45,6 +51,7 @@
 #include "sss/receiver/line_stage.hpp"
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
+#include "sss/sampling/detail/tube_refinement.hpp"
 #include "sss/sampling/launch_angles.hpp"
 #include "sss/scattering/concept.hpp"
 #include "sss/scattering/lambertian.hpp"
@@ -58,6 +65,15 @@ struct ray_density {
     std::size_t along = 8;         ///< along-track columns per side, at least (a beam may ask for more: Beam concept)
     std::size_t across = 0;        ///< rays per column; 0: `per_sample` rays per time sample of the column's span
     double per_sample = 1.0;       ///< rays per time sample when `across` is 0
+    /// Refine across track where adjacent rays are not neighbours on one surface (an occlusion, an object's edge,
+    /// the end of coverage): bisect the launch angle up to `refine_depth` times (0: never), and at most
+    /// `refine_rays` extra rays per column, so that each side of the edge keeps its energy up to it
+    /// (sampling/tube_refinement.hpp).
+    std::size_t refine_depth = 12;
+    std::size_t refine_rays = 64;  ///< extra rays per column at most, on top of half the column's own rays
+    /// A column whose located edges differ from a neighbour's (an edge crossing the beam obliquely) is traced
+    /// again as this many narrower columns (1: never).
+    std::size_t along_split = 4;
 };
 
 /// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
@@ -177,72 +193,76 @@ public:
     }
 
     /// Traces every ray of one side of one ping and calls `visit(const tube_echo<T>&)` for each piece of echo.
+    /// With refinement on, a column whose located edges (sampling/detail/tube_refinement.hpp) between surfaces
+    /// (an object's silhouette) are not all within a sample of a neighbour's (an edge or crest crossing the beam obliquely) is traced again as
+    /// `along_split` narrower columns that share its solid angle exactly, and their echoes replace its own.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
         const double t_max_s = double(samples_) * dt_;
+        trace_frame f{p, sd, ext, T{}, T{}, T{}, T{}, {}};
         // Trace slightly past the line's end so the ray placed exactly at the last range is not lost to rounding;
         // the sampler drops whatever falls beyond the line.
-        const T t_max_one_way = static_cast<T>(0.5 * t_max_s * (1.0 + 1e-5));
-        const T max_range_m = static_cast<T>(0.5 * t_max_s * c_ref_);
-        const T altitude = p.position.z - scene.seabed_height_m(p.position.x, p.position.y);
-        const T clearance = p.position.z - scene.top_m();
-        column_density cd;
-        if (density_.across != 0) cd.rays = density_.across;
-        else cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
+        f.t_max_one_way = static_cast<T>(0.5 * t_max_s * (1.0 + 1e-5));
+        f.max_range_m = static_cast<T>(0.5 * t_max_s * c_ref_);
+        f.altitude = p.position.z - scene.seabed_height_m(p.position.x, p.position.y);
+        f.clearance = p.position.z - scene.top_m();
+        if (density_.across != 0) f.cd.rays = density_.across;
+        else f.cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
         const std::size_t n_along = along_columns(ext, sd);
         const double a0 = ext.along_min_rad, a1 = ext.along_max_rad;
-        std::vector<T> angles;
-        std::vector<ray<T>> rays;
-        std::vector<std::optional<path<T>>> paths;
+        auto bounds = [&](std::size_t j) {
+            return std::pair<double, double>{a0 + (a1 - a0) * double(j) / double(n_along),
+                                             a0 + (a1 - a0) * double(j + 1) / double(n_along)};
+        };
+        column_scratch scratch;
+        if (density_.refine_depth == 0 || density_.along_split <= 1 || n_along < 2) {
+            for (std::size_t j = 0; j < n_along; ++j) {
+                const auto [lo, hi] = bounds(j);
+                trace_column(scene, f, lo, hi, scratch, nullptr, visit);
+            }
+            return;
+        }
+        // Two columns agree when every edge of each lies within a sample of an edge of the other.
+        const double tolerance_s = dt_;
+        auto covered = [&](const std::vector<double>& x, const std::vector<double>& y) {
+            for (const double t : x) {
+                const auto it = std::lower_bound(y.begin(), y.end(), t - tolerance_s);
+                if (it == y.end() || *it > t + tolerance_s) return false;
+            }
+            return true;
+        };
+        auto differ = [&](const std::vector<double>& x, const std::vector<double>& y) {
+            return !covered(x, y) || !covered(y, x);
+        };
+        // A column's echoes wait until the next column is traced (two buffers, used in turn); the buffers stay
+        // with the thread, so that a ping allocates (and faults in) nothing after the first.
+        thread_local std::vector<tube_echo<T>> waiting[2];
+        thread_local std::vector<double> edges[3]; // of columns j - 1, j, j + 1 (in turn)
+        auto trace_into = [&](std::size_t j) {
+            std::vector<tube_echo<T>>& w = waiting[j % 2];
+            std::vector<double>& e = edges[j % 3];
+            w.clear();
+            e.clear();
+            const auto [lo, hi] = bounds(j);
+            auto keep = [&w](const tube_echo<T>& t) { w.push_back(t); };
+            trace_column(scene, f, lo, hi, scratch, &e, keep);
+            std::sort(e.begin(), e.end());
+        };
+        trace_into(0);
         for (std::size_t j = 0; j < n_along; ++j) {
-            const double lo = a0 + (a1 - a0) * double(j) / double(n_along);
-            const double hi = a0 + (a1 - a0) * double(j + 1) / double(n_along);
-            const T along = static_cast<T>(0.5 * (lo + hi));
-            // Solid angle per unit depression of the column: int cos(a) da over the column.
-            const double column_sr = std::sin(hi) - std::sin(lo);
-            depression_angles<T>(angles, sd, along, ext.depression_min_rad, ext.depression_max_rad, p.body_to_world,
-                                 altitude, clearance, max_range_m, cd);
-            // The column's rays, traced together (sss::trace_all: a propagation and scene that share work among
-            // the rays of a column do so; others go ray by ray).
-            rays.clear();
-            for (const T e : angles)
-                if (!std::isnan(e)) rays.push_back(ray<T>{p.position, p.to_world(beam_direction(sd, along, e))});
-            paths.resize(rays.size());
-            trace_all(propagation_, std::span<const ray<T>>(rays), scene, t_max_one_way,
-                      std::span<std::optional<path<T>>>(paths));
-            ray_end prev, prev_bounce;
-            bool in_run = false;
-            std::size_t k = 0;
-            for (const T e : angles) {
-                if (std::isnan(e)) { in_run = false; continue; }
-                ray_end bounce;
-                const ray_end cur = echo(scene, sd, along, e, paths[k++], t_max_one_way, column_sr, bounce);
-                if (in_run) {
-                    const double de = std::abs(cur.e - prev.e);
-                    emit_tube(prev, cur, de, visit);
-                    if constexpr (bouncing) emit_tube(prev_bounce, bounce, de, visit);
-                }
-                prev = cur;
-                prev_bounce = bounce;
-                in_run = true;
+            if (j + 1 < n_along) trace_into(j + 1);
+            const std::vector<double>& here = edges[j % 3];
+            const bool split = (j > 0 && differ(here, edges[(j + 2) % 3])) ||
+                               (j + 1 < n_along && differ(here, edges[(j + 1) % 3]));
+            if (!split) {
+                for (const tube_echo<T>& t : waiting[j % 2]) visit(t);
+                continue;
             }
-            // The spacing assumed straight rays to a flat seabed; bent rays (or a scene rising towards the far end)
-            // may still return in time beyond the last angle. Continue at the last angular step while they do.
-            if (in_run && prev.valid && angles.size() >= 2 && !std::isnan(angles[angles.size() - 2])) {
-                const double step = double(angles[angles.size() - 2]) - prev.e;
-                for (std::size_t extra = 0; step > 0.0 && extra < angles.size(); ++extra) {
-                    const double e = prev.e - step;
-                    if (e < double(ext.depression_min_rad)) break;
-                    ray_end bounce;
-                    const ray_end cur = shoot(scene, p, sd, along, static_cast<T>(e), t_max_one_way, column_sr, bounce);
-                    emit_tube(prev, cur, step, visit);
-                    if constexpr (bouncing) emit_tube(prev_bounce, bounce, step, visit);
-                    if (!cur.valid && !bounce.valid) break;
-                    prev = cur;
-                    prev_bounce = bounce;
-                }
-            }
+            const auto [lo, hi] = bounds(j);
+            for (std::size_t i = 0; i < density_.along_split; ++i)
+                trace_column(scene, f, lo + (hi - lo) * double(i) / double(density_.along_split),
+                             lo + (hi - lo) * double(i + 1) / double(density_.along_split), scratch, nullptr, visit);
         }
     }
 
@@ -278,9 +298,142 @@ private:
     struct ray_end {
         bool valid = false;
         double e = 0.0, t = 0.0, power_per_rad = 0.0;
+        double stretch = 0.0; ///< dt/de the ray's facet predicts for its neighbours: t cot(angle to the facet) (s/rad)
+        double gain = 0.0;    ///< sigma x loss / sin(angle to the facet): the echo per radian, beam pattern aside
         hit<T> surface{}; ///< where the echo comes from
         hit<T> via{};     ///< for a bounced path: where it bounced
     };
+
+    /// What every column of one side of one ping shares.
+    struct trace_frame {
+        const pose<T>& p;
+        side sd;
+        beam_extent<T> ext;
+        T t_max_one_way, max_range_m, altitude, clearance;
+        column_density cd;
+    };
+
+    /// Buffers reused from column to column.
+    struct column_scratch {
+        std::vector<T> angles;
+        std::vector<ray<T>> rays;
+        std::vector<std::optional<path<T>>> paths;
+    };
+
+    /// Traces the column between along-track angles lo and hi (rad) and visits its echoes; the two-way times of
+    /// the edges its refinement located go to `edges` when given.
+    template <Scene Sc, class Visitor>
+    void trace_column(const Sc& scene, const trace_frame& f, double lo, double hi, column_scratch& s,
+                      std::vector<double>* edges, Visitor& visit) const {
+        const pose<T>& p = f.p;
+        const side sd = f.sd;
+        const T along = static_cast<T>(0.5 * (lo + hi));
+        // Solid angle per unit depression of the column: int cos(a) da over the column.
+        const double column_sr = std::sin(hi) - std::sin(lo);
+        std::vector<T>& angles = s.angles;
+        depression_angles<T>(angles, sd, along, f.ext.depression_min_rad, f.ext.depression_max_rad, p.body_to_world,
+                             f.altitude, f.clearance, f.max_range_m, f.cd);
+        // The column's rays, traced together (sss::trace_all: a propagation and scene that share work among
+        // the rays of a column do so; others go ray by ray).
+        s.rays.clear();
+        for (const T e : angles)
+            if (!std::isnan(e)) s.rays.push_back(ray<T>{p.position, p.to_world(beam_direction(sd, along, e))});
+        s.paths.resize(s.rays.size());
+        trace_all(propagation_, std::span<const ray<T>>(s.rays), scene, f.t_max_one_way,
+                  std::span<std::optional<path<T>>>(s.paths));
+        ray_end prev, prev_bounce;
+        bool in_run = false;
+        std::size_t k = 0;
+        const column_context col{p, sd, along, f.t_max_one_way, column_sr,
+                                 density_.refine_depth == 0 ? 0 : s.rays.size() / 2 + density_.refine_rays, edges};
+        std::size_t budget = col.max_extra;
+        for (const T e : angles) {
+            if (std::isnan(e)) { in_run = false; continue; }
+            ray_end bounce;
+            const ray_end cur = echo(scene, sd, along, e, s.paths[k++], f.t_max_one_way, column_sr, bounce);
+            if (in_run) refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+            prev = cur;
+            prev_bounce = bounce;
+            in_run = true;
+        }
+        // The spacing assumed straight rays to a flat seabed; bent rays (or a scene rising towards the far end)
+        // may still return in time beyond the last angle. Continue at the last angular step while they do.
+        if (in_run && prev.valid && angles.size() >= 2 && !std::isnan(angles[angles.size() - 2])) {
+            const double step = double(angles[angles.size() - 2]) - prev.e;
+            for (std::size_t extra = 0; step > 0.0 && extra < angles.size(); ++extra) {
+                const double e = prev.e - step;
+                if (e < double(f.ext.depression_min_rad)) break;
+                ray_end bounce;
+                const ray_end cur = shoot(scene, p, sd, along, static_cast<T>(e), f.t_max_one_way, column_sr, bounce);
+                emit_tube(prev, cur, step, visit);
+                if constexpr (bouncing) emit_tube(prev_bounce, bounce, step, visit);
+                if (!cur.valid && !bounce.valid) break;
+                prev = cur;
+                prev_bounce = bounce;
+            }
+        }
+    }
+
+    /// What refining one column needs to trace a ray between two others.
+    struct column_context {
+        const pose<T>& p;
+        side sd;
+        T along;
+        T t_max_one_way;
+        double column_sr;
+        std::size_t max_extra;       ///< extra rays this column may trace
+        std::vector<double>* edges;  ///< where located edges' times go (none: not recorded)
+    };
+
+    /// The energy between adjacent rays a and b (and their bounced paths): one tube where they are neighbours on
+    /// one surface; else, while the depth and the column's budget allow and the edge between them is not yet
+    /// located to `edge_tolerance` of a sample, the ray between them is traced and each half refined in turn.
+    /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step.
+    template <Scene Sc, class Visitor>
+    void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
+                const ray_end& b_bounce, std::size_t depth, std::size_t& budget, Visitor& visit) const {
+        const double de = std::abs(b.e - a.e);
+        const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
+                                                          2.0 * double(col.t_max_one_way));
+        if (v == detail::tube_verdict::continuous) {
+            emit_tube(a, b, de, visit);
+            if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
+            return;
+        }
+        const double mid = 0.5 * (a.e + b.e);
+        const T e_mid = static_cast<T>(mid);
+        const bool can_split = v != detail::tube_verdict::located && depth < density_.refine_depth && budget > 0 &&
+                               double(e_mid) != a.e && double(e_mid) != b.e;
+        if (!can_split) {
+            if ((depth == 0 && v == detail::tube_verdict::split) || v == detail::tube_verdict::coarse)
+                emit_tube(a, b, de, visit); // not refined: as before
+            else {                                                                            // a located edge
+                emit_ends(a, b, de, visit);
+                // Recorded for the along-track check: the edges between surfaces (objects' silhouettes).
+                if (col.edges && a.valid && b.valid && !same_surface(a.surface, b.surface)) {
+                    if (a.valid) col.edges->push_back(a.t);
+                    if (b.valid) col.edges->push_back(b.t);
+                }
+            }
+            if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
+            return;
+        }
+        --budget;
+        ray_end m_bounce;
+        const ray_end m = shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce);
+        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit);
+        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit);
+    }
+
+    [[nodiscard]] static detail::tube_end as_tube_end(const ray_end& r) noexcept {
+        return {r.valid, r.t, r.stretch, r.gain, r.surface.object, r.surface.material};
+    }
+
+    /// Two rays on either side of an edge: each keeps its half of the step as a point.
+    template <class Visitor> static void emit_ends(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
+        if (a.valid) visit(tube_echo<T>{a.t, a.t, 0.5 * a.power_per_rad * de, a.surface});
+        if (b.valid) visit(tube_echo<T>{b.t, b.t, 0.5 * b.power_per_rad * de, b.surface});
+    }
 
     /// The energy between two adjacent rays: a tube spread over their times when both ends meet the same surface
     /// (and bounced on the same surface), else each end's half as a point.
@@ -321,7 +474,9 @@ private:
         const double loss = double(traced->spreading) * double(traced->absorption) * double(traced->absorption);
         r.valid = true;
         r.t = 2.0 * double(traced->time_s);
-        r.power_per_rad = w * sigma * loss / double(sin_facet);
+        r.gain = sigma * loss / double(sin_facet);
+        r.power_per_rad = w * r.gain;
+        r.stretch = detail::time_stretch(r.t, double(sin_facet));
         r.surface = h;
         if constexpr (bouncing) bounce_leg(scene, *traced, graze, t_max_one_way, w, bounce);
         return r;

@@ -1,0 +1,92 @@
+// Speed against error on the survey scene (bench/support/survey_scene.hpp): a fractal seabed with two sets of
+// ripples and 20 targets, Jackson medium sand at 100 kHz, three-layer water, a 100 kHz planar array, a perturbed
+// towfish, 100 m per side in 2048 samples. For ping 0's starboard line, at the default density {8, 0, 1} with the
+// refinement off (the previous tubes) and on: rays per side, time per side (best of 3, in turn), and the RMS,
+// median and 99th percentile |dB| error over the samples within 40 dB of the reference's peak, and the missed shadow
+// samples, against the same simulator at {64, 0, 8} (64 times the rays; the change from {32, 0, 4} is printed as
+// its convergence check).
+// The seabed defaults to 256 m at 0.25 m (1024^2 heights) so that a run takes a minute; --full builds the survey's
+// 1024 m (4096^2 heights). --quick (or a short --benchmark_min_time, as the perf smoke test passes) uses 224 m
+// and a reference at {16, 0, 2} from {8, 0, 1}.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include <sss/sss.hpp>
+
+#include "../tests/support/converged_reference.hpp"
+#include "support/survey_scene.hpp"
+
+namespace {
+
+using T = double;
+
+template <class Sim> std::vector<double> starboard(const Sim& sim, const auto& scene, const sss::pose<T>& p) {
+    sss::time_sampler s(sim.samples_per_line(), sim.dt_s(), sim.receiver().pulse);
+    sim.trace(scene, p, sss::side::starboard, [&](const sss::tube_echo<T>& e) { s.add_span(e.t0_s, e.t1_s, e.power); });
+    std::vector<double> out;
+    s.render(out);
+    return out;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false, full = false;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+        if (std::strcmp(argv[i], "--full") == 0) full = true;
+        if (std::strncmp(argv[i], "--benchmark_min_time=", 21) == 0 && std::atof(argv[i] + 21) < 0.1) quick = true;
+    }
+    sss_bench::survey_params<T> sp;
+    sp.size_m = full ? 1024.0 : quick ? 224.0 : 256.0;
+    sp.cell_m = 0.25;
+    const auto t_build0 = std::chrono::steady_clock::now();
+    const auto sv = sss_bench::make_survey<T>(sp);
+    const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_build0).count();
+    auto make = [&](const sss::ray_density& d) {
+        return sss::simulator<sss::scattering::jackson<T>, sss::propagation::layered<T>, sss::beam::planar_array<T>,
+                              sss::motion::perturbed<T>>(sv.scattering, sv.water, sv.array, sv.motion, sv.receiver, d);
+    };
+    const auto pose = sv.motion.pose_at(0);
+    const auto t_ref0 = std::chrono::steady_clock::now();
+    const auto ref = sss_test::converged_line(make, sv.scene, pose, sss::side::starboard,
+                                              {.start = quick ? sss::ray_density{.along = 8, .across = 0, .per_sample = 1.0}
+                                                              : sss::ray_density{.along = 32, .across = 0, .per_sample = 4.0},
+                                               .max_doublings = 1});
+    const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_ref0).count();
+    std::printf("Survey scene: %.0f m of seabed at %.2f m (%zu^2 heights, built in %.1f s), %zu samples per side; "
+                "reference {%zu, 0, %g} (%.1f s), last doubling changed it by %.3f dB RMS\n",
+                sp.size_m, sp.cell_m, std::size_t(std::lround(sp.size_m / sp.cell_m)), build_s, make({}).samples_per_line(),
+                ref.density.along, ref.density.per_sample, ref_s, ref.last_change_db);
+    std::printf("| density | refinement | rays/side | ms/side | RMS dB | median dB | 99th pct dB | shadow missed |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    sss::ray_density dens[2] = {{}, {}};
+    dens[0].refine_depth = 0;
+    double ms[2] = {1e300, 1e300};
+    std::vector<double> lines[2];
+    std::size_t echoes[2] = {0, 0};
+    for (int rep = 0; rep < 3; ++rep)
+        for (int i = 0; i < 2; ++i) {
+            const auto sim = make(dens[i]);
+            const auto t0 = std::chrono::steady_clock::now();
+            lines[i] = starboard(sim, sv.scene, pose);
+            ms[i] = std::min(ms[i], 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            if (rep == 0) {
+                std::size_t n = 0;
+                sim.trace(sv.scene, pose, sss::side::starboard, [&n](const sss::tube_echo<T>&) { ++n; });
+                echoes[i] = n;
+            }
+        }
+    for (int i = 0; i < 2; ++i) {
+        const auto e = sss_test::compare_lines(lines[i], ref.values);
+        std::printf("| {8, 0, 1} | %s | %zu echoes | %.1f | %.3f | %.3f | %.3f | %zu of %zu |\n", i ? "on" : "off", echoes[i],
+                    ms[i], e.rms_db, e.median_db, e.p99_db, e.shadow_misses, e.shadow_samples);
+    }
+    std::printf("time on/off: %.3f\n", ms[1] / ms[0]);
+    return 0;
+}
