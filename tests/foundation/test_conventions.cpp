@@ -82,6 +82,20 @@ TEST_CASE("positive pitch raises the bow and positive roll lowers the starboard 
     CHECK(pose.to_world(unit(0, 1, 0)).z < -0.05);
 }
 
+TEST_CASE("beam angles: a positive along-track angle points forward and a positive depression down, starboard is body +y") {
+    const auto d = sss::beam_direction<T>(sss::side::starboard, sss::deg_to_rad(5.0), sss::deg_to_rad(20.0));
+    CHECK(d.x > 0); // forward (body x)
+    CHECK(d.y > 0); // starboard (body y)
+    CHECK(d.z > 0); // down (body z)
+    const auto p = sss::beam_direction<T>(sss::side::port, sss::deg_to_rad(-5.0), sss::deg_to_rad(20.0));
+    CHECK(p.x < 0);
+    CHECK(p.y < 0);
+    // In the world, a starboard ray of a level towfish heading north points east and down.
+    const auto w = track(0).pose_at(0).to_world(d);
+    CHECK(w.x > 0);
+    CHECK(w.z < 0);
+}
+
 TEST_CASE("a cylinder laid with the towfish's heading number lies along the track: its echo stays at one range in every "
           "ping that sees it") {
     sss::receiver_params rx;
