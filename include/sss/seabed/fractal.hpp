@@ -5,7 +5,7 @@
 /// Method: random Fourier coefficients c_mn on the N_x x N_y grid of wave vectors
 /// K_mn = (m dKx, n dKy), dKx = 2 pi / (N_x dx), dKy = 2 pi / (N_y dx) (indices above N/2 wrap to negative),
 /// with E|c_mn|^2 = W(K_mn) dKx dKy and c_{-m,-n} = conj(c_mn), then h(x) = sum_mn c_mn exp(i K_mn . x)
-/// by one inverse 2D FFT (physics.md section 5; e.g. Thorsos, 1988, JASA 83(1) 78-92, for this
+/// by one inverse 2D FFT (e.g. Thorsos, 1988, JASA 83(1) 78-92, for this
 /// normalisation). Hence <h^2> = sum_{mn != 0} W(K_mn) dKx dKy: the integral of W over the grid's band
 /// (`band_variance_m2`), and h is Gaussian with the requested spectrum at every grid wave vector.
 /// The K = 0 coefficient is 0: the periodic surface has zero mean.
