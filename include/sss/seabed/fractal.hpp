@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "sss/core/constants.hpp"
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/seabed/fft.hpp"
 #include "sss/seabed/power_law_spectrum.hpp"
@@ -174,7 +175,9 @@ template <Real T>
 [[nodiscard]] double band_variance_m2(const fractal_params<T>& p, std::size_t nx, std::size_t ny, T cell_m) {
     require_grid(nx, ny, cell_m, "band_variance_m2");
     validate(p, "band_variance_m2.params");
-    const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
+    const std::size_t sx = checked_mul(nx, p.oversample, "band_variance_m2.params.oversample");
+    const std::size_t sy = checked_mul(ny, p.oversample, "band_variance_m2.params.oversample");
+    (void)checked_elements(sx, sy, "band_variance_m2.params.oversample");
     const double dx = static_cast<double>(cell_m);
     const double dkx = two_pi_v<double> / (static_cast<double>(sx) * dx);
     const double dky = two_pi_v<double> / (static_cast<double>(sy) * dx);
@@ -191,7 +194,9 @@ template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::s
                                                           const fractal_params<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "fractal_surface");
     validate(p, "fractal_surface.params");
-    const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
+    const std::size_t sx = checked_mul(nx, p.oversample, "fractal_surface.params.oversample");
+    const std::size_t sy = checked_mul(ny, p.oversample, "fractal_surface.params.oversample");
+    (void)checked_elements(sx, sy, "fractal_surface.params.oversample");
     rng g(seed);
     std::vector<std::complex<double>> c;
     impl::fill_coefficients(c, sx, sy, static_cast<double>(cell_m), p, g);
