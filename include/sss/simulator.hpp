@@ -92,6 +92,8 @@ public:
         sss::detail::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
                         "gives " + std::to_string(samples_) + " samples per line; must be between 1 and 2^26");
         dt_ = 1.0 / receiver_.sample_rate_hz;
+        sss::detail::require(receiver_.pulse.length_s * receiver_.sample_rate_hz <= double(std::size_t(1) << 20),
+                             "pulse.length_s", "spans more than 2^20 samples at receiver.sample_rate_hz");
         source_level_ = db_to_power(receiver_.source_level_db);
         sampler_ = time_sampler(samples_, dt_, receiver_.pulse);
     }

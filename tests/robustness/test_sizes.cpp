@@ -87,3 +87,18 @@ TEST_CASE("a towfish at or below the seabed is an error naming the ping") {
     const sss::scene::flat_seabed<double> seabed(9.5);
     CHECK_NOTHROW((void)sim.ping(seabed, 0));
 }
+
+TEST_CASE("an absurd sample rate or a pulse of millions of samples is refused by name, not overflowed") {
+    for (const double fs : {1e12, 1e300}) {
+        sss::receiver_params rx;
+        rx.sample_rate_hz = fs;
+        CHECK(named([&] { sss::simulator<> sim({}, {}, {}, {}, rx); }) == "receiver.max_range_m");
+    }
+    sss::receiver_params rx;
+    rx.sample_rate_hz = 1e7;
+    rx.max_range_m = 1.0;
+    rx.pulse.length_s = 1.0; // 10^7 samples of pulse: a kernel of 10^8 taps
+    CHECK(named([&] { sss::simulator<> sim({}, {}, {}, {}, rx); }) == "pulse.length_s");
+    rx.pulse.length_s = 1e-3; // 10^4 samples: fine
+    CHECK_NOTHROW(sss::simulator<>({}, {}, {}, {}, rx));
+}
