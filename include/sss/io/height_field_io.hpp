@@ -157,7 +157,8 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     const std::size_t nx = *ncols, ny = *nrows;
     // Each value takes at least two bytes (a digit and a separator): a grid the file cannot hold is refused
     // before its heights are allocated.
-    if (nx > (std::size_t(1) << 30) || ny > (std::size_t(1) << 30) || nx * ny > max_elements)
+    // Both at most 2^30, so the product cannot overflow; it is checked all the same, by the one helper.
+    if (nx > (std::size_t(1) << 30) || ny > (std::size_t(1) << 30) || checked_mul(nx, ny, "ncols * nrows") > max_elements)
         throw fail(first_data_line, "grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " is too large");
     if (nx * ny > text.size() / 2 + 1)
         throw fail(first_data_line, "grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " values cannot fit in " +
@@ -296,7 +297,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
                           : !oy        ? "origin_y_m"
                                        : nullptr;
     if (missing) throw file_error(side_path, 0, std::string("lacks the key '") + missing + "'");
-    if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30) || *nx * *ny > max_elements)
+    if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30) || checked_mul(*nx, *ny, "nx * ny") > max_elements)
         throw file_error(side_path, 0, "grid too large");
 
     const std::string data = detail::read_all(path);
@@ -421,7 +422,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::str
     if (pos >= data.size() || !is_space(data[pos])) throw fail(pos, "expected one whitespace byte after maxval");
     ++pos;
     const std::size_t bytes = maxval < 256 ? 1 : 2;
-    const std::size_t need = width * height * bytes;
+    const std::size_t need = checked_mul(checked_mul(width, height, "width * height"), bytes, "width * height"); // < 2^61
     if (data.size() - pos < need)
         throw fail(data.size(), "file ends after " + std::to_string(data.size() - pos) + " of " + std::to_string(need) +
                                     " sample bytes");
