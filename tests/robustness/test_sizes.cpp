@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -101,4 +102,35 @@ TEST_CASE("an absurd sample rate or a pulse of millions of samples is refused by
     CHECK(named([&] { sss::simulator<> sim({}, {}, {}, {}, rx); }) == "pulse.length_s");
     rx.pulse.length_s = 1e-3; // 10^4 samples: fine
     CHECK_NOTHROW(sss::simulator<>({}, {}, {}, {}, rx));
+}
+
+TEST_CASE("a grid header promising more values than its file holds is refused before the heights are allocated") {
+    const auto file_error_of = [](auto&& read) -> std::string {
+        try {
+            read();
+        } catch (const sss::file_error& e) {
+            return e.what();
+        }
+        return {};
+    };
+    {
+        std::ofstream("huge.asc") << "ncols 1073741824\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n";
+        CHECK(file_error_of([] { (void)sss::io::read_esri_ascii<float>("huge.asc"); }).find("too large") !=
+              std::string::npos);
+        std::ofstream("tall.asc") << "ncols 40000\nnrows 40000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n";
+        CHECK(file_error_of([] { (void)sss::io::read_esri_ascii<float>("tall.asc"); }).find("cannot fit") !=
+              std::string::npos);
+    }
+    {
+        std::ofstream("huge.pgm", std::ios::binary) << "P5\n1073741824 1073741824\n65535\n" << std::string(8, '\0');
+        CHECK(file_error_of([] { (void)sss::io::read_pgm16<float>("huge.pgm", 1.0f, {0, 0}, {1.0f, 0.0f}); })
+                  .find("file ends") != std::string::npos);
+    }
+    {
+        std::ofstream("huge.raw", std::ios::binary) << std::string(16, '\0');
+        std::ofstream("huge.raw.txt") << "format sss-height-raw-f32le 1\nnx 1073741824\nny 1073741824\ncell_m 1\n"
+                                         "origin_x_m 0\norigin_y_m 0\n";
+        CHECK(file_error_of([] { (void)sss::io::read_raw_f32<float>("huge.raw"); }).find("too large") !=
+              std::string::npos);
+    }
 }
