@@ -15,6 +15,10 @@ template <class T> void check(const sss::propagation::sound_speed_profile<T>& p)
     for (std::size_t i = 0; i < d.size(); ++i) {
         sss_fuzz::promise(std::isfinite(d[i]) && std::isfinite(c[i]) && c[i] > T(0), "finite depths, positive speeds");
         if (i > 0) sss_fuzz::promise(d[i] > d[i - 1], "depths increase");
+        // Between and beyond the knots the profile gives a finite, positive speed.
+        const T between = i > 0 ? d[i - 1] + (d[i] - d[i - 1]) / T(3) : d[i] - T(1);
+        const T c_between = p.speed_mps(between);
+        sss_fuzz::promise(std::isfinite(c_between) && c_between > T(0), "finite, positive speed between knots");
     }
 }
 } // namespace
