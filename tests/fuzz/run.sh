@@ -7,6 +7,7 @@
 #   --runs N        executions per target (default 1000000)
 #   --time S        at most S seconds per target (default 1800); whichever of --runs and --time comes first
 #   --build DIR     where binaries, working corpora and findings go (default build-fuzz in the repository root)
+#   --jobs J        build up to J targets at once (default 1); the targets still run one at a time
 #   --sweep SCENES  also build tests/robustness/test_scene_sweep.cpp and run it over SCENES random scenes
 #   --no-fuzz       skip the fuzz targets (with --sweep: the sweep only)
 #   target          fuzz_<target>.cpp in tests/fuzz/ (default: all of them)
@@ -26,6 +27,7 @@ runs=1000000
 max_time=1800
 build="$root/build-fuzz"
 sweep=0
+jobs=1
 fuzz=1
 targets=()
 while [[ $# -gt 0 ]]; do
@@ -33,6 +35,7 @@ while [[ $# -gt 0 ]]; do
         --runs) runs="$2"; shift 2 ;;
         --time) max_time="$2"; shift 2 ;;
         --build) build="$2"; shift 2 ;;
+        --jobs) jobs="$2"; shift 2 ;;
         --sweep) sweep="$2"; shift 2 ;;
         --no-fuzz) fuzz=0; shift ;;
         -h|--help) sed -n '2,22p' "${BASH_SOURCE[0]}"; exit 0 ;;
@@ -60,14 +63,22 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 status=0
 report=()
 if [[ $fuzz -eq 1 ]]; then
+    # Build every target that is missing or older than its sources, up to $jobs at once.
+    pids=()
     for t in "${targets[@]}"; do
         src="$root/tests/fuzz/fuzz_$t.cpp"
         [[ -f "$src" ]] || { echo "run.sh: no target $src" >&2; exit 2; }
         exe="$build/fuzz_$t"
         if [[ ! -x "$exe" || "$src" -nt "$exe" || -n "$(find "$root/include" "$root/tests/fuzz" -newer "$exe" -name '*.hpp' -print -quit)" ]]; then
             echo "== building fuzz_$t"
-            "$cxx" "${flags[@]}" "$src" -o "$exe"
+            "$cxx" "${flags[@]}" "$src" -o "$exe.new" && mv "$exe.new" "$exe" &
+            pids+=($!)
+            if [[ ${#pids[@]} -ge $jobs ]]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
         fi
+    done
+    for p in "${pids[@]}"; do wait "$p"; done
+    for t in "${targets[@]}"; do
+        exe="$build/fuzz_$t"
         work="$build/corpus/$t"
         findings="$build/findings/$t"
         mkdir -p "$work" "$findings"
