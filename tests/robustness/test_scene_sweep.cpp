@@ -137,7 +137,10 @@ std::vector<mutation> mutations() {
              c.beam = beam_kind::array;
              c.array.threshold_db = d.one_of({0.0, 3.0, nan_v});
          }},
-        {"straight.sound_speed_mps", [](config& c, draw& d) { c.water.sound_speed_mps = d.one_of({999.9, 2500.1, nan_v}); }},
+        {"straight.sound_speed_mps", [](config& c, draw& d) {
+             c.scattering = scattering_kind::lambert; // jackson would name its own copy, jackson.c_water_mps
+             c.water.sound_speed_mps = d.one_of({999.9, 2500.1, nan_v});
+         }},
         {"straight.absorption_db_per_km", [](config& c, draw& d) { c.water.absorption_db_per_km = d.one_of({-0.1, nan_v}); }},
         {"lambertian.mu_db[0]", [](config& c, draw& d) {
              c.scattering = scattering_kind::lambert;
