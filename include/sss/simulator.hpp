@@ -31,7 +31,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <mutex>
+#include <string>
 #include <optional>
 #include <span>
 #include <thread>
@@ -42,6 +44,7 @@
 #include "sss/beam/concept.hpp"
 #include "sss/beam/ideal_fan.hpp"
 #include "sss/core/decibel.hpp"
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/motion/concept.hpp"
 #include "sss/motion/straight_line.hpp"
@@ -111,6 +114,8 @@ public:
         sss::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
                         [&] { return "gives " + std::to_string(samples_) + " samples per line; must be between 1 and 2^26"; });
         dt_ = 1.0 / receiver_.sample_rate_hz;
+        sss::require(receiver_.pulse.length_s * receiver_.sample_rate_hz <= double(std::size_t(1) << 20),
+                             "pulse.length_s", "spans more than 2^20 samples at receiver.sample_rate_hz");
         source_level_ = db_to_power(receiver_.source_level_db);
         sampler_ = time_sampler(samples_, dt_, receiver_.pulse);
     }
@@ -125,10 +130,18 @@ public:
     [[nodiscard]] std::size_t samples_per_line() const noexcept { return samples_; }
     [[nodiscard]] double dt_s() const noexcept { return dt_; }
 
-    /// Renders ping `index`: one port and one starboard line.
+    /// Renders ping `index`: one port and one starboard line. Throws invalid_parameter naming the ping when the
+    /// towfish is not above the seabed there (a sonar in or under the seabed records nothing meaningful).
     template <Scene Sc> [[nodiscard]] ping_lines<T> ping(const Sc& scene, std::size_t index) const {
         static_assert(std::is_same_v<typename Sc::value_type, T>, "sss::simulator: scene scalar type differs");
-        return ping_at(scene, motion_.pose_at(index));
+        const pose<T> p = motion_.pose_at(index);
+        const T seabed_z = scene.seabed_height_m(p.position.x, p.position.y);
+        if (!(p.position.z > seabed_z))
+            throw invalid_parameter("ping[" + std::to_string(index) + "]",
+                                    "the towfish at (" + std::to_string(p.position.x) + ", " +
+                                        std::to_string(p.position.y) + ", " + std::to_string(p.position.z) +
+                                        ") m is not above the seabed (z = " + std::to_string(seabed_z) + " m)");
+        return ping_at(scene, p);
     }
 
     /// Renders one ping from an explicit pose.
@@ -158,14 +171,18 @@ public:
     }
 
     /// Renders pings [first, first + count) into a waterfall, on `threads` threads (0: hardware concurrency).
-    /// The result does not depend on the number of threads.
+    /// The result does not depend on the number of threads. Throws invalid_parameter naming `render.count` when
+    /// the image would hold more than sss::max_elements values (or `render.first` when first + count overflows),
+    /// before anything is allocated.
     template <Scene Sc>
     [[nodiscard]] waterfall<T> render(const Sc& scene, std::size_t first, std::size_t count, unsigned threads = 0) const {
+        sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first",
+                             "first + count overflows the ping index");
         waterfall<T> w;
         w.pings = count;
         w.samples = samples_;
         w.dt_s = dt_;
-        w.values.assign(count * w.width(), T(0));
+        w.values.assign(checked_elements(count, w.width(), "render.count"), T(0));
         if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
         threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
         auto work = [&](unsigned worker) {

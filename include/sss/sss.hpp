@@ -4,6 +4,7 @@
 
 #include "sss/version.hpp"
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/constants.hpp"
 #include "sss/core/decibel.hpp"
 #include "sss/core/error.hpp"

@@ -1,5 +1,5 @@
 // Directivity of line apertures, pistons and linear arrays against closed forms and published values
-// (physics.md section 6).
+// (Kinsler, Frey, Coppens & Sanders, 2000, "Fundamentals of Acoustics", 4th ed., ch. 8).
 #include <doctest/doctest.h>
 
 #include <cmath>

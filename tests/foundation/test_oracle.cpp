@@ -1,4 +1,5 @@
-// The oracle itself against the closed form of the sonar equation on a flat seabed (physics.md section 7):
+// The oracle itself against the closed form of the sonar equation on a flat seabed (the reverberation form of the sonar
+// equation, Urick, 1983, "Principles of Underwater Sound", 3rd ed., McGraw-Hill, ch. 8):
 // ideal fan of along-track width phi, isovelocity, no absorption, away from nadir, the echo density per unit delay
 // is rho(s) = SL sigma(theta) phi c / (2 r^3 cos theta); a rectangular pulse of length tau records rho tau.
 

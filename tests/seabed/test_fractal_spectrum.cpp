@@ -143,7 +143,7 @@ TEST_CASE("profiles of a fractal surface have the 1D spectral slope -(gamma - 1)
 
 TEST_CASE("structure function matches C_h^2 r^(2 alpha) of APL-UW TR 9407 (gamma = 3.25)") {
     // <[h(x + r) - h(x)]^2> = C_h^2 r^(2 alpha), alpha = gamma/2 - 1,
-    // C_h^2 = 2 pi w2 Gamma(2 - alpha) 2^(-2 alpha) / [alpha (1 - alpha) Gamma(1 + alpha)] (physics.md sections 3, 5).
+    // C_h^2 = 2 pi w2 Gamma(2 - alpha) 2^(-2 alpha) / [alpha (1 - alpha) Gamma(1 + alpha)] (Jackson et al., APL-UW TR 9407, 1994).
     // Fixed moduli make the periodic sample structure function its expectation over the grid's band,
     // which lacks the modes below 2 pi / L and above Nyquist: a few percent short at lags of 4 to 8 cells.
     auto p = sand(3.25);

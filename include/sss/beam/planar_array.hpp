@@ -13,7 +13,7 @@
 ///     u = sin a,   v = cos a sin(e - tau),   w = cos a cos(e - tau)   (w along the normal),
 /// the same on both sides. The array is baffled: nothing is radiated or heard where w <= 0.
 ///
-/// Pattern (amplitude, one way; physics.md section 6; Kinsler et al., 2000, "Fundamentals of Acoustics",
+/// Pattern (amplitude, one way; Kinsler et al., 2000, "Fundamentals of Acoustics",
 /// 4th ed., ch. 8): E(u, v) = A(u) B(v) with, per axis, A(u) = sinc(pi a u / lambda) AF_N(u): the element
 /// (a rectangular piston of side a) times the array factor of N elements at pitch d (uniform:
 /// sin(N pi d u / lambda) / (N sin(pi d u / lambda)); shaded: the normalised weighted sum). lambda = c / f.

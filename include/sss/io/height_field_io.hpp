@@ -46,164 +46,25 @@
 #include <system_error>
 #include <vector>
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
+#include "sss/io/detail/atomic_file.hpp"
+#include "sss/io/detail/text.hpp"
 #include "sss/scene/height_field.hpp"
 
 namespace sss::io {
 
 namespace detail {
-
-/// The whole file as bytes; file_error when it cannot be read.
-inline std::string read_all(const std::string& path) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw file_error(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
-    std::string data;
-    std::array<char, 1 << 16> buf{};
-    for (;;) {
-        const std::size_t got = std::fread(buf.data(), 1, buf.size(), f);
-        data.append(buf.data(), got);
-        if (got < buf.size()) break;
-    }
-    const bool bad = std::ferror(f) != 0;
-    std::fclose(f);
-    if (bad) throw file_error(path, 0, "read error", data.size());
-    return data;
-}
-
-/// Writes through a buffer into `path + ".tmp"`, then `commit()` renames it over `path`. If the writer
-/// is destroyed without commit (an exception), the temporary file is removed.
-class atomic_file {
-public:
-    explicit atomic_file(std::string path) : path_(std::move(path)), tmp_(path_ + ".tmp") {
-        f_ = std::fopen(tmp_.c_str(), "wb");
-        if (!f_) throw file_error(path_, 0, "cannot open '" + tmp_ + "' for writing: " + std::strerror(errno));
-    }
-    atomic_file(const atomic_file&) = delete;
-    atomic_file& operator=(const atomic_file&) = delete;
-    ~atomic_file() {
-        if (f_) {
-            std::fclose(f_);
-            std::error_code ec;
-            std::filesystem::remove(tmp_, ec);
-        }
-    }
-    void write(std::string_view bytes) {
-        if (std::fwrite(bytes.data(), 1, bytes.size(), f_) != bytes.size())
-            throw file_error(path_, 0, "write error on '" + tmp_ + "': " + std::strerror(errno));
-    }
-    void commit() {
-        const bool ok = std::fflush(f_) == 0 && !std::ferror(f_);
-        const int closed = std::fclose(f_);
-        f_ = nullptr;
-        std::error_code ec;
-        if (!ok || closed != 0) {
-            std::filesystem::remove(tmp_, ec);
-            throw file_error(path_, 0, "write error on '" + tmp_ + "'");
-        }
-        std::filesystem::rename(tmp_, path_, ec);
-        if (ec) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp_, ignored);
-            throw file_error(path_, 0, "cannot rename '" + tmp_ + "' over it: " + ec.message());
-        }
-    }
-
-private:
-    std::string path_, tmp_;
-    std::FILE* f_ = nullptr;
-};
-
-/// Appends the shortest decimal form of x that reads back to x.
-template <class V> inline void append_number(std::string& out, V x) {
-    std::array<char, 64> buf{};
-    const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), x);
-    out.append(buf.data(), res.ptr);
-}
-
-/// A whitespace-separated token of a text file and the line it starts on (1-based).
-struct token {
-    std::string_view text;
-    std::size_t line = 0;
-};
-
-/// Splits text into tokens, tracking lines; `#` comments (to end of line) are skipped when enabled.
-class tokenizer {
-public:
-    tokenizer(std::string_view text, bool hash_comments) : text_(text), comments_(hash_comments) {}
-
-    /// The next token, or an empty one at the end (its line is then the file's last line).
-    token next() {
-        skip_space();
-        if (pos_ >= text_.size()) return token{{}, !text_.empty() && text_.back() == '\n' ? line_ - 1 : line_};
-        const std::size_t start = pos_;
-        while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
-        return token{text_.substr(start, pos_ - start), line_};
-    }
-    /// Skips to the start of the next line.
-    void skip_line() {
-        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-    }
-    [[nodiscard]] std::size_t line() const noexcept { return line_; }
-    /// True when only whitespace (and comments) remain.
-    [[nodiscard]] bool at_end() {
-        skip_space();
-        return pos_ >= text_.size();
-    }
-    /// Position of the next unread character, and its line, for look-ahead.
-    [[nodiscard]] std::size_t position() const noexcept { return pos_; }
-    void rewind(std::size_t pos, std::size_t line) noexcept {
-        pos_ = pos;
-        line_ = line;
-    }
-
-private:
-    static bool is_space(char c) noexcept {
-        return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
-    }
-    void skip_space() {
-        while (pos_ < text_.size()) {
-            const char c = text_[pos_];
-            if (c == '\n') {
-                ++line_;
-                ++pos_;
-            } else if (is_space(c)) {
-                ++pos_;
-            } else if (comments_ && c == '#') {
-                skip_line();
-            } else {
-                break;
-            }
-        }
-    }
-    std::string_view text_;
-    std::size_t pos_ = 0;
-    std::size_t line_ = 1;
-    bool comments_;
-};
-
-/// Parses a whole token as a double; nullopt when it is not a number (non-finite values do parse).
-inline std::optional<double> parse_double(std::string_view s) {
-    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-    double v = 0;
-    const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (res.ec != std::errc{} || res.ptr != s.data() + s.size() || s.empty()) return std::nullopt;
-    return v;
-}
-
-/// Parses a whole token as a non-negative integer.
-inline std::optional<std::size_t> parse_size(std::string_view s) {
-    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-    std::size_t v = 0;
-    const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (res.ec != std::errc{} || res.ptr != s.data() + s.size() || s.empty()) return std::nullopt;
-    return v;
-}
-
-inline std::string lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
+// The shared text core and file access (io/detail/text.hpp, io/detail/atomic_file.hpp), under the names this
+// header has always used.
+using sss::detail::append_number;
+using sss::detail::atomic_file;
+using sss::detail::lower;
+using sss::detail::parse_double;
+using sss::detail::parse_size;
+using sss::detail::token;
+using sss::detail::tokenizer;
+inline std::string read_all(const std::string& path) { return sss::detail::read_file(path); }
 
 /// A height read from a file, converted to T; nullopt when not finite in T.
 template <Real T> inline std::optional<T> finite_height(double v) {
@@ -236,7 +97,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     bool x_center = false, y_center = false;
     // Header: keyword/value pairs until the first token that is not a keyword.
     for (;;) {
-        const std::size_t pos = tok.position(), line = tok.line();
+        const auto before = tok.save();
         const detail::token key = tok.next();
         if (key.text.empty()) throw fail(key.line, "file ends in the header");
         const std::string k = detail::lower(key.text);
@@ -247,7 +108,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
                 throw fail(key.line, "'" + std::string(key.text) + "': only square cells (cellsize) are supported");
             if (!detail::parse_double(key.text))
                 throw fail(key.line, "unknown header keyword '" + std::string(key.text) + "'");
-            tok.rewind(pos, line);
+            tok.rewind(before);
             first_data_line = key.line;
             break;
         }
@@ -294,8 +155,14 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     if (!y_ll) throw fail(first_data_line, "header lacks 'yllcorner' or 'yllcenter'");
     if (!cellsize) throw fail(first_data_line, "header lacks 'cellsize'");
     const std::size_t nx = *ncols, ny = *nrows;
-    if (nx > (std::size_t(1) << 30) || ny > (std::size_t(1) << 30) || nx * ny > (std::size_t(1) << 40))
+    // Each value takes at least two bytes (a digit and a separator): a grid the file cannot hold is refused
+    // before its heights are allocated.
+    // Both at most 2^30, so the product cannot overflow; it is checked all the same, by the one helper.
+    if (nx > (std::size_t(1) << 30) || ny > (std::size_t(1) << 30) || checked_mul(nx, ny, "ncols * nrows") > max_elements)
         throw fail(first_data_line, "grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " is too large");
+    if (nx * ny > text.size() / 2 + 1)
+        throw fail(first_data_line, "grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " values cannot fit in " +
+                                        std::to_string(text.size()) + " bytes");
 
     std::vector<T> heights(nx * ny);
     for (std::size_t row = 0; row < ny; ++row) {
@@ -379,52 +246,48 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
     std::optional<std::size_t> nx, ny;
     std::optional<double> cell, ox, oy;
     bool format_seen = false;
-    std::size_t line_no = 0;
-    for (std::size_t pos = 0; pos <= side.size();) {
-        std::size_t end = side.find('\n', pos);
-        if (end == std::string::npos) end = side.size();
-        std::string_view line(side.data() + pos, end - pos);
-        pos = end + 1;
-        ++line_no;
-        if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-        detail::tokenizer tok(line, false);
-        const detail::token key = tok.next();
-        if (key.text.empty()) continue;
-        const detail::token val = tok.next();
-        if (val.text.empty()) throw file_error(side_path, line_no, "'" + std::string(key.text) + "' has no value");
-        const std::string k(key.text);
+    for (const sss::detail::text_line& line : sss::detail::content_lines(side)) {
+        const std::size_t line_no = line.number;
+        const auto fields = sss::detail::split_blanks(line);
+        const std::string k(fields[0].text);
+        if (fields.size() < 2) throw file_error(side_path, line_no, "'" + k + "' has no value");
+        const std::string_view val = fields[1].text;
+        const std::size_t col = fields[1].column;
         auto dup = [&](bool seen) {
             if (seen) throw file_error(side_path, line_no, "'" + k + "' given twice");
         };
+        std::size_t expected = 2;
         if (k == "format") {
-            const detail::token ver = tok.next();
-            if (val.text != "sss-height-raw-f32le" || ver.text != "1")
-                throw file_error(side_path, line_no,
-                                 "unknown format '" + std::string(val.text) + " " + std::string(ver.text) +
-                                     "' (expected 'sss-height-raw-f32le 1')");
+            expected = 3;
+            const std::string_view ver = fields.size() > 2 ? fields[2].text : std::string_view{};
+            if (val != "sss-height-raw-f32le" || ver != "1")
+                throw sss::detail::error_at(side_path, line_no, col,
+                                            "unknown format '" + std::string(val) + " " + std::string(ver) +
+                                                "' (expected 'sss-height-raw-f32le 1')");
             dup(format_seen);
             format_seen = true;
         } else if (k == "nx" || k == "ny") {
-            const auto v = detail::parse_size(val.text);
+            const auto v = detail::parse_size(val);
             if (!v || *v < 2)
-                throw file_error(side_path, line_no,
-                                 "'" + k + "' must be an integer >= 2, got '" + std::string(val.text) + "'");
+                throw sss::detail::error_at(side_path, line_no, col,
+                                            "'" + k + "' must be an integer >= 2, got '" + std::string(val) + "'");
             std::optional<std::size_t>& slot = k == "nx" ? nx : ny;
             dup(slot.has_value());
             slot = v;
         } else if (k == "cell_m" || k == "origin_x_m" || k == "origin_y_m") {
-            const auto v = detail::parse_double(val.text);
-            if (!v || !std::isfinite(*v))
-                throw file_error(side_path, line_no,
-                                 "'" + k + "' must be a finite number, got '" + std::string(val.text) + "'");
-            if (k == "cell_m" && !(*v > 0)) throw file_error(side_path, line_no, "'cell_m' must be > 0");
+            const auto v = sss::detail::parse_finite(val);
+            if (!v)
+                throw sss::detail::error_at(side_path, line_no, col,
+                                            "'" + k + "' must be a finite number, got '" + std::string(val) + "'");
+            if (k == "cell_m" && !(*v > 0)) throw sss::detail::error_at(side_path, line_no, col, "'cell_m' must be > 0");
             std::optional<double>& slot = k == "cell_m" ? cell : (k == "origin_x_m" ? ox : oy);
             dup(slot.has_value());
             slot = v;
         } else {
-            throw file_error(side_path, line_no, "unknown key '" + k + "'");
+            throw sss::detail::error_at(side_path, line_no, fields[0].column, "unknown key '" + k + "'");
         }
-        if (!tok.next().text.empty()) throw file_error(side_path, line_no, "too many values for '" + k + "'");
+        if (fields.size() > expected)
+            throw sss::detail::error_at(side_path, line_no, fields[expected].column, "too many values for '" + k + "'");
     }
     const char* missing = !format_seen ? "format"
                           : !nx        ? "nx"
@@ -434,7 +297,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
                           : !oy        ? "origin_y_m"
                                        : nullptr;
     if (missing) throw file_error(side_path, 0, std::string("lacks the key '") + missing + "'");
-    if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30) || *nx * *ny > (std::size_t(1) << 40))
+    if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30) || checked_mul(*nx, *ny, "nx * ny") > max_elements)
         throw file_error(side_path, 0, "grid too large");
 
     const std::string data = detail::read_all(path);
@@ -558,7 +421,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::str
     if (pos >= data.size() || !is_space(data[pos])) throw fail(pos, "expected one whitespace byte after maxval");
     ++pos;
     const std::size_t bytes = maxval < 256 ? 1 : 2;
-    const std::size_t need = width * height * bytes;
+    const std::size_t need = checked_mul(checked_mul(width, height, "width * height"), bytes, "width * height"); // < 2^61
     if (data.size() - pos < need)
         throw fail(data.size(), "file ends after " + std::to_string(data.size() - pos) + " of " + std::to_string(need) +
                                     " sample bytes");

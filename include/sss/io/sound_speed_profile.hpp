@@ -21,7 +21,7 @@
 /// given for a stream) and the 1-based line, and nothing is returned: a profile is only built once
 /// the whole input has been read and checked.
 ///
-/// Written: CSV with a "depth_m,speed_mps" header and the shortest decimal form that reads back to the
+/// Written (atomically: to a temporary name, then renamed): CSV with a "depth_m,speed_mps" header and the shortest decimal form that reads back to the
 /// same value, so write-then-read round-trips exactly.
 
 #include <algorithm>
@@ -35,6 +35,7 @@
 #include <limits>
 #include <optional>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -43,93 +44,25 @@
 
 #include "sss/core/error.hpp"
 #include "sss/core/types.hpp"
+#include "sss/io/detail/atomic_file.hpp"
+#include "sss/io/detail/text.hpp"
 #include "sss/propagation/profile.hpp"
 
 namespace sss::io {
 
 // Not `detail`: a nested namespace of that name would hide sss::detail from the rest of sss::io.
+// Lines, fields, numbers and errors come from the readers' shared text core (io/detail/text.hpp).
 namespace detail::svp {
 
-/// One line of text with its 1-based number.
-struct text_line {
-    std::size_t number;
-    std::string text; // comment, line end and surrounding blanks removed; never empty
-};
+using sss::detail::iequals_prefix;
+using sss::detail::quote;
+using sss::detail::shortest;
+using sss::detail::split_fields;
+using sss::detail::text_line;
+using sss::detail::trim;
 
-[[nodiscard]] inline std::string_view trim(std::string_view s) noexcept {
-    const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; };
-    while (!s.empty() && blank(s.front())) s.remove_prefix(1);
-    while (!s.empty() && blank(s.back())) s.remove_suffix(1);
-    return s;
-}
-
-/// All non-blank lines of `in`, comments stripped. Throws file_error if the stream fails.
-[[nodiscard]] inline std::vector<text_line> read_lines(std::istream& in, std::string_view name) {
-    std::vector<text_line> lines;
-    std::string raw;
-    std::size_t number = 0;
-    while (std::getline(in, raw)) {
-        ++number;
-        std::string_view view(raw);
-        if (number == 1 && view.starts_with("\xEF\xBB\xBF")) view.remove_prefix(3);
-        if (const auto hash = view.find('#'); hash != std::string_view::npos) view = view.substr(0, hash);
-        view = trim(view);
-        if (!view.empty()) lines.push_back({number, std::string(view)});
-    }
-    if (in.bad()) throw file_error(name, number + 1, "read error");
-    return lines;
-}
-
-[[nodiscard]] inline bool iequals_prefix(std::string_view text, std::string_view prefix) noexcept {
-    if (text.size() < prefix.size()) return false;
-    for (std::size_t i = 0; i < prefix.size(); ++i) {
-        if (std::tolower(static_cast<unsigned char>(text[i])) != std::tolower(static_cast<unsigned char>(prefix[i])))
-            return false;
-    }
-    return true;
-}
-
-/// Splits a data line into fields: on ',' / ';' when present, else on white space.
-[[nodiscard]] inline std::vector<std::string_view> split_fields(std::string_view line) {
-    std::vector<std::string_view> fields;
-    if (line.find_first_of(",;") != std::string_view::npos) {
-        std::size_t start = 0;
-        while (true) {
-            const std::size_t end = line.find_first_of(",;", start);
-            fields.push_back(trim(line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start)));
-            if (end == std::string_view::npos) break;
-            start = end + 1;
-        }
-        return fields;
-    }
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-        std::size_t j = i;
-        while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-        if (j > i) fields.push_back(line.substr(i, j - i));
-        i = j;
-    }
-    return fields;
-}
-
-/// A finite number spelled by the whole of `field`, or nullopt.
-[[nodiscard]] inline std::optional<double> parse_number(std::string_view field) noexcept {
-    if (!field.empty() && field.front() == '+') field.remove_prefix(1); // from_chars rejects '+'
-    double value = 0;
-    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
-    if (ec != std::errc() || end != field.data() + field.size() || !std::isfinite(value)) return std::nullopt;
-    return value;
-}
-
-[[nodiscard]] inline std::string quote(std::string_view s) { return "'" + std::string(s) + "'"; }
-
-/// The shortest decimal spelling that reads back as v.
-template <Real T> [[nodiscard]] std::string shortest(T v) {
-    char buf[64];
-    const auto result = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, result.ptr);
-}
+/// The non-blank lines of `text`, comments stripped.
+[[nodiscard]] inline std::vector<text_line> read_lines(std::string_view text) { return sss::detail::content_lines(text); }
 
 /// Knots accumulated from data lines, checked as they arrive.
 template <Real T> struct knot_list {
@@ -138,27 +71,35 @@ template <Real T> struct knot_list {
     std::size_t first_line = 0;
 
     void add(const text_line& line, std::string_view name) {
-        const auto fields = split_fields(line.text);
+        const auto fields = split_fields(line);
         if (fields.size() != 2) {
-            throw file_error(name, line.number,
-                             "expected 2 columns (depth m, speed m/s), found " + std::to_string(fields.size()) +
-                                 " in " + quote(line.text));
+            throw sss::detail::error_at(name, line.number, fields.size() > 2 ? fields[2].column : 0,
+                                        "expected 2 columns (depth m, speed m/s), found " +
+                                            std::to_string(fields.size()) + " in " + quote(line.text));
         }
-        const auto d = parse_number(fields[0]);
-        if (!d) throw file_error(name, line.number, "depth " + quote(fields[0]) + " is not a finite number");
-        const auto c = parse_number(fields[1]);
-        if (!c) throw file_error(name, line.number, "speed " + quote(fields[1]) + " is not a finite number");
+        const auto d = sss::detail::parse_finite(fields[0].text);
+        if (!d)
+            throw sss::detail::error_at(name, line.number, fields[0].column,
+                                        "depth " + quote(fields[0].text) + " is not a finite number");
+        const auto c = sss::detail::parse_finite(fields[1].text);
+        if (!c)
+            throw sss::detail::error_at(name, line.number, fields[1].column,
+                                        "speed " + quote(fields[1].text) + " is not a finite number");
         constexpr double largest = static_cast<double>(std::numeric_limits<T>::max());
-        if (std::abs(*d) > largest) throw file_error(name, line.number, "depth " + quote(fields[0]) + " is out of range");
+        if (std::abs(*d) > largest)
+            throw sss::detail::error_at(name, line.number, fields[0].column,
+                                        "depth " + quote(fields[0].text) + " is out of range");
         if (!(*c > 0.0) || *c > largest)
-            throw file_error(name, line.number, "speed " + quote(fields[1]) + " must be a positive number of m/s");
+            throw sss::detail::error_at(name, line.number, fields[1].column,
+                                        "speed " + quote(fields[1].text) + " must be a positive number of m/s");
         const T depth_m = static_cast<T>(*d);
         const T speed_mps = static_cast<T>(*c);
         if (!(speed_mps > T(0))) // a positive double that underflows T
-            throw file_error(name, line.number, "speed " + quote(fields[1]) + " must be a positive number of m/s");
+            throw sss::detail::error_at(name, line.number, fields[1].column,
+                                        "speed " + quote(fields[1].text) + " must be a positive number of m/s");
         if (!depth.empty() && !(depth_m > depth.back())) {
-            throw file_error(name, line.number,
-                             "depth " + quote(fields[0]) + " does not increase: the previous depth is " +
+            throw sss::detail::error_at(name, line.number, fields[0].column,
+                             "depth " + quote(fields[0].text) + " does not increase: the previous depth is " +
                                  shortest(depth.back()) + " m (depths must increase strictly)");
         }
         if (depth.empty()) first_line = line.number;
@@ -172,8 +113,8 @@ template <Real T> struct knot_list {
 };
 
 [[nodiscard]] inline bool looks_like_data(const text_line& line) {
-    const auto fields = split_fields(line.text);
-    return fields.size() == 2 && parse_number(fields[0]) && parse_number(fields[1]);
+    const auto fields = split_fields(line);
+    return fields.size() == 2 && sss::detail::parse_finite(fields[0].text) && sss::detail::parse_finite(fields[1].text);
 }
 
 [[nodiscard]] inline std::ifstream open_for_reading(const std::filesystem::path& path) {
@@ -191,12 +132,14 @@ template <Real T> struct knot_list {
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_sound_speed_csv(std::istream& in, std::string_view name) {
     using namespace detail::svp;
-    const auto lines = read_lines(in, name);
+    const std::string text = sss::detail::read_stream(in, name);
+    const auto lines = read_lines(text);
     knot_list<T> knots;
     for (std::size_t i = 0; i < lines.size(); ++i) {
         if (i == 0) { // a header line: no field is a number
-            const auto fields = split_fields(lines[0].text);
-            if (std::none_of(fields.begin(), fields.end(), [](std::string_view f) { return parse_number(f).has_value(); }))
+            const auto fields = split_fields(lines[0]);
+            if (std::none_of(fields.begin(), fields.end(),
+                             [](const sss::detail::text_field& f) { return sss::detail::parse_finite(f.text).has_value(); }))
                 continue;
         }
         knots.add(lines[i], name);
@@ -220,7 +163,8 @@ template <Real T = double>
 [[nodiscard]] std::vector<propagation::sound_speed_profile<T>> read_caris_svp_sections(std::istream& in,
                                                                                       std::string_view name) {
     using namespace detail::svp;
-    const auto lines = read_lines(in, name);
+    const std::string text = sss::detail::read_stream(in, name);
+    const auto lines = read_lines(text);
     if (lines.empty()) throw file_error(name, 0, "empty file: expected a \"[SVP_VERSION_2]\" line");
     if (!iequals_prefix(lines[0].text, "[SVP_VERSION")) {
         throw file_error(name, lines[0].number,
@@ -288,7 +232,8 @@ template <Real T = double>
 template <Real T = double>
 [[nodiscard]] propagation::sound_speed_profile<T> read_kongsberg_asvp(std::istream& in, std::string_view name) {
     using namespace detail::svp;
-    const auto lines = read_lines(in, name);
+    const std::string text = sss::detail::read_stream(in, name);
+    const auto lines = read_lines(text);
     if (lines.empty()) throw file_error(name, 0, "empty file: expected a \"( SoundVelocity ...)\" header");
     const std::string_view first = lines[0].text;
     if (first.front() != '(' || !iequals_prefix(trim(first.substr(1)), "SoundVelocity")) {
@@ -317,13 +262,8 @@ template <Real T = double>
         std::string_view h = header;
         h = trim(h);
         h.remove_prefix(1); // '('
-        const auto fields = split_fields(trim(h));
-        if (fields.size() == 12) {
-            std::size_t n = 0;
-            const auto f = fields.back();
-            const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), n);
-            if (ec == std::errc() && end == f.data() + f.size()) declared = n;
-        }
+        const auto fields = split_fields(text_line{trim(h), lines[0].number, 1});
+        if (fields.size() == 12) declared = sss::detail::parse_size(fields.back().text);
     }
     knot_list<T> knots;
     for (; i < lines.size(); ++i) knots.add(lines[i], name);
@@ -374,12 +314,13 @@ void write_sound_speed_csv(std::ostream& out, const propagation::sound_speed_pro
     if (!out) throw file_error(name, 0, "write failed");
 }
 
-/// Writes `profile` as CSV to the file at `path` (created or replaced).
+/// Writes `profile` as CSV to the file at `path` (created or replaced atomically: written to `path + ".tmp"`,
+/// then renamed, so a failure leaves `path` as it was).
 template <Real T>
 void write_sound_speed_csv(const std::filesystem::path& path, const propagation::sound_speed_profile<T>& profile) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw file_error(path.string(), 0, "cannot open for writing");
+    std::ostringstream out;
     write_sound_speed_csv(out, profile, path.string());
+    sss::detail::save_file(path.string(), out.view());
 }
 
 } // namespace sss::io

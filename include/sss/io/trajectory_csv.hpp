@@ -2,7 +2,8 @@
 /// \file
 /// Reads a trajectory from a CSV text file into `sss::motion::trajectory_samples`.
 ///
-/// Format. Comma-separated; '#' starts a comment that runs to the end of the line; blank lines are skipped;
+/// Format. Fields are separated by ',' or ';' (or, on a line with neither, by blanks), as in every sss text
+/// reader (io/detail/text.hpp); '#' starts a comment that runs to the end of the line; blank lines are skipped;
 /// spaces and tabs around fields are ignored; a UTF-8 byte-order mark and CRLF line ends are accepted. The
 /// first line that is not blank or a comment is the header naming the columns, in any order (names are
 /// case-insensitive; a unit suffix is optional):
@@ -41,6 +42,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/io/detail/text.hpp"
 #include "sss/motion/trajectory.hpp"
 
 namespace sss::io {
@@ -54,21 +56,8 @@ struct column_spec {
     bool radians; ///< for angle columns: values in radians
 };
 
-inline std::string_view trim(std::string_view s) noexcept {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-    return s;
-}
-
-inline std::string lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    return out;
-}
-
 inline std::optional<column_spec> parse_column(std::string_view raw) {
-    const std::string n = lower(raw);
+    const std::string n = sss::detail::lower(raw);
     const auto is = [&](std::initializer_list<std::string_view> names) {
         for (std::string_view s : names)
             if (n == s) return true;
@@ -90,29 +79,6 @@ inline std::optional<column_spec> parse_column(std::string_view raw) {
     return std::nullopt;
 }
 
-/// Splits a line (comment already removed) at commas, trimming each field.
-inline std::vector<std::string_view> split(std::string_view line) {
-    std::vector<std::string_view> fields;
-    std::size_t start = 0;
-    for (;;) {
-        const std::size_t comma = line.find(',', start);
-        fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-        if (comma == std::string_view::npos) break;
-        start = comma + 1;
-    }
-    return fields;
-}
-
-/// A finite number filling the whole field, or nothing.
-inline std::optional<double> parse_number(std::string_view field) noexcept {
-    if (!field.empty() && field.front() == '+') field.remove_prefix(1);
-    if (field.empty()) return std::nullopt;
-    double v = 0.0;
-    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
-    if (ec != std::errc{} || end != field.data() + field.size() || !std::isfinite(v)) return std::nullopt;
-    return v;
-}
-
 inline const char* column_name(column c) noexcept {
     constexpr std::array<const char*, static_cast<std::size_t>(column::count)> names{
         "time", "ping", "x", "y", "z", "roll", "pitch", "yaw", "heave", "sway"};
@@ -132,32 +98,27 @@ template <Real T>
     std::array<bool, ncol> radians{};
     std::array<std::vector<double>, ncol> data{};
     bool header_seen = false;
-    std::string line;
-    std::size_t line_no = 0;
     std::size_t rows = 0;
     std::size_t key = 0, time = 0;
 
-    while (std::getline(in, line)) {
-        ++line_no;
-        std::string_view view(line);
-        if (line_no == 1 && view.substr(0, 3) == "\xEF\xBB\xBF") view.remove_prefix(3);
-        if (const std::size_t hash = view.find('#'); hash != std::string_view::npos) view = view.substr(0, hash);
-        view = d::trim(view);
-        if (view.empty()) continue;
-        const std::vector<std::string_view> fields = d::split(view);
+    const std::string text = sss::detail::read_stream(in, name);
+    for (const sss::detail::text_line& line : sss::detail::content_lines(text)) {
+        const std::size_t line_no = line.number;
+        const std::vector<sss::detail::text_field> fields = sss::detail::split_fields(line);
 
         if (!header_seen) {
             header_seen = true;
-            for (std::string_view f : fields) {
+            for (const sss::detail::text_field& field : fields) {
+                const std::string_view f = field.text;
                 const std::optional<d::column_spec> spec = d::parse_column(f);
                 if (!spec)
-                    throw file_error(name, line_no,
+                    throw sss::detail::error_at(name, line_no, field.column,
                                      "unknown column '" + std::string(f) +
                                          "' (known: time, ping, x, y, z, roll, pitch, yaw or heading, heave, sway; "
                                          "optional unit suffixes _s, _m, _deg, _rad)");
                 const std::size_t c = static_cast<std::size_t>(spec->which);
                 if (present[c])
-                    throw file_error(name, line_no, "column '" + std::string(f) + "' repeats the " +
+                    throw sss::detail::error_at(name, line_no, field.column, "column '" + std::string(f) + "' repeats the " +
                                                         d::column_name(spec->which) + " column");
                 present[c] = true;
                 radians[c] = spec->radians;
@@ -177,10 +138,11 @@ template <Real T>
             throw file_error(name, line_no, "expected " + std::to_string(columns.size()) + " fields, found " +
                                                 std::to_string(fields.size()));
         for (std::size_t i = 0; i < fields.size(); ++i) {
-            const std::optional<double> v = d::parse_number(fields[i]);
+            const std::optional<double> v = sss::detail::parse_finite(fields[i].text);
             if (!v)
-                throw file_error(name, line_no, "column '" + std::string(d::column_name(columns[i].which)) +
-                                                    "': '" + std::string(fields[i]) + "' is not a finite number");
+                throw sss::detail::error_at(name, line_no, fields[i].column,
+                                            "column '" + std::string(d::column_name(columns[i].which)) + "': '" +
+                                                std::string(fields[i].text) + "' is not a finite number");
             data[static_cast<std::size_t>(columns[i].which)].push_back(*v);
         }
         for (std::size_t c : {key, time}) {
@@ -192,7 +154,6 @@ template <Real T>
         }
         ++rows;
     }
-    if (in.bad()) throw file_error(name, line_no, "read error");
     if (!header_seen) throw file_error(name, 0, "no header row");
     if (rows < 2) throw file_error(name, 0, "needs at least 2 samples, found " + std::to_string(rows));
 

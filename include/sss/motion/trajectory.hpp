@@ -111,13 +111,16 @@ public:
         // The tolerance absorbs the rounding of a ping interval given in T (e.g. 0.1f).
         const double span = (key.back() - k0_) / step;
         const double tolerance = 8.0 * static_cast<double>(std::numeric_limits<T>::epsilon());
+        // 2^53 pings: beyond it ping numbers are no longer exact in double (and the count would overflow).
+        sss::require(span < 9007199254740992.0, by_ping_ ? "trajectory.ping" : "trajectory.time_s",
+                             "the samples span more than 2^53 pings");
         count_ = static_cast<std::size_t>(std::floor(span * (1.0 + tolerance) + tolerance)) + 1;
 
         // Position channels and their slopes (d/dkey).
         for (int c = 0; c < 3; ++c) {
             std::vector<double> v(n);
             for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<double>(s.position_m[i][c]);
-            pos_[c] = make_channel(std::move(v));
+            pos_[c] = make_channel(std::move(v), "trajectory.position_m");
         }
         // Yaw and pitch: given (unwrapped) or from the direction of travel.
         std::vector<double> yaw(n), pitch(n);
@@ -133,14 +136,14 @@ public:
             if (s.yaw_rad.empty()) yaw = derived_yaw;
             if (s.pitch_rad.empty()) pitch = derived_pitch;
         }
-        yaw_ = make_channel(unwrap(std::move(yaw)));
-        pitch_ = make_channel(unwrap(std::move(pitch)));
+        yaw_ = make_channel(unwrap(std::move(yaw)), "trajectory.yaw_rad");
+        pitch_ = make_channel(unwrap(std::move(pitch)), "trajectory.pitch_rad");
 
         // Sample times, for the ping times and the turn rate.
         std::vector<double> t(n);
         for (std::size_t i = 0; i < n; ++i)
             t[i] = by_ping_ ? (has_time_ ? s.time_s[i] : key[i] * static_cast<double>(p.ping_interval_s)) : key[i];
-        if (has_time_) time_ = make_channel(t);
+        if (has_time_) time_ = make_channel(t, "trajectory.time_s");
 
         std::vector<double> roll(n, 0.0);
         if (!s.roll_rad.empty()) {
@@ -150,9 +153,9 @@ public:
             const std::vector<double> vx = slopes(t, pos_[0].value), vy = slopes(t, pos_[1].value);
             for (std::size_t i = 0; i < n; ++i) roll[i] = std::atan(std::hypot(vx[i], vy[i]) * r[i] / gravity_mps2);
         }
-        roll_ = make_channel(unwrap(std::move(roll)));
-        if (!s.heave_m.empty()) heave_ = make_channel(to_double(s.heave_m));
-        if (!s.sway_m.empty()) sway_ = make_channel(to_double(s.sway_m));
+        roll_ = make_channel(unwrap(std::move(roll)), "trajectory.roll_rad");
+        if (!s.heave_m.empty()) heave_ = make_channel(to_double(s.heave_m), "trajectory.heave_m");
+        if (!s.sway_m.empty()) sway_ = make_channel(to_double(s.sway_m), "trajectory.sway_m");
         if (has_time_) t0_ = eval(time_, k0_);
         else t0_ = by_ping_ ? k0_ * static_cast<double>(p.ping_interval_s) : k0_;
     }
@@ -253,9 +256,21 @@ private:
         return m;
     }
 
-    [[nodiscard]] channel make_channel(std::vector<double> v) const {
+    /// The largest magnitude of a sample value (m, rad or s): beyond it interpolation could overflow.
+    static constexpr double max_sample_value = 1e12;
+
+    /// A channel of values over the keys; throws invalid_parameter(name) for a value beyond max_sample_value or a
+    /// slope that is not finite (values that change by more than a double can hold between close keys).
+    [[nodiscard]] channel make_channel(std::vector<double> v, const char* name) const {
         channel c;
+        for (std::size_t i = 0; i < v.size(); ++i)
+            if (!(std::abs(v[i]) <= max_sample_value))
+                throw invalid_parameter(name, "sample " + std::to_string(i) + " exceeds 1e12 in magnitude");
         c.slope = slopes(key_, v);
+        for (std::size_t i = 0; i < c.slope.size(); ++i)
+            if (!std::isfinite(c.slope[i]))
+                throw invalid_parameter(name, "changes faster than a double can hold near sample " + std::to_string(i) +
+                                                  " (keys too close for the change in value)");
         c.value = std::move(v);
         return c;
     }

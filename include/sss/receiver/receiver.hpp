@@ -23,9 +23,13 @@ struct receiver_params {
         pulse.validate();
     }
 
-    /// Samples per line for a reference sound speed c (m/s).
+    /// Samples per line for a reference sound speed c (m/s); saturates at 2^62 (and gives 0 for a count that is not
+    /// a number) rather than overflowing the size type.
     [[nodiscard]] std::size_t samples(double c_mps) const noexcept {
-        return static_cast<std::size_t>(std::ceil(2.0 * max_range_m / c_mps * sample_rate_hz));
+        const double n = std::ceil(2.0 * max_range_m / c_mps * sample_rate_hz);
+        constexpr double cap = 4611686018427387904.0; // 2^62
+        if (!(n >= 0.0)) return 0;
+        return n < cap ? static_cast<std::size_t>(n) : static_cast<std::size_t>(cap);
     }
 };
 

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
@@ -61,9 +62,7 @@ public:
         sss::require_positive(cell_m, "height_field.cell_m");
         sss::require_finite(origin_m.x, "height_field.origin_m.x");
         sss::require_finite(origin_m.y, "height_field.origin_m.y");
-        sss::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
-                             "nx * ny overflows");
-        const std::size_t n = nx * ny, cells = (nx - 1) * (ny - 1);
+        const std::size_t n = checked_elements(nx, ny, "height_field.nx * ny"), cells = (nx - 1) * (ny - 1);
         sss::require(heights_.size() == n, "height_field.heights_m",
                              [&] { return "must hold nx * ny = " + std::to_string(n) + " values, got " +
                                  std::to_string(heights_.size()); });

@@ -5,7 +5,7 @@
 /// Method: random Fourier coefficients c_mn on the N_x x N_y grid of wave vectors
 /// K_mn = (m dKx, n dKy), dKx = 2 pi / (N_x dx), dKy = 2 pi / (N_y dx) (indices above N/2 wrap to negative),
 /// with E|c_mn|^2 = W(K_mn) dKx dKy and c_{-m,-n} = conj(c_mn), then h(x) = sum_mn c_mn exp(i K_mn . x)
-/// by one inverse 2D FFT (physics.md section 5; e.g. Thorsos, 1988, JASA 83(1) 78-92, for this
+/// by one inverse 2D FFT (e.g. Thorsos, 1988, JASA 83(1) 78-92, for this
 /// normalisation). Hence <h^2> = sum_{mn != 0} W(K_mn) dKx dKy: the integral of W over the grid's band
 /// (`band_variance_m2`), and h is Gaussian with the requested spectrum at every grid wave vector.
 /// The K = 0 coefficient is 0: the periodic surface has zero mean.
@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "sss/core/constants.hpp"
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/seabed/fft.hpp"
 #include "sss/seabed/power_law_spectrum.hpp"
@@ -174,7 +175,9 @@ template <Real T>
 [[nodiscard]] double band_variance_m2(const fractal_params<T>& p, std::size_t nx, std::size_t ny, T cell_m) {
     require_grid(nx, ny, cell_m, "band_variance_m2");
     validate(p, "band_variance_m2.params");
-    const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
+    const std::size_t sx = checked_mul(nx, p.oversample, "band_variance_m2.params.oversample");
+    const std::size_t sy = checked_mul(ny, p.oversample, "band_variance_m2.params.oversample");
+    (void)checked_elements(sx, sy, "band_variance_m2.params.oversample");
     const double dx = static_cast<double>(cell_m);
     const double dkx = two_pi_v<double> / (static_cast<double>(sx) * dx);
     const double dky = two_pi_v<double> / (static_cast<double>(sy) * dx);
@@ -191,7 +194,9 @@ template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::s
                                                           const fractal_params<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "fractal_surface");
     validate(p, "fractal_surface.params");
-    const std::size_t sx = nx * p.oversample, sy = ny * p.oversample;
+    const std::size_t sx = checked_mul(nx, p.oversample, "fractal_surface.params.oversample");
+    const std::size_t sy = checked_mul(ny, p.oversample, "fractal_surface.params.oversample");
+    (void)checked_elements(sx, sy, "fractal_surface.params.oversample");
     rng g(seed);
     std::vector<std::complex<double>> c;
     detail::fill_coefficients(c, sx, sy, static_cast<double>(cell_m), p, g);

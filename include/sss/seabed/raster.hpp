@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/types.hpp"
 
@@ -43,10 +44,12 @@ template <Real T> using raster = basic_raster<T, T>;
 /// Region ids (material / ground-truth label) on a grid.
 template <Real T> using region_raster = basic_raster<std::uint32_t, T>;
 
-/// Throws unless nx, ny >= 1 and cell_m is finite and > 0; `who` prefixes the parameter names.
+/// Throws unless nx, ny >= 1, nx * ny <= sss::max_elements and cell_m is finite and > 0; `who` prefixes the
+/// parameter names.
 template <Real T> void require_grid(std::size_t nx, std::size_t ny, T cell_m, const std::string& who) {
     sss::require(nx >= 1, who + ".nx", "must be >= 1");
     sss::require(ny >= 1, who + ".ny", "must be >= 1");
+    (void)checked_elements(nx, ny, who + ".nx * ny");
     sss::require_positive(cell_m, who + ".cell_m");
 }
 
