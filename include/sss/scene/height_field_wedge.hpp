@@ -255,15 +255,10 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
         const T to_s = cell * slopes[k].inv_h;  // distance per cell of rho
         const T to_rho = T(1) / to_s;           // cells of rho per metre of distance
         const T rho_hi = std::min(q.s_hi * to_rho, ring_end);
-        while (static_cast<T>(shared) < rho_hi && clear(shared, tau)) ++shared;
-        if (!(static_cast<T>(shared) < rho_hi)) {
-            emit(k, static_cast<const grid_hit<T>*>(nullptr));
-            chained = false;
-            continue;
-        }
 
         // Where the chain puts this ray's start: it is above the surface out to the previous ray's last point
-        // above it when it is shallower by more than the sideways slope bound allows, with margin for rounding.
+        // above it when it is shallower by more than the sideways slope bound allows, with margin for rounding
+        // (rings before `shared` are clear for it, the chain covers the rest).
         T s_chain = T(0);
         if (chained) {
             const T turn = T(1.001) * std::abs(slopes[k].sin_turn - chain_sin) + T(8) * eps;
@@ -280,6 +275,11 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
             }
         }
         chained = false;
+        while (static_cast<T>(shared) < rho_hi && clear(shared, tau)) ++shared;
+        if (!(static_cast<T>(shared) < rho_hi)) {
+            emit(k, static_cast<const grid_hit<T>*>(nullptr));
+            continue;
+        }
 
         // The exact walk from ring `shared` (or the chain's start) on, jumping over rings that are clear for it.
         grid_hit<T> out;
@@ -288,6 +288,7 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
         std::int32_t ring = shared;
         detail::walk_state<T> w{};
         bool walking = false;
+        int grace = 0; // cells to walk before looking for jumps
         if (s_chain > static_cast<T>(shared) * to_s) {
             // Resume at the entry crossing of the cell that holds the chain's point: a breakpoint of the
             // single-ray walk, evaluated by the same formula.
@@ -309,6 +310,7 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
                 w.above = w.f > T(0);
                 ring = static_cast<std::int32_t>(s_in * to_rho);
                 walking = true;
+                grace = 3;
             }
         }
         while (!found) {
@@ -341,6 +343,11 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
             }
             if (o == detail::step_outcome::done) break;
             if (!w.above) clean = false;
+            // A chained walk usually ends within a cell or two: look for jumps only after a few cells.
+            if (grace > 0) {
+                --grace;
+                continue;
+            }
             // Entering a new ring: jump when it and the next ones are clear for this ray.
             const T rho = w.s * to_rho;
             const std::int32_t now = static_cast<std::int32_t>(rho);
