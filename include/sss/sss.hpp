@@ -10,6 +10,8 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/pose.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/core/render_control.hpp"
+#include "sss/core/thread_pool.hpp"
 #include "sss/core/types.hpp"
 
 #include "sss/scene/concept.hpp"
