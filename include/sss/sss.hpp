@@ -83,5 +83,6 @@
 #include "sss/seabed/ripples.hpp"
 #include "sss/seabed/stamps.hpp"
 #include "sss/seabed/targets.hpp"
+#include "sss/seabed/wave_sum.hpp"
 
 #include "sss/simulator.hpp"

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -32,6 +33,14 @@
 
 namespace sss::scene {
 
+/// Heights held outside the height field, e.g. in a memory-mapped file (io/mapped_height_field.hpp): `data` points
+/// at nx * ny heights laid out as height_field's, and stays valid while `keeper` lives (the height field and its
+/// copies hold it).
+template <Real T> struct external_heights {
+    const T* data = nullptr;
+    std::shared_ptr<const void> keeper{};
+};
+
 template <Real T> class height_field {
 public:
     using value_type = T;
@@ -46,55 +55,32 @@ public:
     height_field(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, std::vector<T> heights_m,
                  std::vector<std::uint32_t> materials = {}, std::vector<std::uint32_t> regions = {})
         : heights_(std::move(heights_m)), materials_(std::move(materials)), regions_(std::move(regions)) {
-        constexpr std::size_t max_n = std::size_t(1) << 30;
-        sss::detail::require(nx >= 2 && nx <= max_n, "height_field.nx",
-                             "must lie in [2, 2^30] (vertices), got " + std::to_string(nx));
-        sss::detail::require(ny >= 2 && ny <= max_n, "height_field.ny",
-                             "must lie in [2, 2^30] (vertices), got " + std::to_string(ny));
-        sss::detail::require_positive(cell_m, "height_field.cell_m");
-        sss::detail::require_finite(origin_m.x, "height_field.origin_m.x");
-        sss::detail::require_finite(origin_m.y, "height_field.origin_m.y");
-        sss::detail::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
-                             "nx * ny overflows");
-        const std::size_t n = nx * ny, cells = (nx - 1) * (ny - 1);
-        sss::detail::require(heights_.size() == n, "height_field.heights_m",
-                             "must hold nx * ny = " + std::to_string(n) + " values, got " +
-                                 std::to_string(heights_.size()));
-        sss::detail::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
-                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                                 std::to_string(materials_.size()));
-        sss::detail::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
-                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                                 std::to_string(regions_.size()));
-        bounds_.bottom_m = std::numeric_limits<T>::infinity();
-        bounds_.top_m = -std::numeric_limits<T>::infinity();
-        for (std::size_t i = 0; i < n; ++i) {
-            const T h = heights_[i];
-            if (!std::isfinite(h))
-                throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
-                                        "must be finite, got " + std::to_string(h) + " at vertex (ix " +
-                                            std::to_string(i % nx) + ", iy " + std::to_string(i / nx) + ")");
-            bounds_.bottom_m = std::min(bounds_.bottom_m, h);
-            bounds_.top_m = std::max(bounds_.top_m, h);
-        }
-        grid_.heights = heights_.data();
-        grid_.nx = static_cast<std::int32_t>(nx);
-        grid_.ny = static_cast<std::int32_t>(ny);
-        grid_.cell_m = cell_m;
-        grid_.inv_cell_m = T(1) / cell_m;
-        grid_.origin_m = origin_m;
-        pyramid_ = max_pyramid<T>(grid_);
+        init(nx, ny, cell_m, origin_m, heights_.data(), heights_.size());
+    }
+
+    /// The same over heights held elsewhere (`heights.data`, nx * ny values, kept alive by `heights.keeper`):
+    /// nothing is copied; the heights are read once here (checks, bounds, pyramid) and then as rays need them.
+    /// heights_m() is empty for such a field; heights() views them.
+    height_field(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, external_heights<T> heights,
+                 std::vector<std::uint32_t> materials = {}, std::vector<std::uint32_t> regions = {})
+        : external_(std::move(heights.keeper)), materials_(std::move(materials)), regions_(std::move(regions)) {
+        sss::detail::require(heights.data != nullptr, "height_field.heights.data", "must not be null");
+        sss::detail::require(nx <= std::numeric_limits<std::size_t>::max() / std::max<std::size_t>(ny, 1),
+                             "height_field.nx", "nx * ny overflows");
+        external_data_ = heights.data;
+        init(nx, ny, cell_m, origin_m, heights.data, nx * ny);
     }
 
     height_field(const height_field& o)
-        : heights_(o.heights_), materials_(o.materials_), regions_(o.regions_), pyramid_(o.pyramid_), grid_(o.grid_),
-          bounds_(o.bounds_) {
-        grid_.heights = heights_.data();
+        : heights_(o.heights_), external_(o.external_), external_data_(o.external_data_), materials_(o.materials_),
+          regions_(o.regions_), pyramid_(o.pyramid_), grid_(o.grid_), bounds_(o.bounds_) {
+        grid_.heights = data();
     }
     height_field(height_field&& o) noexcept
-        : heights_(std::move(o.heights_)), materials_(std::move(o.materials_)), regions_(std::move(o.regions_)),
-          pyramid_(std::move(o.pyramid_)), grid_(o.grid_), bounds_(o.bounds_) {
-        grid_.heights = heights_.data();
+        : heights_(std::move(o.heights_)), external_(std::move(o.external_)), external_data_(o.external_data_),
+          materials_(std::move(o.materials_)), regions_(std::move(o.regions_)), pyramid_(std::move(o.pyramid_)),
+          grid_(o.grid_), bounds_(o.bounds_) {
+        grid_.heights = data();
     }
     height_field& operator=(height_field o) noexcept {
         swap(o);
@@ -104,6 +90,8 @@ public:
 
     void swap(height_field& o) noexcept {
         heights_.swap(o.heights_);
+        external_.swap(o.external_);
+        std::swap(external_data_, o.external_data_);
         materials_.swap(o.materials_);
         regions_.swap(o.regions_);
         std::swap(pyramid_, o.pyramid_);
@@ -197,9 +185,11 @@ public:
     [[nodiscard]] T cell_m() const noexcept { return grid_.cell_m; }
     [[nodiscard]] vec2<T> origin_m() const noexcept { return grid_.origin_m; }
     /// Height of vertex (ix, iy) (m); no bounds check.
-    [[nodiscard]] T height_m(std::size_t ix, std::size_t iy) const noexcept { return heights_[iy * nx() + ix]; }
-    /// All vertex heights (m), row-major from the south row.
+    [[nodiscard]] T height_m(std::size_t ix, std::size_t iy) const noexcept { return data()[iy * nx() + ix]; }
+    /// All vertex heights (m), row-major from the south row (empty for external heights: see heights()).
     [[nodiscard]] const std::vector<T>& heights_m() const noexcept { return heights_; }
+    /// All vertex heights (m), row-major from the south row, wherever they are held.
+    [[nodiscard]] std::span<const T> heights() const noexcept { return {data(), nx() * ny()}; }
     /// Material id of cell (ix, iy).
     [[nodiscard]] std::uint32_t material(std::size_t ix, std::size_t iy) const noexcept {
         return materials_.empty() ? 0u : materials_[iy * (nx() - 1) + ix];
@@ -217,11 +207,55 @@ public:
     [[nodiscard]] const max_pyramid<T>& pyramid() const noexcept { return pyramid_; }
 
     /// Bytes of the heights themselves.
-    [[nodiscard]] std::size_t height_bytes() const noexcept { return heights_.size() * sizeof(T); }
+    [[nodiscard]] std::size_t height_bytes() const noexcept { return nx() * ny() * sizeof(T); }
     /// Bytes of the acceleration structure beyond the heights (the pyramid).
     [[nodiscard]] std::size_t acceleration_bytes() const noexcept { return pyramid_.bytes(); }
 
 private:
+    /// Checks the grid and builds the bounds and the pyramid over heights `values` (size of them).
+    void init(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, const T* values, std::size_t size) {
+        constexpr std::size_t max_n = std::size_t(1) << 30;
+        sss::detail::require(nx >= 2 && nx <= max_n, "height_field.nx",
+                             "must lie in [2, 2^30] (vertices), got " + std::to_string(nx));
+        sss::detail::require(ny >= 2 && ny <= max_n, "height_field.ny",
+                             "must lie in [2, 2^30] (vertices), got " + std::to_string(ny));
+        sss::detail::require_positive(cell_m, "height_field.cell_m");
+        sss::detail::require_finite(origin_m.x, "height_field.origin_m.x");
+        sss::detail::require_finite(origin_m.y, "height_field.origin_m.y");
+        sss::detail::require(nx <= std::numeric_limits<std::size_t>::max() / ny, "height_field.nx",
+                             "nx * ny overflows");
+        const std::size_t n = nx * ny, cells = (nx - 1) * (ny - 1);
+        sss::detail::require(size == n, "height_field.heights_m",
+                             "must hold nx * ny = " + std::to_string(n) + " values, got " +
+                                 std::to_string(size));
+        sss::detail::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
+                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                                 std::to_string(materials_.size()));
+        sss::detail::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
+                             "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                                 std::to_string(regions_.size()));
+        bounds_.bottom_m = std::numeric_limits<T>::infinity();
+        bounds_.top_m = -std::numeric_limits<T>::infinity();
+        for (std::size_t i = 0; i < n; ++i) {
+            const T h = values[i];
+            if (!std::isfinite(h))
+                throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
+                                        "must be finite, got " + std::to_string(h) + " at vertex (ix " +
+                                            std::to_string(i % nx) + ", iy " + std::to_string(i / nx) + ")");
+            bounds_.bottom_m = std::min(bounds_.bottom_m, h);
+            bounds_.top_m = std::max(bounds_.top_m, h);
+        }
+        grid_.heights = values;
+        grid_.nx = static_cast<std::int32_t>(nx);
+        grid_.ny = static_cast<std::int32_t>(ny);
+        grid_.cell_m = cell_m;
+        grid_.inv_cell_m = T(1) / cell_m;
+        grid_.origin_m = origin_m;
+        pyramid_ = max_pyramid<T>(grid_);
+    }
+
+    [[nodiscard]] const T* data() const noexcept { return external_data_ != nullptr ? external_data_ : heights_.data(); }
+
     [[nodiscard]] std::optional<hit<T>> to_hit(const ray<T>& r, const std::optional<grid_hit<T>>& g) const noexcept {
         if (!g) return std::nullopt;
         return to_hit(r, *g);
@@ -306,6 +340,8 @@ private:
     }
 
     std::vector<T> heights_;
+    std::shared_ptr<const void> external_; // keeps external heights alive
+    const T* external_data_ = nullptr;     // external heights, or null when heights_ holds them
     std::vector<std::uint32_t> materials_;
     std::vector<std::uint32_t> regions_;
     max_pyramid<T> pyramid_;
