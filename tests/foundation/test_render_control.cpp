@@ -52,6 +52,13 @@ TEST_CASE("a pool loop rethrows the first failure and the pool runs the next loo
     CHECK(after.load() == 50);
 }
 
+TEST_CASE("a loop started inside a loop of the same pool runs on its thread instead of waiting for itself") {
+    sss::thread_pool pool(2);
+    std::vector<std::atomic<int>> calls(8 * 8);
+    pool.for_each(8, [&](std::size_t i) { pool.for_each(8, [&](std::size_t j) { calls[i * 8 + j].fetch_add(1); }); });
+    for (const auto& c : calls) CHECK(c.load() == 1);
+}
+
 TEST_CASE("render on a pool gives the same waterfall for any thread count, and progress counts every ping in order") {
     const sim_t sim = make_sim();
     const sss::scene::flat_seabed<float> seabed;

@@ -8,8 +8,9 @@
 /// writes its own output).
 ///
 /// Errors: the first exception thrown by f is rethrown by for_each once every thread has stopped; the other
-/// threads take no new index after it. One loop runs at a time per pool (concurrent calls wait their turn);
-/// f must not call for_each on the same pool (it would wait for itself).
+/// threads take no new index after it. One loop runs at a time per pool (concurrent calls wait their turn); a loop
+/// started from inside a loop of the same pool (f calling for_each, directly or through a library call) runs on
+/// the calling thread alone, rather than waiting for itself.
 
 #include <algorithm>
 #include <atomic>
@@ -53,7 +54,7 @@ public:
         if (count == 0) return;
         unsigned want = threads == 0 ? size_ : threads;
         want = static_cast<unsigned>(std::min<std::size_t>(want, count));
-        if (want <= 1) {
+        if (want <= 1 || inside() == this) {
             for (std::size_t i = 0; i < count; ++i) f(i);
             return;
         }
@@ -96,7 +97,19 @@ private:
         return threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
     }
 
-    static void run(job& j) noexcept {
+    /// The pool whose loop the calling thread is running, if any.
+    static const thread_pool*& inside() noexcept {
+        thread_local const thread_pool* pool = nullptr;
+        return pool;
+    }
+
+    void run(job& j) const noexcept {
+        const thread_pool* const outer = inside();
+        inside() = this;
+        struct restore {
+            const thread_pool* outer;
+            ~restore() { inside() = outer; }
+        } const back{outer};
         for (;;) {
             const std::size_t i = j.next.fetch_add(1, std::memory_order_relaxed);
             if (i >= j.count) return;
