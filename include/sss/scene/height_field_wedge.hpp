@@ -323,7 +323,9 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
                 w.f = detail::f_at(g, q, s);
                 if (at_entry) {
                     w.above = w.f > T(0);
-                    if (!w.above || !(s > T(0))) clean = false;
+                    // Entering the grid here (through its side, or from an origin over it): the chain needs the
+                    // ray to have been over the grid, and above the envelope, before its walk, so it ends here.
+                    clean = false;
                 } else {
                     // Above the envelope just before: only rounding can put f <= 0 here, and then this is the hit.
                     if (!(w.f > T(0)) && detail::segment_root(q, s, T(1), s, w.f, w.ix, w.iy, out)) {
