@@ -11,9 +11,10 @@ src=$(cd "${1:?usage: check_meson_lists.sh <sss source dir>}" && pwd)
 missing=0
 checked=0
 
-# listed <meson.build> <file name>: the file name appears quoted outside comments.
+# listed <meson.build> <file name>: the file name appears quoted outside comments. (grep reads all of its input:
+# with -q it would stop at the first match, and sed, still writing, would fail the pipeline under pipefail.)
 listed() {
-    [[ -f "$1" ]] && sed 's/#.*//' "$1" | grep -Eq "['\"]$2['\"]"
+    [[ -f "$1" ]] && sed 's/#.*//' "$1" | grep -E "['\"]$2['\"]" >/dev/null
 }
 
 complain() {
