@@ -1,5 +1,7 @@
 // Cost of seabed synthesis: a fractal surface by spectral synthesis (random coefficients + one inverse 2D FFT)
-// from 512^2 up to 4096^2 samples, the bare 2D FFT, and a three-texture composite seabed with ripples.
+// from 512^2 up to 4096^2 samples, the bare 2D FFT, a three-texture composite seabed with ripples, and two
+// perturbed ripple sets on 4096^2 at 0.25 m (each set's crest displacement and height variation, two unit fractal
+// fields, from one complex FFT).
 // Surface: APL-UW medium sand (TR 9407 Table 2: w2 = 0.004446 cm^4, gamma = 3.25), 5 cm cells, output float.
 
 #include <benchmark/benchmark.h>
@@ -12,6 +14,7 @@
 #include <sss/seabed/composite.hpp>
 #include <sss/seabed/fft.hpp>
 #include <sss/seabed/fractal.hpp>
+#include <sss/seabed/ripples.hpp>
 
 namespace {
 
@@ -88,6 +91,23 @@ void composite_seabed_synthesis(benchmark::State& state) {
     state.SetLabel("clay / gravel / rippled sand, level partition, 0.2 m blend");
 }
 BENCHMARK(composite_seabed_synthesis)->Arg(1024)->Unit(benchmark::kMillisecond);
+
+void ripple_field_synthesis(benchmark::State& state) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    const std::vector<ripple_params<float>> sets{
+        {.wavelength_m = 0.9f, .height_m = 0.08f, .crest_heading_deg = 72.81f, .symmetry_index = 2.0f,
+         .perturbation_m = 0.05f, .height_variation = 0.2f},
+        {.wavelength_m = 6.0f, .height_m = 0.3f, .crest_heading_deg = 26.97f, .symmetry_index = 1.5f,
+         .perturbation_m = 0.3f, .height_variation = 0.1f}};
+    std::uint64_t seed = 1;
+    for (auto _ : state) {
+        auto h = ripple_field<float>(n, n, 0.25f, sets, seed++);
+        benchmark::DoNotOptimize(h.values.data());
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n * n));
+    state.SetLabel("two perturbed ripple sets (0.9 m and 6 m), 0.25 m cells");
+}
+BENCHMARK(ripple_field_synthesis)->Arg(4096)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
 } // namespace
 

@@ -17,6 +17,7 @@
 #include "sss/motion/trajectory.hpp"
 #include "sss/propagation/layered.hpp"
 #include "sss/propagation/straight.hpp"
+#include "sss/scattering/hard_target.hpp"
 #include "sss/scattering/jackson.hpp"
 #include "sss/scattering/lambertian.hpp"
 #include "sss/simulator.hpp"
@@ -30,6 +31,7 @@ template <Real T> struct policies {
     // Scattering
     using lambertian = scattering::lambertian<T>;
     using jackson = scattering::jackson<T>;
+    using hard_target = scattering::hard_target<T>;
     // Propagation
     using straight = propagation::straight<T>;
     using layered = propagation::layered<T>;

@@ -36,7 +36,6 @@
 #include <string>
 #include <optional>
 #include <span>
-#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -46,6 +45,8 @@
 #include "sss/core/decibel.hpp"
 #include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
+#include "sss/core/render_control.hpp"
+#include "sss/core/thread_pool.hpp"
 #include "sss/motion/concept.hpp"
 #include "sss/motion/straight_line.hpp"
 #include "sss/propagation/concept.hpp"
@@ -170,42 +171,48 @@ public:
         return lines;
     }
 
-    /// Renders pings [first, first + count) into a waterfall, on `threads` threads (0: hardware concurrency).
-    /// The result does not depend on the number of threads. Throws invalid_parameter naming `render.count` when
-    /// the image would hold more than sss::max_elements values (or `render.first` when first + count overflows),
-    /// before anything is allocated.
+    /// Renders pings [first, first + count) into a waterfall, on `threads` threads (0: hardware concurrency), on
+    /// the shared pool. The result does not depend on the number of threads.
     template <Scene Sc>
     [[nodiscard]] waterfall<T> render(const Sc& scene, std::size_t first, std::size_t count, unsigned threads = 0) const {
+        return render(scene, first, count, render_control{.threads = threads});
+    }
+
+    /// Renders pings [first, first + count) into a waterfall as `control` says (core/render_control.hpp): threads
+    /// take pings one at a time from a persistent pool (dynamic scheduling), and a progress callback may cancel
+    /// (then render throws render_cancelled). The result does not depend on the number of threads or the pool.
+    /// Throws invalid_parameter naming `render.count` when the image would hold more than sss::max_elements values
+    /// (or `render.first` when first + count overflows), before anything is allocated.
+    template <Scene Sc>
+    [[nodiscard]] waterfall<T> render(const Sc& scene, std::size_t first, std::size_t count,
+                                      const render_control& control) const {
         sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first",
-                             "first + count overflows the ping index");
+                     "first + count overflows the ping index");
         waterfall<T> w;
         w.pings = count;
         w.samples = samples_;
         w.dt_s = dt_;
         w.values.assign(checked_elements(count, w.width(), "render.count"), T(0));
-        if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-        threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-        auto work = [&](unsigned worker) {
-            for (std::size_t i = worker; i < count; i += threads) w.set_row(i, ping(scene, first + i));
-        };
-        if (threads <= 1) {
-            work(0);
-        } else {
-            std::vector<std::thread> pool;
-            pool.reserve(threads);
-            std::exception_ptr failure;
-            std::mutex failure_lock;
-            for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&, t] {
-                try {
-                    work(t);
-                } catch (...) {
-                    const std::lock_guard<std::mutex> hold(failure_lock);
-                    if (!failure) failure = std::current_exception();
+        const auto& progress = control.progress;
+        if (progress && !progress(render_progress{0, count})) throw render_cancelled(0, count);
+        std::mutex report_lock;
+        std::size_t done = 0;
+        bool cancelled = false;
+        thread_pool& pool = control.pool != nullptr ? *control.pool : shared_thread_pool();
+        pool.for_each(
+            count,
+            [&](std::size_t i) {
+                w.set_row(i, ping(scene, first + i));
+                if (!progress) return;
+                const std::lock_guard<std::mutex> hold(report_lock);
+                if (cancelled) return; // finished after the cancellation: dropped
+                ++done;
+                if (!progress(render_progress{done, count})) {
+                    cancelled = true;
+                    throw render_cancelled(done, count); // for_each hands out no further ping
                 }
-            });
-            for (auto& th : pool) th.join();
-            if (failure) std::rethrow_exception(failure);
-        }
+            },
+            control.threads);
         return w;
     }
 

@@ -11,6 +11,8 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/pose.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/core/render_control.hpp"
+#include "sss/core/thread_pool.hpp"
 #include "sss/core/types.hpp"
 
 #include "sss/scene/concept.hpp"
@@ -39,6 +41,7 @@
 #include "sss/seabed/sediment_region.hpp"
 #include "sss/seabed/stamps.hpp"
 #include "sss/seabed/targets.hpp"
+#include "sss/seabed/wave_sum.hpp"
 
 #include "sss/scattering/by_material.hpp"
 #include "sss/scattering/concept.hpp"

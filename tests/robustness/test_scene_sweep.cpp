@@ -138,7 +138,7 @@ std::vector<mutation> mutations() {
              c.array.threshold_db = d.one_of({0.0, 3.0, nan_v});
          }},
         {"straight.sound_speed_mps", [](config& c, draw& d) {
-             c.scattering = scattering_kind::lambert; // jackson would name its own copy, jackson.c_water_mps
+             c.scattering = scattering_kind::lambert; // jackson would name its own copy, jackson.sound_speed_mps
              c.water.sound_speed_mps = d.one_of({999.9, 2500.1, nan_v});
          }},
         {"straight.absorption_db_per_km", [](config& c, draw& d) { c.water.absorption_db_per_km = d.one_of({-0.1, nan_v}); }},
@@ -146,7 +146,7 @@ std::vector<mutation> mutations() {
              c.scattering = scattering_kind::lambert;
              c.mu_db = d.one_of({-4.9, 0.0, nan_v});
          }},
-        {"jackson.f_hz", [](config& c, draw& d) {
+        {"jackson.frequency_hz", [](config& c, draw& d) {
              c.scattering = scattering_kind::jackson;
              c.jackson_f_hz = d.one_of({0.0, -1.0, nan_v});
          }},
@@ -189,8 +189,11 @@ sss::scene::height_field<double> relief(const config& c) {
     }
     // Centred under the first pings.
     const double half = 0.5 * double(n - 1) * c.cell_m;
-    return sss::scene::height_field<double>(n, n, c.cell_m, {c.motion.start_m.x - half, c.motion.start_m.y - half},
-                                            std::move(h));
+    return sss::scene::height_field<double>({.nx = n,
+                                             .ny = n,
+                                             .cell_m = c.cell_m,
+                                             .origin_m = {c.motion.start_m.x - half, c.motion.start_m.y - half},
+                                             .heights_m = std::move(h)});
 }
 
 template <class Scattering, class Beam>
@@ -209,8 +212,10 @@ template <class Scattering> sss::waterfall<double> render_beam(const config& c, 
 
 sss::waterfall<double> render(const config& c) {
     if (c.scattering == scattering_kind::lambert) return render_beam(c, sss::scattering::lambertian<double>(c.mu_db));
-    return render_beam(c, sss::scattering::jackson<double>(c.jackson_f_hz, c.water.sound_speed_mps,
-                                                           sss::scattering::sediment_preset<double>(c.sediment)));
+    return render_beam(c, sss::scattering::jackson<double>(
+                                   {.frequency_hz = c.jackson_f_hz,
+                                    .sound_speed_mps = c.water.sound_speed_mps,
+                                    .materials = {sss::scattering::sediment_preset<double>(c.sediment)}}));
 }
 
 std::size_t scenes_to_run() {

@@ -70,7 +70,7 @@ TEST_CASE("fractal and ripple grids of 2^32 x 2^32 samples are refused by name")
 }
 
 TEST_CASE("a height field whose nx * ny exceeds max_elements is refused by name") {
-    CHECK(named([] { sss::scene::height_field<float>(std::size_t(1) << 16, std::size_t(1) << 16, 1.0f, {0, 0}, {}); }) ==
+    CHECK(named([] { sss::scene::height_field<float>({.nx = std::size_t(1) << 16, .ny = std::size_t(1) << 16, .cell_m = 1.0f}); }) ==
           "height_field.nx * ny");
 }
 

@@ -41,6 +41,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -329,7 +330,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
 
 /// Writes `hf` as raw float32 to `path` and its sidecar to `path + ".txt"` (each atomically).
 template <Real T> void write_raw_f32(const std::string& path, const scene::height_field<T>& hf) {
-    const auto& h = hf.heights_m();
+    const std::span<const T> h = hf.heights();
     for (std::size_t i = 0; i < h.size(); ++i)
         if (!std::isfinite(static_cast<float>(h[i])))
             throw file_error(path, 0, "height of vertex " + std::to_string(i) + " does not fit float32");

@@ -29,7 +29,7 @@
 /// The received intensity is mean_k tex_k |z_k|^2 / E|z_k|^2: its expectation is the ray tracer's mean power
 /// exactly. With a K shape nu, tex is a Gamma(nu) texture of unit mean attached to the seabed in square
 /// patches (Jakeman & Pusey, IEEE Trans. Antennas Propag. 24, 1976; Abraham & Lyons, IEEE J. Oceanic Eng. 27(4),
-/// 2002): intensity K-distributed with <I^2>/<I>^2 = 2 (1 + 1/nu); nu may differ per material (the simulator tells
+/// 2002): intensity K-distributed with E[I^2]/E[I]^2 = 2 (1 + 1/nu); nu may differ per material (the simulator tells
 /// a stage that asks which material's echo dominates each sample: coarse, patchy beds spikier than fine ones). With a scatterer density the shape follows
 /// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse).
 ///

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,6 +45,14 @@ template <Real T> struct height_field_params {
     std::vector<std::uint32_t> regions{};   ///< per-cell region ids (the ground-truth label of hits), same size rule
 };
 
+/// Heights held outside the height field, e.g. in a memory-mapped file (io/mapped_height_field.hpp): `data` points
+/// at nx * ny heights laid out as height_field's, and stays valid while `keeper` lives (the height field and its
+/// copies hold it).
+template <Real T> struct external_heights {
+    const T* data = nullptr;
+    std::shared_ptr<const void> keeper{};
+};
+
 template <Real T> class height_field {
 public:
     using value_type = T;
@@ -51,56 +60,30 @@ public:
     /// Throws invalid_parameter naming the field ("height_field.nx", "height_field.heights_m[i]", ...).
     explicit height_field(height_field_params<T> p)
         : heights_(std::move(p.heights_m)), materials_(std::move(p.materials)), regions_(std::move(p.regions)) {
-        const std::size_t nx = p.nx, ny = p.ny;
-        const T cell_m = p.cell_m;
-        const vec2<T> origin_m = p.origin_m;
-        constexpr std::size_t max_n = std::size_t(1) << 30;
-        sss::require(nx >= 2 && nx <= max_n, "height_field.nx",
-                             [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(nx); });
-        sss::require(ny >= 2 && ny <= max_n, "height_field.ny",
-                             [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(ny); });
-        sss::require_positive(cell_m, "height_field.cell_m");
-        sss::require_finite(origin_m.x, "height_field.origin_m.x");
-        sss::require_finite(origin_m.y, "height_field.origin_m.y");
-        const std::size_t n = checked_elements(nx, ny, "height_field.nx * ny"), cells = (nx - 1) * (ny - 1);
-        sss::require(heights_.size() == n, "height_field.heights_m",
-                             [&] { return "must hold nx * ny = " + std::to_string(n) + " values, got " +
-                                 std::to_string(heights_.size()); });
-        sss::require(materials_.empty() || materials_.size() == cells, "height_field.materials",
-                             [&] { return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                                 std::to_string(materials_.size()); });
-        sss::require(regions_.empty() || regions_.size() == cells, "height_field.regions",
-                             [&] { return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
-                                 std::to_string(regions_.size()); });
-        bounds_.bottom_m = std::numeric_limits<T>::infinity();
-        bounds_.top_m = -std::numeric_limits<T>::infinity();
-        for (std::size_t i = 0; i < n; ++i) {
-            const T h = heights_[i];
-            if (!std::isfinite(h))
-                throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
-                                        "must be finite, got " + std::to_string(h) + " at vertex (ix " +
-                                            std::to_string(i % nx) + ", iy " + std::to_string(i / nx) + ")");
-            bounds_.bottom_m = std::min(bounds_.bottom_m, h);
-            bounds_.top_m = std::max(bounds_.top_m, h);
-        }
-        grid_.heights = heights_.data();
-        grid_.nx = static_cast<std::int32_t>(nx);
-        grid_.ny = static_cast<std::int32_t>(ny);
-        grid_.cell_m = cell_m;
-        grid_.inv_cell_m = T(1) / cell_m;
-        grid_.origin_m = origin_m;
-        pyramid_ = max_pyramid<T>(grid_);
+        init(p.nx, p.ny, p.cell_m, p.origin_m, heights_.data(), heights_.size());
+    }
+
+    /// The same over heights held elsewhere (`heights.data`, nx * ny values, kept alive by `heights.keeper`), e.g.
+    /// a memory-mapped file: nothing is copied; the heights are read once here (checks, bounds, pyramid) and then
+    /// as rays need them. `p.heights_m` must be empty; heights_m() is empty for such a field, heights() views them.
+    height_field(height_field_params<T> p, external_heights<T> heights)
+        : external_(std::move(heights.keeper)), materials_(std::move(p.materials)), regions_(std::move(p.regions)) {
+        sss::require(heights.data != nullptr, "height_field.heights.data", "must not be null");
+        sss::require(p.heights_m.empty(), "height_field.heights_m", "must be empty when the heights are external");
+        external_data_ = heights.data;
+        init(p.nx, p.ny, p.cell_m, p.origin_m, heights.data, checked_elements(p.nx, p.ny, "height_field.nx * ny"));
     }
 
     height_field(const height_field& o)
-        : heights_(o.heights_), materials_(o.materials_), regions_(o.regions_), pyramid_(o.pyramid_), grid_(o.grid_),
-          bounds_(o.bounds_) {
-        grid_.heights = heights_.data();
+        : heights_(o.heights_), external_(o.external_), external_data_(o.external_data_), materials_(o.materials_),
+          regions_(o.regions_), pyramid_(o.pyramid_), grid_(o.grid_), bounds_(o.bounds_) {
+        grid_.heights = data();
     }
     height_field(height_field&& o) noexcept
-        : heights_(std::move(o.heights_)), materials_(std::move(o.materials_)), regions_(std::move(o.regions_)),
-          pyramid_(std::move(o.pyramid_)), grid_(o.grid_), bounds_(o.bounds_) {
-        grid_.heights = heights_.data();
+        : heights_(std::move(o.heights_)), external_(std::move(o.external_)), external_data_(o.external_data_),
+          materials_(std::move(o.materials_)), regions_(std::move(o.regions_)), pyramid_(std::move(o.pyramid_)),
+          grid_(o.grid_), bounds_(o.bounds_) {
+        grid_.heights = data();
     }
     height_field& operator=(height_field o) noexcept {
         swap(o);
@@ -110,6 +93,8 @@ public:
 
     void swap(height_field& o) noexcept {
         heights_.swap(o.heights_);
+        external_.swap(o.external_);
+        std::swap(external_data_, o.external_data_);
         materials_.swap(o.materials_);
         regions_.swap(o.regions_);
         std::swap(pyramid_, o.pyramid_);
@@ -203,9 +188,11 @@ public:
     [[nodiscard]] T cell_m() const noexcept { return grid_.cell_m; }
     [[nodiscard]] vec2<T> origin_m() const noexcept { return grid_.origin_m; }
     /// Height of vertex (ix, iy) (m); no bounds check.
-    [[nodiscard]] T height_m(std::size_t ix, std::size_t iy) const noexcept { return heights_[iy * nx() + ix]; }
-    /// All vertex heights (m), row-major from the south row.
+    [[nodiscard]] T height_m(std::size_t ix, std::size_t iy) const noexcept { return data()[iy * nx() + ix]; }
+    /// All vertex heights (m), row-major from the south row (empty for external heights: see heights()).
     [[nodiscard]] const std::vector<T>& heights_m() const noexcept { return heights_; }
+    /// All vertex heights (m), row-major from the south row, wherever they are held.
+    [[nodiscard]] std::span<const T> heights() const noexcept { return {data(), nx() * ny()}; }
     /// Material id of cell (ix, iy).
     [[nodiscard]] std::uint32_t material(std::size_t ix, std::size_t iy) const noexcept {
         return materials_.empty() ? 0u : materials_[iy * (nx() - 1) + ix];
@@ -223,11 +210,54 @@ public:
     [[nodiscard]] const max_pyramid<T>& pyramid() const noexcept { return pyramid_; }
 
     /// Bytes of the heights themselves.
-    [[nodiscard]] std::size_t height_bytes() const noexcept { return heights_.size() * sizeof(T); }
+    [[nodiscard]] std::size_t height_bytes() const noexcept { return nx() * ny() * sizeof(T); }
     /// Bytes of the acceleration structure beyond the heights (the pyramid).
     [[nodiscard]] std::size_t acceleration_bytes() const noexcept { return pyramid_.bytes(); }
 
 private:
+    /// Checks the grid and builds the bounds and the pyramid over heights `values` (size of them).
+    void init(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, const T* values, std::size_t size) {
+        constexpr std::size_t max_n = std::size_t(1) << 30;
+        sss::require(nx >= 2 && nx <= max_n, "height_field.nx",
+                     [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(nx); });
+        sss::require(ny >= 2 && ny <= max_n, "height_field.ny",
+                     [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(ny); });
+        sss::require_positive(cell_m, "height_field.cell_m");
+        sss::require_finite(origin_m.x, "height_field.origin_m.x");
+        sss::require_finite(origin_m.y, "height_field.origin_m.y");
+        const std::size_t n = checked_elements(nx, ny, "height_field.nx * ny"), cells = (nx - 1) * (ny - 1);
+        sss::require(size == n, "height_field.heights_m",
+                     [&] { return "must hold nx * ny = " + std::to_string(n) + " values, got " + std::to_string(size); });
+        sss::require(materials_.empty() || materials_.size() == cells, "height_field.materials", [&] {
+            return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                   std::to_string(materials_.size());
+        });
+        sss::require(regions_.empty() || regions_.size() == cells, "height_field.regions", [&] {
+            return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
+                   std::to_string(regions_.size());
+        });
+        bounds_.bottom_m = std::numeric_limits<T>::infinity();
+        bounds_.top_m = -std::numeric_limits<T>::infinity();
+        for (std::size_t i = 0; i < n; ++i) {
+            const T h = values[i];
+            if (!std::isfinite(h))
+                throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
+                                        "must be finite, got " + std::to_string(h) + " at vertex (ix " +
+                                            std::to_string(i % nx) + ", iy " + std::to_string(i / nx) + ")");
+            bounds_.bottom_m = std::min(bounds_.bottom_m, h);
+            bounds_.top_m = std::max(bounds_.top_m, h);
+        }
+        grid_.heights = values;
+        grid_.nx = static_cast<std::int32_t>(nx);
+        grid_.ny = static_cast<std::int32_t>(ny);
+        grid_.cell_m = cell_m;
+        grid_.inv_cell_m = T(1) / cell_m;
+        grid_.origin_m = origin_m;
+        pyramid_ = max_pyramid<T>(grid_);
+    }
+
+    [[nodiscard]] const T* data() const noexcept { return external_data_ != nullptr ? external_data_ : heights_.data(); }
+
     [[nodiscard]] std::optional<hit<T>> to_hit(const ray<T>& r, const std::optional<grid_hit<T>>& g) const noexcept {
         if (!g) return std::nullopt;
         return to_hit(r, *g);
@@ -312,6 +342,8 @@ private:
     }
 
     std::vector<T> heights_;
+    std::shared_ptr<const void> external_; // keeps external heights alive
+    const T* external_data_ = nullptr;     // external heights, or null when heights_ holds them
     std::vector<std::uint32_t> materials_;
     std::vector<std::uint32_t> regions_;
     max_pyramid<T> pyramid_;

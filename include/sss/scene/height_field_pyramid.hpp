@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -42,6 +43,7 @@ public:
             total += static_cast<std::size_t>(cx) * static_cast<std::size_t>(cy);
         }
         data_.resize(total);
+        max_step_m_ = largest_step(g);
         if (levels_ == 0) return;
         build_level_one(g);
         for (std::int32_t level = 2; level <= levels_; ++level) build_from_children(level);
@@ -65,10 +67,29 @@ public:
                      static_cast<std::size_t>(bx)];
     }
 
+    /// Largest height difference (m) between two vertices next to each other along x or along y. Every triangle's
+    /// gradient has components of at most max_step_m() / cell (height_field_surface.hpp), so between two points
+    /// (du, dv) cells apart the surface differs by at most max_step_m() (|du| + |dv|): a Lipschitz bound.
+    [[nodiscard]] T max_step_m() const noexcept { return max_step_m_; }
+
     /// Bytes held by the pyramid's values.
     [[nodiscard]] std::size_t bytes() const noexcept { return data_.size() * sizeof(T); }
 
 private:
+    static T largest_step(const height_grid_view<T>& g) noexcept {
+        T m = T(0);
+        for (std::int32_t y = 0; y < g.ny; ++y) {
+            const T* row = g.heights + static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx);
+            const T* up = y + 1 < g.ny ? row + g.nx : row;
+            T r = T(0);
+            for (std::int32_t x = 0; x + 1 < g.nx; ++x)
+                r = std::max(r, std::max(std::abs(row[x + 1] - row[x]), std::abs(up[x] - row[x])));
+            r = std::max(r, std::abs(up[g.nx - 1] - row[g.nx - 1]));
+            m = std::max(m, r);
+        }
+        return m;
+    }
+
     void build_level_one(const height_grid_view<T>& g) {
         const std::int32_t w = width_[1], h = height_[1];
         T* out = data_.data() + offset_[1];
@@ -105,6 +126,7 @@ private:
     std::array<std::int32_t, max_levels + 1> width_{};
     std::array<std::int32_t, max_levels + 1> height_{};
     std::int32_t levels_ = 0;
+    T max_step_m_{};
 };
 
 } // namespace sss::scene

@@ -24,6 +24,14 @@
 /// land only on points where the ray is above the envelope, hence above the surface, so no hit is skipped; f is
 /// evaluated afresh at such a point (a plain point, as at a ray's start), which can move a hit by rounding only.
 ///
+/// Chain. Neighbouring rays of a column differ much more in slope than in heading (a cone column turns its heading
+/// by about tan(along) sin(e) de per de of depression e), so the previous, steeper ray's knowledge carries over: if
+/// it stayed above the surface out to horizontal distance rho_a, a ray shallower by d_tau and turned by d_theta
+/// from it is above the surface there too wherever d_tau rho > L d_theta rho + rounding, L the surface's Lipschitz
+/// bound sqrt(2) max_step / cell (max_pyramid::max_step_m; the chord between the two rays at rho is at most
+/// rho d_theta). Such a ray starts its exact walk at the entry crossing of the cell that holds rho_a (a breakpoint
+/// of the single-ray walk, evaluated by the same formula), usually one or two cells before its own hit.
+///
 /// Rays that start inside the sediment, or enter the grid's footprint through its side below the surface, follow
 /// the single-ray rule: they are not stopped while they rise out of the surface.
 
@@ -45,10 +53,12 @@ namespace sss::scene {
 namespace detail {
 
 /// A wedge ray's slope numbers: tau = tan(depression) = -dz / |(dx, dy)| and inv_h = 1 / |(dx, dy)|, the distance
-/// along the ray per metre of horizontal travel.
+/// along the ray per metre of horizontal travel; sin_turn, the sine of the angle from the run's first ray's heading
+/// to this ray's (counter-clockwise positive, 0 for the first ray).
 template <Real T> struct wedge_slope {
     T tau;
     T inv_h;
+    T sin_turn{};
 };
 
 /// A wedge run: `count` consecutive rays from the first that share their origin exactly, have headings within
@@ -78,7 +88,7 @@ template <Real T>
     const T max_spread = static_cast<T>(wedge_max_spread_rad);
     int order = 0;
     T tau_prev = -r0.direction.z * inv_h0;
-    slopes[0] = wedge_slope<T>{tau_prev, inv_h0};
+    slopes[0] = wedge_slope<T>{tau_prev, inv_h0, T(0)};
     run.count = 1;
     for (std::size_t j = first + 1; j < rays.size() && run.count < slopes.size(); ++j) {
         const ray<T>& r = rays[j];
@@ -95,7 +105,7 @@ template <Real T>
         run.sin_lo = lo;
         run.sin_hi = hi;
         tau_prev = tau;
-        slopes[run.count] = wedge_slope<T>{tau, inv_h};
+        slopes[run.count] = wedge_slope<T>{tau, inv_h, c};
         ++run.count;
     }
     run.steep_first = order >= 0;
@@ -217,6 +227,14 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
         return z > env + tol * (std::abs(z0) + std::abs(tau * rho_low) + std::abs(env) + T(1));
     };
 
+    // The chain (see the file comment): the previous ray's slope, heading and the horizontal distance (m) up to
+    // which it is known above the surface, and the surface's Lipschitz bound (m of height per m sideways).
+    const T lipschitz = p.max_step_m() * T(1.41421357) * g.inv_cell_m;
+    const T eps = std::numeric_limits<T>::epsilon();
+    const T chain_err = tol * (T(1) + std::abs(z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m));
+    bool chained = false;
+    T chain_rho_m{}, chain_tau{}, chain_sin{};
+
     std::int32_t shared = ring0; // first ring not known clear for every ray so far
     for (std::size_t step = 0; step < n; ++step) {
         const std::size_t k = index(step);
@@ -225,24 +243,71 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
         detail::grid_ray<T> q;
         if (!detail::setup_ray(g, hb, r, t_max_m, q)) {
             emit(k, static_cast<const grid_hit<T>*>(nullptr));
+            chained = false;
             continue;
         }
         const T to_s = cell * slopes[k].inv_h;  // distance per cell of rho
         const T to_rho = T(1) / to_s;           // cells of rho per metre of distance
         const T rho_hi = std::min(q.s_hi * to_rho, ring_end);
+
+        // Where the chain puts this ray's start: it is above the surface out to the previous ray's last point
+        // above it when it is shallower by more than the sideways slope bound allows, with margin for rounding
+        // (rings before `shared` are clear for it, the chain covers the rest).
+        T s_chain = T(0);
+        if (chained) {
+            const T turn = T(1.001) * std::abs(slopes[k].sin_turn - chain_sin) + T(8) * eps;
+            const T gain = (chain_tau - tau) - lipschitz * turn; // f gained over the previous ray per m of rho
+            const T rho_lo_m = static_cast<T>(shared) * cell;
+            if (gain * rho_lo_m > chain_err * (T(1) + std::abs(chain_tau) * chain_rho_m)) {
+                s_chain = chain_rho_m * slopes[k].inv_h;
+                if (!(s_chain < q.s_hi)) { // above the surface all along its path
+                    emit(k, static_cast<const grid_hit<T>*>(nullptr));
+                    chain_tau = tau;
+                    chain_sin = slopes[k].sin_turn;
+                    continue;
+                }
+            }
+        }
+        chained = false;
         while (static_cast<T>(shared) < rho_hi && clear(shared, tau)) ++shared;
         if (!(static_cast<T>(shared) < rho_hi)) {
             emit(k, static_cast<const grid_hit<T>*>(nullptr));
             continue;
         }
 
-        // The exact walk from ring `shared` on, jumping over rings that are clear for this ray.
+        // The exact walk from ring `shared` (or the chain's start) on, jumping over rings that are clear for it.
         grid_hit<T> out;
         bool found = false;
+        bool clean = true; // above the surface at every breakpoint so far (the chain needs it)
         std::int32_t ring = shared;
         detail::walk_state<T> w{};
         bool walking = false;
-        for (;;) {
+        int grace = 0; // cells to walk before looking for jumps
+        if (s_chain > static_cast<T>(shared) * to_s) {
+            // Resume at the entry crossing of the cell that holds the chain's point: a breakpoint of the
+            // single-ray walk, evaluated by the same formula.
+            const detail::walk_state<T> c = detail::start_at(g, q, s_chain);
+            constexpr T inf = std::numeric_limits<T>::infinity();
+            const T s_in_u = q.su > 0 ? detail::cross_u(q, c.ix) : (q.su < 0 ? detail::cross_u(q, c.ix + 1) : -inf);
+            const T s_in_v = q.sv > 0 ? detail::cross_v(q, c.iy) : (q.sv < 0 ? detail::cross_v(q, c.iy + 1) : -inf);
+            const T s_in = std::max(s_in_u, s_in_v);
+            if (s_in > q.s_lo && s_in <= s_chain && s_in > T(0)) {
+                w = c;
+                w.s = s_in;
+                w.f = s_in_u >= s_in_v ? detail::f_on_u_line(g, q, q.su > 0 ? c.ix : c.ix + 1, s_in)
+                                       : detail::f_on_v_line(g, q, q.sv > 0 ? c.iy : c.iy + 1, s_in);
+                if (!(w.f > T(0))) {
+                    // Above just before: only rounding puts f <= 0 here, and then this is the hit.
+                    found = detail::segment_root(q, s_in, T(1), s_in, w.f, w.ix, w.iy, out);
+                    clean = false;
+                }
+                w.above = w.f > T(0);
+                ring = static_cast<std::int32_t>(s_in * to_rho);
+                walking = true;
+                grace = 3;
+            }
+        }
+        while (!found) {
             if (!walking) {
                 const T s_ring = static_cast<T>(ring) * to_s;
                 const bool at_entry = !(s_ring > q.s_lo);
@@ -252,13 +317,18 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
                 w.f = detail::f_at(g, q, s);
                 if (at_entry) {
                     w.above = w.f > T(0);
+                    // Entering the grid here (through its side, or from an origin over it): the chain needs the
+                    // ray to have been over the grid, and above the envelope, before its walk, so it ends here.
+                    clean = false;
                 } else {
                     // Above the envelope just before: only rounding can put f <= 0 here, and then this is the hit.
                     if (!(w.f > T(0)) && detail::segment_root(q, s, T(1), s, w.f, w.ix, w.iy, out)) {
                         found = true;
+                        clean = false;
                         break;
                     }
                     w.above = w.f > T(0);
+                    if (!w.above) clean = false;
                 }
                 walking = true;
             }
@@ -268,6 +338,12 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
                 break;
             }
             if (o == detail::step_outcome::done) break;
+            if (!w.above) clean = false;
+            // A chained walk usually ends within a cell or two: look for jumps only after a few cells.
+            if (grace > 0) {
+                --grace;
+                continue;
+            }
             // Entering a new ring: jump when it and the next ones are clear for this ray.
             const T rho = w.s * to_rho;
             const std::int32_t now = static_cast<std::int32_t>(rho);
@@ -283,6 +359,13 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
                     }
                 }
             }
+        }
+        if (found && clean) {
+            // Above at every breakpoint up to w.s, the start of the segment that holds the hit.
+            chained = true;
+            chain_rho_m = w.s / slopes[k].inv_h;
+            chain_tau = tau;
+            chain_sin = slopes[k].sin_turn;
         }
         emit(k, found ? &out : static_cast<const grid_hit<T>*>(nullptr));
     }

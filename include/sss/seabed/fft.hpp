@@ -21,6 +21,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/core/thread_pool.hpp"
 
 namespace sss::seabed {
 
@@ -160,33 +161,50 @@ inline void fft(std::span<std::complex<double>> data, fft_direction dir) { fft_p
 
 /// Two-dimensional transform in place of a row-major array, `data[iy * nx + ix]`:
 /// X(kx, ky) = sum_{ix, iy} x(ix, iy) exp(-+2 pi i (ix kx / nx + iy ky / ny)), unnormalised.
-/// Rows are transformed first, then columns in blocks of adjacent columns for cache locality.
+/// Rows are transformed first, then columns in blocks of adjacent columns for cache locality; rows and blocks
+/// are shared among the threads of shared_thread_pool() (each is transformed alone, so the result does not depend
+/// on the threads).
 inline void fft_2d(std::span<std::complex<double>> data, std::size_t nx, std::size_t ny, fft_direction dir) {
     sss::require(nx >= 1, "fft_2d.nx", "must be >= 1");
     sss::require(ny >= 1, "fft_2d.ny", "must be >= 1");
     sss::require(data.size() == nx * ny, "fft_2d.data",
                     [&] { return "length " + std::to_string(data.size()) + " differs from nx * ny = " + std::to_string(nx * ny); });
     using complex = std::complex<double>;
+    thread_pool& pool = shared_thread_pool();
+    // Small transforms are not worth a second thread.
+    const unsigned threads = nx * ny >= (std::size_t(1) << 16) ? 0u : 1u;
     const fft_plan row_plan(nx);
-    std::vector<complex> scratch(std::max(row_plan.scratch_size(), std::size_t{1}));
-    for (std::size_t iy = 0; iy < ny; ++iy) row_plan.execute(data.data() + iy * nx, dir, scratch.data());
+    constexpr std::size_t rows_per_task = 32;
+    pool.for_each(
+        (ny + rows_per_task - 1) / rows_per_task,
+        [&](std::size_t task) {
+            std::vector<complex> scratch(std::max(row_plan.scratch_size(), std::size_t{1}));
+            const std::size_t y1 = std::min(ny, (task + 1) * rows_per_task);
+            for (std::size_t iy = task * rows_per_task; iy < y1; ++iy)
+                row_plan.execute(data.data() + iy * nx, dir, scratch.data());
+        },
+        threads);
 
     const fft_plan col_plan(ny);
     constexpr std::size_t block = 16;
-    std::vector<complex> cols(block * ny);
-    scratch.assign(std::max(col_plan.scratch_size(), std::size_t{1}), complex(0.0, 0.0));
-    for (std::size_t x0 = 0; x0 < nx; x0 += block) {
-        const std::size_t w = std::min(block, nx - x0);
-        for (std::size_t iy = 0; iy < ny; ++iy) {
-            const complex* row = data.data() + iy * nx + x0;
-            for (std::size_t c = 0; c < w; ++c) cols[c * ny + iy] = row[c];
-        }
-        for (std::size_t c = 0; c < w; ++c) col_plan.execute(cols.data() + c * ny, dir, scratch.data());
-        for (std::size_t iy = 0; iy < ny; ++iy) {
-            complex* row = data.data() + iy * nx + x0;
-            for (std::size_t c = 0; c < w; ++c) row[c] = cols[c * ny + iy];
-        }
-    }
+    pool.for_each(
+        (nx + block - 1) / block,
+        [&](std::size_t task) {
+            const std::size_t x0 = task * block;
+            const std::size_t w = std::min(block, nx - x0);
+            std::vector<complex> cols(block * ny);
+            std::vector<complex> scratch(std::max(col_plan.scratch_size(), std::size_t{1}));
+            for (std::size_t iy = 0; iy < ny; ++iy) {
+                const complex* row = data.data() + iy * nx + x0;
+                for (std::size_t c = 0; c < w; ++c) cols[c * ny + iy] = row[c];
+            }
+            for (std::size_t c = 0; c < w; ++c) col_plan.execute(cols.data() + c * ny, dir, scratch.data());
+            for (std::size_t iy = 0; iy < ny; ++iy) {
+                complex* row = data.data() + iy * nx + x0;
+                for (std::size_t c = 0; c < w; ++c) row[c] = cols[c * ny + iy];
+            }
+        },
+        threads);
 }
 
 } // namespace sss::seabed

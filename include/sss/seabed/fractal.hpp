@@ -32,11 +32,13 @@
 /// seed gives the same surface on every run; across platforms the surfaces agree to rounding (the
 /// random draws are bit-identical, the FFT's twiddles come from the platform's cos and sin).
 
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sss/core/constants.hpp"
@@ -123,13 +125,36 @@ template <Real T> [[nodiscard]] directional_density make_density(const fractal_p
     return d * dkx * dky;
 }
 
-/// Fills `c` (nx * ny, row-major) with Hermitian-symmetric random coefficients of the spectrum.
-template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, std::size_t nx, std::size_t ny,
-                                         double cell_m, const fractal_params<T>& p, rng& g) {
+/// One mode's random coefficient of variance `var` from `g`: real for a self-conjugate mode.
+template <Real T>
+[[nodiscard]] inline std::complex<double> draw_mode(double var, bool self_conjugate, const fractal_params<T>& p, rng& g) {
+    if (self_conjugate) {
+        const double x = p.amplitudes == spectral_amplitudes::gaussian ? g.normal() : (g.uniform() < 0.5 ? -1.0 : 1.0);
+        return {std::sqrt(var) * x, 0.0};
+    }
+    if (p.amplitudes == spectral_amplitudes::gaussian) {
+        const double sd = std::sqrt(0.5 * var);
+        const double re = g.normal();
+        const double im = g.normal();
+        return {sd * re, sd * im};
+    }
+    const double phase = two_pi_v<double> * g.uniform();
+    return std::polar(std::sqrt(var), phase);
+}
+
+/// Draws Hermitian-symmetric random coefficients of the spectrum for an nx x ny grid in the fixed order (rows of
+/// modes, each mode with its partner), from every generator of `gens` in step (each generator draws the same
+/// sequence as alone), calling store(own, partner, v) with v[k] from gens[k] for each pair (partner == own for
+/// a self-conjugate mode, v then real): the caller sets c[own] = v and c[partner] = conj(v), or combines them.
+/// Returns the sum of the modes' variances, the band variance of the grid.
+template <Real T, std::size_t N, class Store>
+double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fractal_params<T>& p,
+                         std::array<rng*, N> gens, Store&& store) {
     const double dkx = two_pi_v<double> / (static_cast<double>(nx) * cell_m);
     const double dky = two_pi_v<double> / (static_cast<double>(ny) * cell_m);
     const directional_density w = make_density(p);
-    c.assign(nx * ny, std::complex<double>(0.0, 0.0));
+    double band = 0.0;
+    std::array<std::complex<double>, N> v;
     for (std::size_t j = 0; j < ny; ++j) {
         const std::size_t pj = (ny - j) % ny;
         for (std::size_t i = 0; i < nx; ++i) {
@@ -138,26 +163,23 @@ template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, s
             const std::size_t partner = pj * nx + pi_;
             if (partner < own) continue; // set together with its partner
             const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
-            if (partner == own) { // self-conjugate: real coefficient
-                const double x =
-                    p.amplitudes == spectral_amplitudes::gaussian ? g.normal() : (g.uniform() < 0.5 ? -1.0 : 1.0);
-                c[own] = std::complex<double>(std::sqrt(var) * x, 0.0);
-                continue;
-            }
-            std::complex<double> v;
-            if (p.amplitudes == spectral_amplitudes::gaussian) {
-                const double sd = std::sqrt(0.5 * var);
-                const double re = g.normal();
-                const double im = g.normal();
-                v = std::complex<double>(sd * re, sd * im);
-            } else {
-                const double phase = two_pi_v<double> * g.uniform();
-                v = std::polar(std::sqrt(var), phase);
-            }
-            c[own] = v;
-            c[partner] = std::conj(v);
+            band += partner == own ? var : 2.0 * var;
+            for (std::size_t k = 0; k < N; ++k) v[k] = draw_mode(var, partner == own, p, *gens[k]);
+            store(own, partner, v);
         }
     }
+    return band;
+}
+
+/// Fills `c` (nx * ny, row-major) with Hermitian-symmetric random coefficients of the spectrum.
+template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, std::size_t nx, std::size_t ny,
+                                         double cell_m, const fractal_params<T>& p, rng& g) {
+    c.assign(nx * ny, std::complex<double>(0.0, 0.0));
+    (void)draw_coefficients(nx, ny, cell_m, p, std::array<rng*, 1>{&g},
+                            [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 1>& v) {
+                                c[own] = v[0];
+                                c[partner] = std::conj(v[0]);
+                            });
 }
 
 } // namespace detail
@@ -219,6 +241,41 @@ template <Real T> [[nodiscard]] raster<double> unit_fractal_field(std::size_t nx
     const double scale = 1.0 / std::sqrt(band_variance_m2(f, nx, ny, static_cast<double>(cell_m)));
     for (double& v : g.values) v *= scale;
     return g;
+}
+
+/// Two independent unit fractal fields of one spectrum (as unit_fractal_field with seeds seed_a and seed_b, equal
+/// to rounding) from one complex inverse FFT: the real part of element iy * nx + ix holds field a, the imaginary
+/// part field b. The transform of a Hermitian spectrum is real, so the transform of C = c_a + i c_b is
+/// h_a + i h_b: one FFT and one complex array serve both fields (Press et al., 2007, Numerical Recipes, 3rd ed.,
+/// section 12.3.2, "two real FFTs for the price of one"). With `with_b` false the imaginary parts are 0.
+template <Real T>
+[[nodiscard]] std::vector<std::complex<double>> unit_fractal_pair(std::size_t nx, std::size_t ny, T cell_m, T gamma, T l0_m,
+                                                                  std::uint64_t seed_a, std::uint64_t seed_b, bool with_b) {
+    fractal_params<double> f;
+    f.spectrum = power_law_spectrum<double>{1.0, static_cast<double>(gamma), static_cast<double>(l0_m)};
+    const double dx = static_cast<double>(cell_m);
+    std::vector<std::complex<double>> c(nx * ny, std::complex<double>(0.0, 0.0));
+    rng ga(seed_a), gb(seed_b);
+    double band = 0.0;
+    if (with_b) {
+        // C[own] = a + i b, C[partner] = conj(a) + i conj(b) (for own == partner, a and b are real).
+        band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 2>{&ga, &gb},
+                                 [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 2>& v) {
+                                     const std::complex<double> a = v[0], b = v[1];
+                                     c[own] = {a.real() - b.imag(), a.imag() + b.real()};
+                                     c[partner] = {a.real() + b.imag(), b.real() - a.imag()};
+                                 });
+    } else {
+        band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 1>{&ga},
+                                 [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 1>& v) {
+                                     c[own] = v[0];
+                                     c[partner] = std::conj(v[0]);
+                                 });
+    }
+    fft_2d(c, nx, ny, fft_direction::backward);
+    const double scale = 1.0 / std::sqrt(band);
+    for (auto& v : c) v *= scale;
+    return c;
 }
 
 } // namespace detail

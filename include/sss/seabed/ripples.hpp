@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -99,13 +100,18 @@ template <Real T> void add_ripples(raster<T>& h, const ripple_params<T>& p, std:
     const double sin_k = sin_amp > 0.0 ? two_pi_v<double> / static_cast<double>(p.sinuosity_wavelength_m) : 0.0;
     const double l0 = p.perturbation_scale_m > T(0) ? static_cast<double>(p.perturbation_scale_m) : 4.0 * lambda;
 
-    raster<double> shift, modulation;
-    if (p.perturbation_m > T(0))
-        shift = detail::unit_fractal_field(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
-                                         derive_seed(seed, 1));
-    if (p.height_variation > T(0))
-        modulation = detail::unit_fractal_field(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
-                                              derive_seed(seed, 2));
+    // The crest displacement g1 and the height variation g2: both from one complex FFT (detail::unit_fractal_pair),
+    // g1 in the real parts, g2 in the imaginary parts, read in place.
+    const bool shifted = p.perturbation_m > T(0), modulated = p.height_variation > T(0);
+    std::vector<std::complex<double>> fields;
+    if (shifted && modulated)
+        fields = detail::unit_fractal_pair(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
+                                         derive_seed(seed, 1), derive_seed(seed, 2), true);
+    else if (shifted || modulated)
+        fields = detail::unit_fractal_pair(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
+                                         derive_seed(seed, shifted ? 1 : 2), 0, false);
+    auto shift = [&](std::size_t k) { return fields[k].real(); };
+    auto modulation = [&](std::size_t k) { return shifted ? fields[k].imag() : fields[k].real(); };
 
     const double dx = static_cast<double>(h.cell_m);
     const double phase0 = static_cast<double>(p.phase_rad) / two_pi_v<double>;
@@ -116,12 +122,11 @@ template <Real T> void add_ripples(raster<T>& h, const ripple_params<T>& p, std:
             const std::size_t k = iy * h.nx + ix;
             double d = 0.0;
             if (sin_amp > 0.0) d += sin_amp * std::sin(sin_k * (x * cx + y * cy));
-            if (!shift.values.empty()) d += static_cast<double>(p.perturbation_m) * shift.values[k];
+            if (shifted) d += static_cast<double>(p.perturbation_m) * shift(k);
             const double s = (x * mx + y * my + d) / lambda + phase0;
             const double q = s - std::floor(s);
             double amp = static_cast<double>(p.height_m);
-            if (!modulation.values.empty())
-                amp *= std::max(0.0, 1.0 + static_cast<double>(p.height_variation) * modulation.values[k]);
+            if (modulated) amp *= std::max(0.0, 1.0 + static_cast<double>(p.height_variation) * modulation(k));
             h.values[k] += static_cast<T>(amp * ripple_profile(q, f));
         }
     }

@@ -1,0 +1,202 @@
+#pragma once
+/// \file
+/// Seabeds larger than memory (POSIX only; an optional header, not in sss.hpp): a height field whose heights stay
+/// in a memory-mapped raw float32 file, and a writer that builds such a file band of rows by band of rows.
+///
+/// The file format is height_field_io.hpp's raw float32 + text sidecar (`path`, `path + ".txt"`).
+/// map_raw_f32(path) maps the file read-only (mmap, MAP_SHARED) and gives a height_field<float> over it: the
+/// heights are read once (the finiteness check, the bounds and the maximum pyramid), then the pages are released
+/// (madvise MADV_DONTNEED), so that only the pages under the rays of the pings being rendered come back into
+/// memory. Resident memory is then the pyramid (a third of the heights' bytes) plus those pages, whatever the
+/// seabed's size. The operating system reads pages on demand and may drop them again under memory pressure.
+///
+/// write_raw_f32_by_rows(path, grid, band_rows, fill) writes an nx x ny grid in bands of band_rows rows, asking
+/// fill(iy0, rows, out) for rows [iy0, iy0 + rows) each time: only one band is ever in memory. With a fill that
+/// depends on the vertex only (seabed/wave_sum.hpp's fill_rows), any band height gives the same bytes.
+/// Like every writer it writes `path + ".tmp"` and renames it: a failure leaves no file.
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "sss/core/error.hpp"
+#include "sss/io/height_field_io.hpp"
+#include "sss/scene/height_field.hpp"
+
+namespace sss::io {
+
+/// The geometry a raw height file's sidecar gives.
+struct raw_grid {
+    std::size_t nx = 0;      ///< vertices along x (east)
+    std::size_t ny = 0;      ///< vertices along y (north)
+    double cell_m = 0;       ///< vertex spacing (m)
+    double origin_x_m = 0;   ///< world x of vertex (0, 0) (m)
+    double origin_y_m = 0;   ///< world y of vertex (0, 0) (m)
+};
+
+/// A read-only memory map of a whole file; unmapped when destroyed.
+class mapped_file {
+public:
+    explicit mapped_file(const std::string& path) : path_(path) {
+        const int fd = ::open(path.c_str(), O_RDONLY);
+        if (fd < 0) throw file_error(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
+        struct stat st {};
+        if (::fstat(fd, &st) != 0) {
+            const int e = errno;
+            ::close(fd);
+            throw file_error(path, 0, std::string("cannot stat: ") + std::strerror(e));
+        }
+        size_ = static_cast<std::size_t>(st.st_size);
+        if (size_ > 0) {
+            void* p = ::mmap(nullptr, size_, PROT_READ, MAP_SHARED, fd, 0);
+            if (p == MAP_FAILED) {
+                const int e = errno;
+                ::close(fd);
+                throw file_error(path, 0, std::string("cannot map: ") + std::strerror(e));
+            }
+            data_ = p;
+        }
+        ::close(fd); // the mapping keeps the file
+    }
+    mapped_file(const mapped_file&) = delete;
+    mapped_file& operator=(const mapped_file&) = delete;
+    ~mapped_file() {
+        if (data_) ::munmap(data_, size_);
+    }
+
+    [[nodiscard]] const void* data() const noexcept { return data_; }
+    [[nodiscard]] std::size_t size() const noexcept { return size_; }
+    /// Drops the mapped pages from this process's resident memory; they are read again when touched.
+    void release_resident() const noexcept {
+        if (data_) (void)::madvise(data_, size_, MADV_DONTNEED);
+    }
+
+private:
+    std::string path_;
+    void* data_ = nullptr;
+    std::size_t size_ = 0;
+};
+
+/// Reads the sidecar `path + ".txt"` of a raw height file (the keys of height_field_io.hpp's raw format).
+[[nodiscard]] inline raw_grid read_raw_sidecar(const std::string& path) {
+    const std::string side_path = raw_sidecar_path(path);
+    const std::string side = detail::read_all(side_path);
+    raw_grid g;
+    bool format = false, nx = false, ny = false, cell = false, ox = false, oy = false;
+    std::size_t line_no = 0;
+    for (std::size_t pos = 0; pos <= side.size();) {
+        std::size_t end = side.find('\n', pos);
+        if (end == std::string::npos) end = side.size();
+        std::string_view line(side.data() + pos, end - pos);
+        pos = end + 1;
+        ++line_no;
+        if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+        detail::tokenizer tok(line, false);
+        const detail::token key = tok.next();
+        if (key.text.empty()) continue;
+        const detail::token val = tok.next();
+        const std::string k(key.text);
+        if (k == "format") {
+            format = val.text == "sss-height-raw-f32le" && tok.next().text == "1";
+            if (!format) throw file_error(side_path, line_no, "unknown format (expected 'sss-height-raw-f32le 1')");
+        } else if (k == "nx" || k == "ny") {
+            const auto v = detail::parse_size(val.text);
+            if (!v || *v < 2 || *v > (std::size_t(1) << 30))
+                throw file_error(side_path, line_no, "'" + k + "' must be an integer in [2, 2^30]");
+            (k == "nx" ? g.nx : g.ny) = *v;
+            (k == "nx" ? nx : ny) = true;
+        } else if (k == "cell_m" || k == "origin_x_m" || k == "origin_y_m") {
+            const auto v = detail::parse_double(val.text);
+            if (!v || !std::isfinite(*v) || (k == "cell_m" && !(*v > 0)))
+                throw file_error(side_path, line_no, "'" + k + "' must be a finite number (cell_m > 0)");
+            (k == "cell_m" ? g.cell_m : (k == "origin_x_m" ? g.origin_x_m : g.origin_y_m)) = *v;
+            (k == "cell_m" ? cell : (k == "origin_x_m" ? ox : oy)) = true;
+        } else {
+            throw file_error(side_path, line_no, "unknown key '" + k + "'");
+        }
+    }
+    if (!(format && nx && ny && cell && ox && oy))
+        throw file_error(side_path, 0, "lacks one of format, nx, ny, cell_m, origin_x_m, origin_y_m");
+    return g;
+}
+
+/// A height field over the memory-mapped raw float32 file `path` (see the file comment); the same heights, hits
+/// and renders as read_raw_f32<float>(path), without holding the heights in memory.
+[[nodiscard]] inline scene::height_field<float> map_raw_f32(const std::string& path) {
+    static_assert(std::endian::native == std::endian::little, "map_raw_f32 reads little-endian floats in place");
+    const raw_grid g = read_raw_sidecar(path);
+    auto file = std::make_shared<const mapped_file>(path);
+    const std::size_t n = g.nx * g.ny;
+    if (file->size() != 4 * n)
+        throw file_error(path, 0,
+                         "holds " + std::to_string(file->size()) + " bytes, the sidecar's grid needs " +
+                             std::to_string(4 * n),
+                         std::min(file->size(), 4 * n));
+    const auto* heights = static_cast<const float*>(file->data());
+    try {
+        scene::height_field<float> hf({.nx = g.nx,
+                                       .ny = g.ny,
+                                       .cell_m = static_cast<float>(g.cell_m),
+                                       .origin_m = {static_cast<float>(g.origin_x_m), static_cast<float>(g.origin_y_m)}},
+                                      scene::external_heights<float>{heights, file});
+        file->release_resident();
+        return hf;
+    } catch (const invalid_parameter& e) {
+        throw file_error(path, 0, e.what());
+    }
+}
+
+/// Writes an nx x ny raw float32 height file (and its sidecar) band by band: fill(iy0, rows, std::span<float> out)
+/// fills rows [iy0, iy0 + rows) row-major (nx * rows values). band_rows >= 1.
+template <class Fill>
+void write_raw_f32_by_rows(const std::string& path, const raw_grid& g, std::size_t band_rows, Fill&& fill) {
+    sss::require(g.nx >= 2 && g.ny >= 2, "write_raw_f32_by_rows.grid", "needs nx, ny >= 2");
+    sss::require(g.cell_m > 0 && std::isfinite(g.cell_m), "write_raw_f32_by_rows.grid.cell_m", "must be > 0");
+    sss::require(band_rows >= 1, "write_raw_f32_by_rows.band_rows", "must be >= 1");
+    {
+        detail::atomic_file out(path);
+        std::vector<float> band(g.nx * std::min(band_rows, g.ny));
+        std::string bytes;
+        for (std::size_t iy0 = 0; iy0 < g.ny; iy0 += band_rows) {
+            const std::size_t rows = std::min(band_rows, g.ny - iy0);
+            const std::span<float> part(band.data(), g.nx * rows);
+            fill(iy0, rows, part);
+            bytes.resize(4 * part.size());
+            for (std::size_t i = 0; i < part.size(); ++i) {
+                if (!std::isfinite(part[i]))
+                    throw file_error(path, 0, "height of vertex " + std::to_string(iy0 * g.nx + i) + " is not finite");
+                const std::uint32_t bits = std::bit_cast<std::uint32_t>(part[i]);
+                for (std::size_t k = 0; k < 4; ++k) bytes[4 * i + k] = static_cast<char>((bits >> (8 * k)) & 0xffu);
+            }
+            out.write(bytes);
+        }
+        out.commit();
+    }
+    detail::atomic_file side(raw_sidecar_path(path));
+    std::string s = "# sss height field: float32 little-endian, row-major, row 0 = south (min y), heights in metres\n"
+                    "format sss-height-raw-f32le 1\nnx " +
+                    std::to_string(g.nx) + "\nny " + std::to_string(g.ny) + "\ncell_m ";
+    detail::append_number(s, g.cell_m);
+    s += "\norigin_x_m ";
+    detail::append_number(s, g.origin_x_m);
+    s += "\norigin_y_m ";
+    detail::append_number(s, g.origin_y_m);
+    s += '\n';
+    side.write(s);
+    side.commit();
+}
+
+} // namespace sss::io
