@@ -1,0 +1,163 @@
+#pragma once
+/// \file
+/// From a resolved `description` to the library's objects: the seabed (generated or loaded), the objects laid
+/// on it, and the simulator, chosen among the compiled instantiations listed once in `with_simulator`.
+
+#include "read.hpp"
+#include "scene.hpp"
+
+#include <sss/io/height_field_io.hpp>
+#include <sss/policies.hpp>
+#include <sss/scattering/by_material.hpp>
+#include <sss/scattering/hard_target.hpp>
+#include <sss/scene/height_field.hpp>
+#include <sss/scene/scene.hpp>
+#include <sss/seabed/composite.hpp>
+#include <sss/seabed/sediment_region.hpp>
+#include <sss/seabed/targets.hpp>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sss::scene_file {
+
+/// The scalar type of every compiled instantiation (float: half the memory, and the precision of the data).
+using real = float;
+using world = sss::scene::scene<sss::scene::height_field<real>>;
+
+/// The seabed's regions as the library's sediment regions (a flat or loaded seabed: one default region).
+[[nodiscard]] inline std::vector<sss::seabed::sediment_region<real>> sediment_regions(const description& d) {
+    std::vector<region> regions = d.bed.regions;
+    if (regions.empty()) regions.push_back(region{});
+    std::vector<sss::seabed::sediment_region<real>> out;
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const auto& g = regions[i];
+        sss::seabed::sediment_region<real> r{.id = std::uint32_t(i), .sediment = sss::seabed::sediment_named<real>(g.sediment),
+                                             .mean_height_m = real(g.mean_height_m), .outer_scale_m = real(g.outer_scale_m)};
+        for (const auto& p : g.ripple_sets)
+            r.ripples.push_back({.wavelength_m = real(p.wavelength_m), .height_m = real(p.height_m),
+                                 .crest_heading_deg = real(p.crest_heading_deg), .symmetry_index = real(p.symmetry_index),
+                                 .sinuosity_m = real(p.sinuosity_m), .sinuosity_wavelength_m = real(p.sinuosity_wavelength_m),
+                                 .perturbation_m = real(p.perturbation_m), .height_variation = real(p.height_variation)});
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+/// The seabed: loaded from `file`, flat at z = 0 without regions, else composed from the regions.
+[[nodiscard]] inline sss::scene::height_field<real> make_seabed(const description& d) {
+    namespace sb = sss::seabed;
+    const auto& b = d.bed;
+    if (!b.file.empty()) return sss::io::read_esri_ascii<real>(b.file);
+    const auto nx = std::size_t(b.nx), ny = std::size_t(b.ny);
+    const real cell = real(b.cell_m);
+    const sss::vec2<real> origin{real(b.origin_m[0]), real(b.origin_m[1])};
+    if (b.regions.empty())
+        return sss::scene::height_field<real>(
+            {.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin, .heights_m = std::vector<real>(nx * ny, real(0))});
+    sb::voronoi_partition<real> part{.sites = {}, .warp_m = real(b.warp_m), .warp_scale_m = real(b.warp_scale_m)};
+    for (const auto& s : b.sites)
+        part.sites.push_back({.x_m = real(s.x_m - b.origin_m[0]), .y_m = real(s.y_m - b.origin_m[1]), .texture = std::size_t(s.region)});
+    if (part.sites.empty()) part.sites.push_back({.x_m = real(0), .y_m = real(0), .texture = 0});
+    const auto regions = sediment_regions(d);
+    const auto bed = sb::compose(sb::partition(nx, ny, cell, part, std::uint64_t(b.partition_seed)), sb::textures(regions),
+                                 real(b.blend_m), std::uint64_t(b.seed));
+    std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
+    for (std::size_t iy = 0; iy + 1 < ny; ++iy)
+        for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];
+    return sss::scene::height_field<real>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin,
+                                           .heights_m = bed.height.values, .materials = material, .regions = material});
+}
+
+/// The material id of every object: the first after the seabed's regions.
+[[nodiscard]] inline std::uint32_t object_material(const description& d) {
+    return std::uint32_t(std::max<std::size_t>(1, d.bed.regions.size()));
+}
+
+/// The scene: the seabed and the objects laid on it; object k has object id k + 1.
+[[nodiscard]] inline world make_world(const description& d) {
+    namespace sb = sss::seabed;
+    auto seabed = make_seabed(d);
+    const auto h = sb::seabed_height_of(seabed);
+    const std::uint32_t material = object_material(d);
+    std::vector<sss::scene::object<real>> objects;
+    for (std::size_t k = 0; k < d.objects.size(); ++k) {
+        const auto& o = d.objects[k];
+        const auto id = std::uint32_t(k + 1), label = std::uint32_t(o.class_id);
+        if (o.type == "lying_cylinder") {
+            objects.push_back(sb::lying_cylinder(
+                sb::lying_cylinder_params<real>{.center_m = {real(o.center_m[0]), real(o.center_m[1])},
+                                                .heading_deg = real(o.heading_deg), .length_m = real(o.length_m),
+                                                .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
+                h));
+        } else if (o.type == "tethered_mine") {
+            objects.push_back(sb::tethered_mine(
+                sb::tethered_mine_params<real>{.anchor_m = {real(o.anchor_m[0]), real(o.anchor_m[1])},
+                                               .case_height_m = real(o.case_height_m),
+                                               .shape = o.case_shape == "sphere" ? sb::mine_case::sphere : sb::mine_case::cylinder,
+                                               .case_radius_m = real(o.case_radius_m), .case_length_m = real(o.case_length_m),
+                                               .case_heading_deg = real(o.case_heading_deg), .object_id = id, .class_id = label,
+                                               .case_material = material, .tether_material = material, .anchor_material = material},
+                h));
+        } else {
+            sb::pipeline_params<real> p{.route_m = {}, .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}};
+            for (const auto& q : o.route_m) p.route_m.push_back({real(q[0]), real(q[1])});
+            if (o.max_span_m > 0) p.max_span_m = real(o.max_span_m);
+            objects.push_back(sb::pipeline(p, h));
+        }
+    }
+    return world(std::move(seabed), sss::scene::object_set<real>(std::move(objects)));
+}
+
+[[nodiscard]] inline sss::receiver_params receiver_of(const description& d) {
+    const auto& s = d.sensor;
+    const sss::pulse_shape shape = s.pulse_shape == "hann" ? sss::pulse_shape::hann
+                                   : s.pulse_shape == "lfm" ? sss::pulse_shape::lfm
+                                                            : sss::pulse_shape::rectangular;
+    return {.sample_rate_hz = s.sample_rate_hz, .max_range_m = s.max_range_m,
+            .pulse = {.length_s = s.pulse_length_s, .shape = shape, .bandwidth_hz = s.pulse_bandwidth_hz},
+            .source_level_db = s.source_level_db};
+}
+
+/// World z of the towfish: altitude_m above the seabed under start_m.
+[[nodiscard]] inline real tow_z(const description& d, const world& w) {
+    return w.seabed().seabed_height_m(real(d.tow.start_m[0]), real(d.tow.start_m[1])) + real(d.tow.altitude_m);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
+// float x {lambertian, jackson seabed + hard_target objects} x straight water x ideal fan x straight line.
+using policy = sss::policies<real>;
+using lambertian_simulator = policy::simulator<policy::lambertian, policy::straight, policy::ideal_fan, policy::straight_line>;
+using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
+using jackson_simulator = policy::simulator<jackson_scattering, policy::straight, policy::ideal_fan, policy::straight_line>;
+
+/// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
+template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
+    const sss::propagation::straight<real> water(
+        {.sound_speed_mps = real(d.sea.sound_speed_mps), .absorption_db_per_km = real(d.sea.absorption_db_per_km)});
+    const sss::beam::ideal_fan<real> fan({.along_width_deg = real(d.sensor.along_width_deg),
+                                     .vertical_width_deg = real(d.sensor.vertical_width_deg),
+                                     .depression_deg = real(d.sensor.depression_deg)});
+    const sss::motion::straight_line<real> tow({.start_m = {real(d.tow.start_m[0]), real(d.tow.start_m[1])},
+                                           .heading_deg = real(d.tow.heading_deg), .speed_mps = real(d.tow.speed_mps),
+                                           .altitude_m = tow_z(d, w), .ping_interval_s = real(d.tow.ping_interval_s)});
+    const auto rx = receiver_of(d);
+    const auto regions = sediment_regions(d);
+    if (d.sensor.scattering == "jackson") {
+        const jackson_scattering scatter(
+            sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
+            sss::scattering::hard_target<real>{});
+        return f(jackson_simulator(scatter, water, fan, tow, rx));
+    }
+    std::vector<real> mu;
+    if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
+    for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
+    mu.push_back(real(d.sensor.target_mu_db));
+    return f(lambertian_simulator(policy::lambertian({.mu_db = mu}), water, fan, tow, rx));
+}
+
+} // namespace sss::scene_file

@@ -1,0 +1,111 @@
+#pragma once
+/// \file
+/// The resolved scene of a scene file: every setting, each default filled in. Plain data in the units and the
+/// field names of the library's parameter structs (docs/scene-format.md lists each key). Angles are degrees,
+/// headings clockwise from north, as everywhere at sss's public boundaries.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sss::scene_file {
+
+using xy = std::array<double, 2>;
+
+struct ripples {
+    double wavelength_m = 0.5, height_m = 0.05, crest_heading_deg = 90, symmetry_index = 1;
+    double sinuosity_m = 0, sinuosity_wavelength_m = 0, perturbation_m = 0, height_variation = 0;
+};
+
+struct region {
+    std::string sediment = "medium_sand"; ///< a Table 2 sediment (APL-UW TR 9407) by name: roughness and Jackson scattering
+    double mean_height_m = 0;
+    double outer_scale_m = 20;
+    double mu_db = -27; ///< Lambert strength under `scattering = "lambertian"`
+    std::vector<ripples> ripple_sets;
+};
+
+struct site {
+    double x_m = 0, y_m = 0;
+    std::int64_t region = 0;
+};
+
+struct seabed {
+    std::string file;           ///< an ESRI ASCII grid (.asc) to load instead of generating; "" generates
+    std::int64_t nx = 512, ny = 512;
+    double cell_m = 0.1;
+    xy origin_m{0, 0};
+    std::int64_t seed = 11;     ///< roughness and ripple seed
+    double blend_m = 0.5;       ///< width of the blend between regions (m)
+    double warp_m = 0;          ///< RMS displacement of the region boundaries (m): fractal boundaries
+    double warp_scale_m = 10;
+    std::int64_t partition_seed = 7;
+    std::vector<region> regions; ///< empty: a flat seabed at z = 0 (generated) of material 0
+    std::vector<site> sites;     ///< Voronoi sites; empty with one region: that region everywhere
+};
+
+struct object {
+    std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline
+    std::int64_t class_id = 1;
+    // lying_cylinder
+    xy center_m{0, 0};
+    double heading_deg = 90, length_m = 2, radius_m = 0.25;
+    // tethered_mine
+    xy anchor_m{0, 0};
+    std::string case_shape = "sphere";
+    double case_height_m = 5, case_radius_m = 0.5, case_length_m = 1.5, case_heading_deg = 90;
+    // pipeline
+    std::vector<xy> route_m;
+    double max_span_m = 0; ///< 0: unlimited (the pipe follows the seabed only where it is taut)
+};
+
+struct water {
+    double sound_speed_mps = 1500;
+    double absorption_db_per_km = 30;
+};
+
+struct sonar {
+    std::string scattering = "lambertian"; ///< lambertian or jackson (seabed Jackson + targets hard_target)
+    std::string beam = "ideal_fan";
+    double frequency_hz = 100000;
+    double target_mu_db = -8; ///< Lambert strength of the objects under lambertian
+    double along_width_deg = 1, vertical_width_deg = 50, depression_deg = 20;
+    double sample_rate_hz = 20000, max_range_m = 50, source_level_db = 0;
+    double pulse_length_s = 100e-6;
+    std::string pulse_shape = "rectangular"; ///< rectangular, hann, lfm
+    double pulse_bandwidth_hz = 0;
+};
+
+struct motion {
+    std::string type = "straight_line";
+    xy start_m{0, 0};
+    double heading_deg = 0, speed_mps = 2;
+    double altitude_m = 10; ///< above the seabed under start_m (m)
+    double ping_interval_s = 0.1;
+};
+
+struct output {
+    std::string stem = "sss";
+    bool png = true;
+    double png_dynamic_range_db = 40;
+    bool npy = false; ///< stem.npy and its sidecar stem.json
+};
+
+struct render {
+    std::int64_t pings = 100;
+    std::int64_t threads = 0; ///< 0: every core
+};
+
+struct description {
+    std::string path; ///< the file it came from (for messages)
+    render run;
+    seabed bed;
+    std::vector<object> objects;
+    water sea;
+    sonar sensor;
+    motion tow;
+    output out;
+};
+
+} // namespace sss::scene_file
