@@ -264,7 +264,7 @@ private:
                 pt.non_negative("sinuosity_m", p.sinuosity_m);
                 pt.non_negative("sinuosity_wavelength_m", p.sinuosity_wavelength_m);
                 if (p.sinuosity_m > 0 && !(p.sinuosity_wavelength_m > 0))
-                    pt.fail("sinuosity_wavelength_m", "must be > 0 when sinuosity_m > 0");
+                    pt.fail("sinuosity_m", "needs sinuosity_wavelength_m > 0 (the meander's wavelength)");
                 pt.non_negative("perturbation_m", p.perturbation_m);
                 pt.in_range("height_variation", p.height_variation, 0, 1);
                 pt.finish();
