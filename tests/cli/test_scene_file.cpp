@@ -59,11 +59,11 @@ TEST_CASE("a scene file and the equivalent C++ program render bit-identical wate
 
     const T z = by_hand.seabed().seabed_height_m(T(25.5), T(8)) + T(6);
     const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
-                         sss::motion::straight_line<T>>
+                         sss::motion::perturbed<T>>
         sim(sss::scattering::lambertian<T>({.mu_db = {T(-27), T(-20), T(-8)}}),
             sss::propagation::straight<T>({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)}),
             sss::beam::ideal_fan<T>({.along_width_deg = T(1), .vertical_width_deg = T(50), .depression_deg = T(20)}),
-            sss::motion::straight_line<T>({.start_m = {T(25.5), T(8)}, .heading_deg = T(0), .speed_mps = T(2), .altitude_m = z,
+            sss::motion::perturbed<T>({.start_m = {T(25.5), T(8)}, .heading_deg = T(0), .speed_mps = T(2), .altitude_m = z,
                                            .ping_interval_s = T(0.1)}),
             sss::receiver_params{.sample_rate_hz = 20000, .max_range_m = 25});
     const auto expected = sim.render(by_hand, 0, 6, 1);

@@ -192,6 +192,11 @@ int main(int argc, char** argv) {
 
         const auto t0 = std::chrono::steady_clock::now();
         const sf::world w = sf::make_world(d);
+        if (const sf::real z = sf::tow_z(d, w); !(z > 0))
+            throw sss::scene_file::scene_error(scene_path + ": motion.altitude_m: the towfish's world z (" +
+                                               sf::detail::table_reader::fmt(z) +
+                                               " m) must be > 0: the motion policies keep the towfish above z = 0; "
+                                               "raise the seabed (mean_height_m) so that it lies above -altitude_m");
         if (const auto below = sf::below_seabed(d, w, first, count); !below.empty())
             throw sss::scene_file::scene_error(scene_path + ": motion.altitude_m: " + below);
         const auto t1 = std::chrono::steady_clock::now();

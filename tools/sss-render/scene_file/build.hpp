@@ -127,13 +127,30 @@ using world = sss::scene::scene<sss::scene::height_field<real>>;
     return w.seabed().seabed_height_m(real(d.tow.start_m[0]), real(d.tow.start_m[1])) + real(d.tow.altitude_m);
 }
 
+/// The towfish's motion at world z `z_m`: a straight line, turns and oscillations all in `perturbed`.
+[[nodiscard]] inline sss::motion::perturbed<real> motion_of(const description& d, real z_m) {
+    const auto& m = d.tow;
+    const auto wobble = [](const oscillation& o) {
+        return sss::motion::oscillation<real>{.amplitude = real(o.amplitude), .period_s = real(o.period_s), .phase_deg = real(o.phase_deg)};
+    };
+    sss::motion::perturbed_params<real> p{.start_m = {real(m.start_m[0]), real(m.start_m[1])}, .heading_deg = real(m.heading_deg),
+                                          .speed_mps = real(m.speed_mps), .altitude_m = z_m, .ping_interval_s = real(m.ping_interval_s),
+                                          .turn = {}, .yaw_deg = wobble(m.yaw_deg), .sway_m = wobble(m.sway_m),
+                                          .pitch_deg = wobble(m.pitch_deg), .heave_m = wobble(m.heave_m), .roll_deg = wobble(m.roll_deg)};
+    if (m.turn != "none")
+        p.turn = sss::motion::constant_turn<real>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
+                                                  .radius_m = real(m.turn_radius_m), .rate_deg_s = real(m.turn_rate_deg_s)};
+    return sss::motion::perturbed<real>(p);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
-// float x {lambertian, jackson seabed + hard_target objects} x straight water x ideal fan x straight line.
+// float x {lambertian, jackson seabed + hard_target objects} x straight water x ideal fan x perturbed motion
+// (a straight line, a turn, oscillations: one policy, so one instantiation, for all three).
 using policy = sss::policies<real>;
-using lambertian_simulator = policy::simulator<policy::lambertian, policy::straight, policy::ideal_fan, policy::straight_line>;
+using lambertian_simulator = policy::simulator<policy::lambertian, policy::straight, policy::ideal_fan, policy::perturbed>;
 using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
-using jackson_simulator = policy::simulator<jackson_scattering, policy::straight, policy::ideal_fan, policy::straight_line>;
+using jackson_simulator = policy::simulator<jackson_scattering, policy::straight, policy::ideal_fan, policy::perturbed>;
 
 /// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
 template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
@@ -142,9 +159,7 @@ template <class F> decltype(auto) with_simulator(const description& d, const wor
     const sss::beam::ideal_fan<real> fan({.along_width_deg = real(d.sensor.along_width_deg),
                                      .vertical_width_deg = real(d.sensor.vertical_width_deg),
                                      .depression_deg = real(d.sensor.depression_deg)});
-    const sss::motion::straight_line<real> tow({.start_m = {real(d.tow.start_m[0]), real(d.tow.start_m[1])},
-                                           .heading_deg = real(d.tow.heading_deg), .speed_mps = real(d.tow.speed_mps),
-                                           .altitude_m = tow_z(d, w), .ping_interval_s = real(d.tow.ping_interval_s)});
+    const auto tow = motion_of(d, tow_z(d, w));
     const auto rx = receiver_of(d);
     const auto regions = sediment_regions(d);
     if (d.sensor.scattering == "jackson") {

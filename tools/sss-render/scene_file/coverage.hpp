@@ -31,8 +31,7 @@ struct extent {
 /// geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side of the track.
 [[nodiscard]] inline std::vector<std::string> swath_problems(const description& d, const extent& e, std::size_t first, std::size_t count) {
     std::vector<std::string> out;
-    const double h = d.tow.heading_deg * 3.14159265358979323846 / 180.0;
-    const double fx = std::sin(h), fy = std::cos(h); // forward; starboard is (fy, -fx)
+    const auto tow = motion_of(d, real(d.tow.altitude_m));
     const double alt = d.tow.altitude_m, r = d.sensor.max_range_m;
     const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
     auto check = [&](std::size_t ping, const char* what, double x, double y) {
@@ -43,9 +42,12 @@ struct extent {
         if (y > e.north_m + 1e-9) edges += " north by " + detail::table_reader::fmt(y - e.north_m) + " m";
         if (!edges.empty()) out.push_back(std::string(what) + " at ping " + std::to_string(ping) + " lies beyond the seabed:" + edges);
     };
-    for (std::size_t ping : {first, first + count - 1}) {
-        const double s = d.tow.speed_mps * d.tow.ping_interval_s * double(ping);
-        const double x = d.tow.start_m[0] + s * fx, y = d.tow.start_m[1] + s * fy;
+    for (std::size_t ping : {first, first + count / 2, first + count - 1}) {
+        const auto pose = tow.nominal_pose_at(ping);
+        const double x = pose.position.x, y = pose.position.y;
+        const auto f = pose.to_world({real(1), real(0), real(0)});
+        const double fl = std::hypot(double(f.x), double(f.y));
+        const double fx = double(f.x) / fl, fy = double(f.y) / fl; // forward; starboard is (fy, -fx)
         check(ping, "the towfish", x, y);
         check(ping, "the port swath edge", x - reach * fy, y + reach * fx);
         check(ping, "the starboard swath edge", x + reach * fy, y - reach * fx);
@@ -57,12 +59,11 @@ struct extent {
 
 /// The pings among [first, first + count) where the towfish is at or below the seabed (the first one), or "".
 [[nodiscard]] inline std::string below_seabed(const description& d, const world& w, std::size_t first, std::size_t count) {
-    const double h = d.tow.heading_deg * 3.14159265358979323846 / 180.0;
-    const real z = tow_z(d, w);
+    const auto tow = motion_of(d, tow_z(d, w));
     for (std::size_t ping = first; ping < first + count; ++ping) {
-        const double s = d.tow.speed_mps * d.tow.ping_interval_s * double(ping);
-        const real x = real(d.tow.start_m[0] + s * std::sin(h)), y = real(d.tow.start_m[1] + s * std::cos(h));
-        const real ground = w.seabed().seabed_height_m(x, y);
+        const auto pose = tow.pose_at(ping);
+        const real z = pose.position.z;
+        const real ground = w.seabed().seabed_height_m(pose.position.x, pose.position.y);
         if (std::isfinite(ground) && ground >= z)
             return "the towfish (z " + detail::table_reader::fmt(z) + " m) is at or below the seabed (z " +
                    detail::table_reader::fmt(ground) + " m) at ping " + std::to_string(ping);

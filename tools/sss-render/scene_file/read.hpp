@@ -349,12 +349,30 @@ private:
     {
         auto m = top.sub("motion");
         auto& o = d.tow;
-        m.choice("type", o.type, {"straight_line"});
         m.point("start_m", o.start_m);
         m.number("heading_deg", o.heading_deg);
         m.non_negative("speed_mps", o.speed_mps);
         m.positive("altitude_m", o.altitude_m);
         m.positive("ping_interval_s", o.ping_interval_s);
+        m.choice("turn", o.turn, {"none", "port", "starboard"});
+        m.non_negative("turn_radius_m", o.turn_radius_m);
+        m.non_negative("turn_rate_deg_s", o.turn_rate_deg_s);
+        if (o.turn != "none" && !(o.turn_radius_m > 0) && !(o.turn_rate_deg_s > 0))
+            m.fail("turn", "a turn needs turn_radius_m > 0 or turn_rate_deg_s > 0");
+        const auto wobble = [&](std::string_view key, oscillation& w, double limit) {
+            auto t = m.sub(key);
+            t.number("amplitude", w.amplitude);
+            if (limit > 0 && !(std::abs(w.amplitude) < limit))
+                t.fail("amplitude", "must be below " + detail::table_reader::fmt(limit) + " in magnitude");
+            t.positive("period_s", w.period_s);
+            t.number("phase_deg", w.phase_deg);
+            t.finish();
+        };
+        wobble("yaw_deg", o.yaw_deg, 0);
+        wobble("sway_m", o.sway_m, 0);
+        wobble("pitch_deg", o.pitch_deg, 90);
+        wobble("heave_m", o.heave_m, 0);
+        wobble("roll_deg", o.roll_deg, 90);
         m.finish();
     }
     {

@@ -77,12 +77,19 @@ struct sonar {
     double pulse_bandwidth_hz = 0;
 };
 
+/// A periodic perturbation of the towfish: amplitude x sin(2 pi t / period + phase).
+struct oscillation {
+    double amplitude = 0, period_s = 1, phase_deg = 0;
+};
+
 struct motion {
-    std::string type = "straight_line";
     xy start_m{0, 0};
     double heading_deg = 0, speed_mps = 2;
     double altitude_m = 10; ///< above the seabed under start_m (m)
     double ping_interval_s = 0.1;
+    std::string turn = "none"; ///< none, port or starboard: a constant turn from ping 0
+    double turn_radius_m = 0, turn_rate_deg_s = 0;
+    oscillation yaw_deg, sway_m, pitch_deg, heave_m, roll_deg;
 };
 
 struct output {

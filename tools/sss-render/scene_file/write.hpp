@@ -7,6 +7,7 @@
 
 #include <charconv>
 #include <string>
+#include <utility>
 
 namespace sss::scene_file {
 
@@ -129,12 +130,22 @@ struct toml_out {
     o.kv("pulse_bandwidth_hz", s.pulse_bandwidth_hz);
 
     o.header("[motion]");
-    o.kv("type", d.tow.type);
     o.kv("start_m", d.tow.start_m);
     o.kv("heading_deg", d.tow.heading_deg);
     o.kv("speed_mps", d.tow.speed_mps);
     o.kv("altitude_m", d.tow.altitude_m);
     o.kv("ping_interval_s", d.tow.ping_interval_s);
+    o.kv("turn", d.tow.turn);
+    o.kv("turn_radius_m", d.tow.turn_radius_m);
+    o.kv("turn_rate_deg_s", d.tow.turn_rate_deg_s);
+    const std::pair<const char*, const oscillation*> wobbles[] = {{"yaw_deg", &d.tow.yaw_deg}, {"sway_m", &d.tow.sway_m},
+        {"pitch_deg", &d.tow.pitch_deg}, {"heave_m", &d.tow.heave_m}, {"roll_deg", &d.tow.roll_deg}};
+    for (const auto& [name, w] : wobbles) {
+        o.header(std::string("[motion.") + name + "]");
+        o.kv("amplitude", w->amplitude);
+        o.kv("period_s", w->period_s);
+        o.kv("phase_deg", w->phase_deg);
+    }
 
     o.header("[output]");
     o.kv("stem", d.out.stem);
