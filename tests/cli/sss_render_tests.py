@@ -68,6 +68,13 @@ elif case == "outputs":
         check(png[:8] == b"\x89PNG\r\n\x1a\n", "the PNG is a PNG")
         npy = open(os.path.join(d, "a", "small.npy"), "rb").read()
         check(npy[:6] == b"\x93NUMPY" and b"(24, " in npy[:128], "the .npy holds 24 pings")
+        everything = open(small).read().replace("npy = true", "npy = true\nxtf = true\ncoco = true\nyolo = true\nlabel_images = true")
+        scene3 = os.path.join(d, "every.toml")
+        open(scene3, "w").write(everything)
+        r = run([scene3, "-o", os.path.join(d, "e")])
+        want = ["classes.txt", "small.json", "small.npy", "small.png", "small.txt", "small.xtf", "small_coco.json",
+                "small_labels_class.png", "small_labels_instance.png", "small_labels_legend.json"]
+        check(r.returncode == 0 and files_in(os.path.join(d, "e")) == want, f"every product asked, and nothing else ({files_in(os.path.join(d, 'e'))}, {r.stderr})")
         text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
         scene2 = os.path.join(d, "other.toml")
         open(scene2, "w").write(text)

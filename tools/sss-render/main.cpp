@@ -11,7 +11,10 @@
 #include "scene_file/read.hpp"
 #include "scene_file/write.hpp"
 
+#include <sss/io/labels.hpp>
 #include <sss/io/npy.hpp>
+#include <sss/io/xtf.hpp>
+#include <sss/labels/ground_truth.hpp>
 #include <sss/io/png.hpp>
 
 #include <CLI/CLI.hpp>
@@ -104,6 +107,12 @@ public:
         const auto tmp = dir_ / ("." + name + ".partial");
         files_.emplace_back(tmp, dir_ / name);
         return tmp.string();
+    }
+    /// A writer that appends suffixes to a stem: each `stem + suffix` is one file.
+    std::string add_stem(const std::string& stem, std::initializer_list<const char*> suffixes) {
+        const std::string tmp = "." + stem + ".partial";
+        for (const char* s : suffixes) files_.emplace_back(dir_ / (tmp + s), dir_ / (stem + s));
+        return (dir_ / tmp).string();
     }
     std::vector<std::string> commit() {
         if (interrupted.load()) throw interrupted_error{};
@@ -201,9 +210,13 @@ int main(int argc, char** argv) {
             throw sss::scene_file::scene_error(scene_path + ": motion.altitude_m: " + below);
         const auto t1 = std::chrono::steady_clock::now();
         std::vector<sss::pose<sf::real>> poses;
+        const bool want_labels = d.out.coco || d.out.yolo || d.out.label_images;
+        sss::label_image labels;
         const auto image = sf::with_simulator(d, w, [&](const auto& sim) {
             for (std::size_t i = first; i < last; ++i) poses.push_back(sim.motion().pose_at(i));
-            return render(sim, w, first, count, unsigned(d.run.threads));
+            auto rendered = render(sim, w, first, count, unsigned(d.run.threads));
+            if (want_labels) labels = sss::label_render(sim, w, first, count, {.threads = unsigned(d.run.threads)});
+            return rendered;
         });
         const auto t2 = std::chrono::steady_clock::now();
 
@@ -220,6 +233,36 @@ int main(int argc, char** argv) {
             sss::io::write_npy(files.add(stem + ".npy"), image);
             sss::io::write_render_sidecar<sf::real>(files.add(stem + ".json"), image, poses,
                                                     {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps});
+        }
+        if (d.out.xtf) {
+            std::vector<double> altitude;
+            for (const auto& p : poses) altitude.push_back(double(p.position.z - w.seabed().seabed_height_m(p.position.x, p.position.y)));
+            sss::io::xtf_render_params xp{.start_unix_s = d.out.xtf_start_unix_s + double(first) * d.tow.ping_interval_s,
+                                          .ping_interval_s = d.tow.ping_interval_s, .first_ping_number = std::uint32_t(first + 1),
+                                          .sound_speed_mps = d.sea.sound_speed_mps,
+                                          .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
+                                                     .longitude_deg = d.out.xtf_origin_longitude_deg}};
+            xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = d.sensor.along_width_deg,
+                              .beam_width_deg = d.sensor.vertical_width_deg, .tilt_deg = d.sensor.depression_deg};
+            xp.header.starboard = xp.header.port;
+            sss::io::write_xtf(files.add(stem + ".xtf"), sss::io::make_xtf<sf::real>(image, poses, xp, altitude));
+        }
+        if (want_labels) {
+            std::vector<sss::io::label_class> classes;
+            for (const auto& o : d.objects)
+                if (std::none_of(classes.begin(), classes.end(), [&](const auto& c) { return c.id == std::uint32_t(o.class_id); }))
+                    classes.push_back({std::uint32_t(o.class_id), o.class_name});
+            const auto box = sss::io::box_extent::highlight_and_shadow;
+            if (d.out.coco) {
+                const std::vector<sss::io::coco_image> set{{stem + ".png", &labels}};
+                sss::io::write_text(files.add(stem + "_coco.json"), sss::io::coco_json(set, classes, box));
+            }
+            if (d.out.yolo) {
+                sss::io::write_text(files.add(stem + ".txt"), sss::io::yolo_txt(labels, classes, box));
+                sss::io::write_text(files.add("classes.txt"), sss::io::yolo_classes_txt(classes));
+            }
+            if (d.out.label_images)
+                sss::io::write_label_images(files.add_stem(stem + "_labels", {"_class.png", "_instance.png", "_legend.json"}), labels, classes);
         }
         const auto written = files.commit();
         auto s = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };

@@ -294,6 +294,9 @@ private:
         object o;
         ot.choice("type", o.type, {"lying_cylinder", "tethered_mine", "pipeline"});
         ot.integer("class_id", o.class_id, 1);
+        o.class_name = o.type;
+        ot.string("class_name", o.class_name);
+        if (o.class_name.empty()) ot.fail("class_name", "must not be empty");
         if (o.type == "lying_cylinder") {
             ot.point("center_m", o.center_m);
             ot.number("heading_deg", o.heading_deg);
@@ -383,6 +386,13 @@ private:
         o.boolean("png", d.out.png);
         o.positive("png_dynamic_range_db", d.out.png_dynamic_range_db);
         o.boolean("npy", d.out.npy);
+        o.boolean("xtf", d.out.xtf);
+        o.in_range("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg, -89.9, 89.9);
+        o.in_range("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg, -180, 180);
+        o.non_negative("xtf_start_unix_s", d.out.xtf_start_unix_s);
+        o.boolean("coco", d.out.coco);
+        o.boolean("yolo", d.out.yolo);
+        o.boolean("label_images", d.out.label_images);
         o.finish();
     }
     top.finish();

@@ -48,6 +48,7 @@ struct seabed {
 struct object {
     std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline
     std::int64_t class_id = 1;
+    std::string class_name; ///< the class's name in the label files; "" in a file: the type
     // lying_cylinder
     xy center_m{0, 0};
     double heading_deg = 90, length_m = 2, radius_m = 0.25;
@@ -97,6 +98,11 @@ struct output {
     bool png = true;
     double png_dynamic_range_db = 40;
     bool npy = false; ///< stem.npy and its sidecar stem.json
+    bool xtf = false; ///< stem.xtf: two float channels, latitude/longitude from xtf_origin_*
+    double xtf_origin_latitude_deg = 0, xtf_origin_longitude_deg = 0, xtf_start_unix_s = 0;
+    bool coco = false;         ///< stem_coco.json: boxes (highlight and shadow) and masks of the objects
+    bool yolo = false;         ///< stem.txt and classes.txt
+    bool label_images = false; ///< stem_labels_class.png, stem_labels_instance.png, stem_labels_legend.json
 };
 
 struct render {

@@ -89,6 +89,7 @@ struct toml_out {
         o.header("[[object]]");
         o.kv("type", ob.type);
         o.kv("class_id", ob.class_id);
+        o.kv("class_name", ob.class_name);
         if (ob.type == "lying_cylinder") {
             o.kv("center_m", ob.center_m);
             o.kv("heading_deg", ob.heading_deg);
@@ -152,6 +153,13 @@ struct toml_out {
     o.kv("png", d.out.png);
     o.kv("png_dynamic_range_db", d.out.png_dynamic_range_db);
     o.kv("npy", d.out.npy);
+    o.kv("xtf", d.out.xtf);
+    o.kv("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg);
+    o.kv("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg);
+    o.kv("xtf_start_unix_s", d.out.xtf_start_unix_s);
+    o.kv("coco", d.out.coco);
+    o.kv("yolo", d.out.yolo);
+    o.kv("label_images", d.out.label_images);
     return o.text;
 }
 
