@@ -146,6 +146,18 @@ std::vector<double> compensated(const sss::waterfall<sf::real>& w, double c_mps,
     return shown;
 }
 
+/// The level shown white: the 99.5th percentile of the positive values (dB), so that a few highlights or
+/// speckle peaks do not darken the whole image.
+double white_level_db(const std::vector<double>& v) {
+    std::vector<double> positive;
+    for (double x : v)
+        if (x > 0 && std::isfinite(x)) positive.push_back(x);
+    if (positive.empty()) return 0.0;
+    const auto at = positive.begin() + std::ptrdiff_t(double(positive.size() - 1) * 0.995);
+    std::nth_element(positive.begin(), at, positive.end());
+    return 10.0 * std::log10(*at);
+}
+
 /// "A:B" -> [A, B); "A:" -> [A, pings).
 std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t pings) {
     const auto colon = s.find(':');
@@ -224,10 +236,13 @@ int main(int argc, char** argv) {
         output_set files(out_dir);
         const std::string& stem = d.out.stem;
         if (d.out.png) {
-            const auto shown = compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km);
+            // With the receiver's TVG the record is already compensated; without it the display compensates.
+            const auto shown = d.rx.tvg ? std::vector<double>(image.values.begin(), image.values.end())
+                                        : compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km);
             sss::io::write_png_grey8(files.add(stem + ".png"), image.width(), image.pings,
                                      sss::io::to_grey_db<std::uint8_t>(std::span<const double>(shown),
-                                                                       {.dynamic_range_db = d.out.png_dynamic_range_db}));
+                                                                       {.dynamic_range_db = d.out.png_dynamic_range_db,
+                                                                        .top_db = white_level_db(shown)}));
         }
         if (d.out.npy) {
             sss::io::write_npy(files.add(stem + ".npy"), image);

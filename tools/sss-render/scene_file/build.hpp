@@ -8,6 +8,8 @@
 
 #include <sss/io/height_field_io.hpp>
 #include <sss/policies.hpp>
+#include <sss/receiver/echo_statistics.hpp>
+#include <sss/receiver/tvg.hpp>
 #include <sss/scattering/by_material.hpp>
 #include <sss/scattering/hard_target.hpp>
 #include <sss/scene/height_field.hpp>
@@ -18,6 +20,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -143,14 +146,50 @@ using world = sss::scene::scene<sss::scene::height_field<real>>;
     return sss::motion::perturbed<real>(p);
 }
 
+/// The receiver's stages chosen at run time: echo statistics (speckle, noise, volume reverberation), then TVG,
+/// each only when the scene asks. With neither, the lines pass through untouched (bit for bit), so one type
+/// serves scenes with and without a receiver chain.
+class receiver_stages {
+public:
+    receiver_stages() = default;
+    explicit receiver_stages(const description& d) {
+        const auto& r = d.rx;
+        if (r.speckle || r.noise || r.volume) {
+            sss::echo_statistics_params p{.seed = std::uint64_t(r.seed), .speckle = std::nullopt, .noise = std::nullopt, .volume = std::nullopt};
+            if (r.speckle)
+                p.speckle = sss::speckle_params{.transducer_length_m = r.transducer_length_m, .k_shape = r.k_shape,
+                                                .texture_patch_m = r.texture_patch_m};
+            if (r.noise)
+                p.noise = sss::noise_params{.frequency_hz = d.sensor.frequency_hz, .sea_state = r.sea_state,
+                                            .directivity_index_db = r.directivity_index_db, .source_level_db = r.noise_source_level_db};
+            if (r.volume)
+                p.volume = sss::volume_params{.sv_db = r.sv_db, .psi_sr = r.psi_sr, .absorption_db_per_m = d.sea.absorption_db_per_km / 1e3};
+            statistics_.emplace(p);
+        }
+        if (r.tvg)
+            gain_.emplace(sss::tvg_params{.spreading_n = r.tvg_spreading_n, .absorption_db_per_km = d.sea.absorption_db_per_km,
+                                          .gain_db = r.tvg_gain_db});
+    }
+    [[nodiscard]] bool needs_materials() const noexcept { return statistics_ && statistics_->needs_materials(); }
+    template <Real T> void process(std::vector<T>& line, const sss::line_context<T>& ctx) const {
+        if (statistics_) statistics_->process(line, ctx);
+        if (gain_) gain_->process(line, ctx);
+    }
+
+private:
+    std::optional<sss::echo_statistics> statistics_;
+    std::optional<sss::tvg> gain_;
+};
+
 // ---------------------------------------------------------------------------------------------
 // The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
 // float x {lambertian, jackson seabed + hard_target objects} x straight water x ideal fan x perturbed motion
 // (a straight line, a turn, oscillations: one policy, so one instantiation, for all three).
 using policy = sss::policies<real>;
-using lambertian_simulator = policy::simulator<policy::lambertian, policy::straight, policy::ideal_fan, policy::perturbed>;
+using lambertian_simulator =
+    sss::simulator<policy::lambertian, policy::straight, policy::ideal_fan, policy::perturbed, receiver_stages>;
 using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
-using jackson_simulator = policy::simulator<jackson_scattering, policy::straight, policy::ideal_fan, policy::perturbed>;
+using jackson_simulator = sss::simulator<jackson_scattering, policy::straight, policy::ideal_fan, policy::perturbed, receiver_stages>;
 
 /// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
 template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
@@ -166,13 +205,13 @@ template <class F> decltype(auto) with_simulator(const description& d, const wor
         const jackson_scattering scatter(
             sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
             sss::scattering::hard_target<real>{});
-        return f(jackson_simulator(scatter, water, fan, tow, rx));
+        return f(jackson_simulator(scatter, water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
     }
     std::vector<real> mu;
     if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
     for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
     mu.push_back(real(d.sensor.target_mu_db));
-    return f(lambertian_simulator(policy::lambertian({.mu_db = mu}), water, fan, tow, rx));
+    return f(lambertian_simulator(policy::lambertian({.mu_db = mu}), water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
 }
 
 } // namespace sss::scene_file

@@ -379,6 +379,26 @@ private:
         m.finish();
     }
     {
+        auto r = top.sub("receiver");
+        auto& o = d.rx;
+        r.integer("seed", o.seed, 0);
+        r.boolean("speckle", o.speckle);
+        r.positive("transducer_length_m", o.transducer_length_m);
+        r.non_negative("k_shape", o.k_shape);
+        r.positive("texture_patch_m", o.texture_patch_m);
+        r.boolean("noise", o.noise);
+        r.in_range("sea_state", o.sea_state, 0, 6);
+        r.non_negative("directivity_index_db", o.directivity_index_db);
+        r.number("noise_source_level_db", o.noise_source_level_db);
+        r.boolean("volume", o.volume);
+        r.number("sv_db", o.sv_db);
+        r.positive("psi_sr", o.psi_sr);
+        r.boolean("tvg", o.tvg);
+        r.number("tvg_spreading_n", o.tvg_spreading_n);
+        r.number("tvg_gain_db", o.tvg_gain_db);
+        r.finish();
+    }
+    {
         auto o = top.sub("output");
         o.string("stem", d.out.stem);
         if (d.out.stem.empty() || d.out.stem.find('/') != std::string::npos)

@@ -93,6 +93,19 @@ struct motion {
     oscillation yaw_deg, sway_m, pitch_deg, heave_m, roll_deg;
 };
 
+/// The receiver's line stages (receiver/line_stage.hpp), each off unless asked for.
+struct receiver {
+    std::int64_t seed = 1; ///< speckle and noise seed
+    bool speckle = false;
+    double transducer_length_m = 0.5, k_shape = 0, texture_patch_m = 1;
+    bool noise = false;
+    double sea_state = 2, directivity_index_db = 20, noise_source_level_db = 210;
+    bool volume = false;
+    double sv_db = -80, psi_sr = 0.05;
+    bool tvg = false;
+    double tvg_spreading_n = 30, tvg_gain_db = 0;
+};
+
 struct output {
     std::string stem = "sss";
     bool png = true;
@@ -118,6 +131,7 @@ struct description {
     water sea;
     sonar sensor;
     motion tow;
+    receiver rx;
     output out;
 };
 

@@ -148,6 +148,24 @@ struct toml_out {
         o.kv("phase_deg", w->phase_deg);
     }
 
+    const auto& r = d.rx;
+    o.header("[receiver]");
+    o.kv("seed", r.seed);
+    o.kv("speckle", r.speckle);
+    o.kv("transducer_length_m", r.transducer_length_m);
+    o.kv("k_shape", r.k_shape);
+    o.kv("texture_patch_m", r.texture_patch_m);
+    o.kv("noise", r.noise);
+    o.kv("sea_state", r.sea_state);
+    o.kv("directivity_index_db", r.directivity_index_db);
+    o.kv("noise_source_level_db", r.noise_source_level_db);
+    o.kv("volume", r.volume);
+    o.kv("sv_db", r.sv_db);
+    o.kv("psi_sr", r.psi_sr);
+    o.kv("tvg", r.tvg);
+    o.kv("tvg_spreading_n", r.tvg_spreading_n);
+    o.kv("tvg_gain_db", r.tvg_gain_db);
+
     o.header("[output]");
     o.kv("stem", d.out.stem);
     o.kv("png", d.out.png);
