@@ -75,6 +75,17 @@ elif case == "outputs":
         want = ["classes.txt", "small.json", "small.npy", "small.png", "small.txt", "small.xtf", "small_coco.json",
                 "small_labels_class.png", "small_labels_instance.png", "small_labels_legend.json"]
         check(r.returncode == 0 and files_in(os.path.join(d, "e")) == want, f"every product asked, and nothing else ({files_in(os.path.join(d, 'e'))}, {r.stderr})")
+        # A loaded seabed (ESRI ASCII, 0.5 m cells, a gentle slope), quantised counts and a ground-range image.
+        with open(os.path.join(d, "bed.asc"), "w") as f:
+            f.write("ncols 80\nnrows 80\nxllcorner 0\nyllcorner 0\ncellsize 0.5\n")
+            for row in range(80):
+                f.write(" ".join("%.3f" % (0.02 * c) for c in range(80)) + "\n")
+        loaded = os.path.join(d, "loaded.toml")
+        open(loaded, "w").write('[render]\npings = 8\n[seabed]\nfile = "bed.asc"\n[sonar]\nmax_range_m = 20\n'
+                                '[motion]\nstart_m = [20, 5]\naltitude_m = 5\n[output]\nstem = "bed"\npng_scale = "quantised"\nground_range = true\n')
+        r = run([loaded, "-o", "out"], cwd=d)
+        check(r.returncode == 0 and files_in(os.path.join(d, "out")) == ["bed.png", "bed_ground.png"],
+              f"a loaded .asc seabed renders a quantised PNG and a ground-range PNG ({files_in(os.path.join(d, 'out'))}, {r.stderr})")
         text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
         scene2 = os.path.join(d, "other.toml")
         open(scene2, "w").write(text)

@@ -15,6 +15,8 @@
 #include <sss/io/npy.hpp>
 #include <sss/io/xtf.hpp>
 #include <sss/labels/ground_truth.hpp>
+#include <sss/receiver/ground_range.hpp>
+#include <sss/receiver/quantise.hpp>
 #include <sss/io/png.hpp>
 
 #include <CLI/CLI.hpp>
@@ -201,7 +203,7 @@ int main(int argc, char** argv) {
         const auto [first, last] = pings_arg.empty() ? std::pair<std::size_t, std::size_t>{0, std::size_t(d.run.pings)}
                                                      : ping_range(pings_arg, std::size_t(d.run.pings));
         const std::size_t count = last - first;
-        const sf::extent e = d.bed.file.empty() ? sf::extent_of(d) : sf::extent_of(sss::io::read_esri_ascii<sf::real>(d.bed.file));
+        const sf::extent e = d.bed.file.empty() ? sf::extent_of(d) : sf::extent_of(sf::load_seabed(d));
         const auto problems = sf::swath_problems(d, e, first, count);
         if (dry_run) {
             std::fputs(sf::to_toml(d).c_str(), stdout);
@@ -235,14 +237,30 @@ int main(int argc, char** argv) {
         std::filesystem::create_directories(out_dir);
         output_set files(out_dir);
         const std::string& stem = d.out.stem;
-        if (d.out.png) {
+        if (d.out.png || d.out.ground_range) {
             // With the receiver's TVG the record is already compensated; without it the display compensates.
-            const auto shown = d.rx.tvg ? std::vector<double>(image.values.begin(), image.values.end())
-                                        : compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km);
-            sss::io::write_png_grey8(files.add(stem + ".png"), image.width(), image.pings,
-                                     sss::io::to_grey_db<std::uint8_t>(std::span<const double>(shown),
-                                                                       {.dynamic_range_db = d.out.png_dynamic_range_db,
-                                                                        .top_db = white_level_db(shown)}));
+            sss::waterfall<double> shown{.pings = image.pings, .samples = image.samples, .dt_s = image.dt_s,
+                                         .values = d.rx.tvg ? std::vector<double>(image.values.begin(), image.values.end())
+                                                            : compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km)};
+            auto grey = [&](const std::vector<double>& v) {
+                if (d.out.png_scale == "quantised") {
+                    std::vector<double> sorted(v);
+                    const auto at = sorted.begin() + std::ptrdiff_t(double(sorted.size() - 1) * 0.95);
+                    std::nth_element(sorted.begin(), at, sorted.end());
+                    const double ref = *at > 0 ? *at : 1.0;
+                    return sss::quantise<std::uint8_t>(std::span<const double>(v), {.gain = sss::quantise_gain(ref, 100.0)});
+                }
+                return sss::io::to_grey_db<std::uint8_t>(std::span<const double>(v), {.dynamic_range_db = d.out.png_dynamic_range_db,
+                                                                                       .top_db = white_level_db(v)});
+            };
+            if (d.out.png) sss::io::write_png_grey8(files.add(stem + ".png"), image.width(), image.pings, grey(shown.values));
+            if (d.out.ground_range) {
+                std::vector<double> altitude;
+                for (const auto& p : poses) altitude.push_back(double(p.position.z - w.seabed().seabed_height_m(p.position.x, p.position.y)));
+                const auto cells = std::size_t(std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m));
+                const auto ground = sss::to_ground_range(shown, altitude, d.sea.sound_speed_mps, d.out.ground_range_cell_m, cells);
+                sss::io::write_png_grey8(files.add(stem + "_ground.png"), ground.width(), ground.pings, grey(ground.values));
+            }
         }
         if (d.out.npy) {
             sss::io::write_npy(files.add(stem + ".npy"), image);

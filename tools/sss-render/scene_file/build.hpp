@@ -50,11 +50,23 @@ using world = sss::scene::scene<sss::scene::height_field<real>>;
     return out;
 }
 
+/// The seabed in `seabed.file`, by its extension: ESRI ASCII (.asc), raw float32 with its sidecar (.raw), or
+/// 16-bit PGM (.pgm) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
+[[nodiscard]] inline sss::scene::height_field<real> load_seabed(const description& d) {
+    const auto& b = d.bed;
+    const auto ext = b.file.substr(b.file.size() - 4);
+    if (ext == ".raw") return sss::io::read_raw_f32<real>(b.file);
+    if (ext == ".pgm")
+        return sss::io::read_pgm16<real>(b.file, real(b.cell_m), {real(b.origin_m[0]), real(b.origin_m[1])},
+                                         {.scale_m = real(b.pgm_scale_m), .offset_m = real(b.pgm_offset_m)});
+    return sss::io::read_esri_ascii<real>(b.file);
+}
+
 /// The seabed: loaded from `file`, flat at z = 0 without regions, else composed from the regions.
 [[nodiscard]] inline sss::scene::height_field<real> make_seabed(const description& d) {
     namespace sb = sss::seabed;
     const auto& b = d.bed;
-    if (!b.file.empty()) return sss::io::read_esri_ascii<real>(b.file);
+    if (!b.file.empty()) return load_seabed(d);
     const auto nx = std::size_t(b.nx), ny = std::size_t(b.ny);
     const real cell = real(b.cell_m);
     const sss::vec2<real> origin{real(b.origin_m[0]), real(b.origin_m[1])};

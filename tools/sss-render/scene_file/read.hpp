@@ -233,6 +233,14 @@ private:
         auto s = top.sub("seabed");
         auto& b = d.bed;
         s.string("file", b.file);
+        if (!b.file.empty()) {
+            const auto ends = [&](std::string_view x) { return b.file.size() >= x.size() && b.file.compare(b.file.size() - x.size(), x.size(), x) == 0; };
+            if (!ends(".asc") && !ends(".raw") && !ends(".pgm"))
+                s.fail("file", "'" + b.file + "' is not a height file sss reads (.asc, .raw with its .raw.txt sidecar, .pgm)");
+        }
+        s.number("pgm_scale_m", b.pgm_scale_m);
+        if (b.pgm_scale_m == 0) s.fail("pgm_scale_m", "must not be 0");
+        s.number("pgm_offset_m", b.pgm_offset_m);
         s.integer("nx", b.nx, 2);
         s.integer("ny", b.ny, 2);
         s.positive("cell_m", b.cell_m);
@@ -405,6 +413,9 @@ private:
             o.fail("stem", "must be a non-empty file name without '/'");
         o.boolean("png", d.out.png);
         o.positive("png_dynamic_range_db", d.out.png_dynamic_range_db);
+        o.choice("png_scale", d.out.png_scale, {"db", "quantised"});
+        o.boolean("ground_range", d.out.ground_range);
+        o.positive("ground_range_cell_m", d.out.ground_range_cell_m);
         o.boolean("npy", d.out.npy);
         o.boolean("xtf", d.out.xtf);
         o.in_range("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg, -89.9, 89.9);

@@ -32,7 +32,8 @@ struct site {
 };
 
 struct seabed {
-    std::string file;           ///< an ESRI ASCII grid (.asc) to load instead of generating; "" generates
+    std::string file;           ///< a height file to load instead of generating (.asc, .raw + .raw.txt, .pgm); "" generates
+    double pgm_scale_m = 0.01, pgm_offset_m = 0; ///< a .pgm's heights: offset + scale x sample (m)
     std::int64_t nx = 512, ny = 512;
     double cell_m = 0.1;
     xy origin_m{0, 0};
@@ -110,6 +111,9 @@ struct output {
     std::string stem = "sss";
     bool png = true;
     double png_dynamic_range_db = 40;
+    std::string png_scale = "db"; ///< db: a dB window; quantised: 8-bit amplitude counts, the 95th percentile at 100
+    bool ground_range = false;    ///< stem_ground.png: the PNG resampled to ground range (flat seabed at each ping's altitude)
+    double ground_range_cell_m = 0.1;
     bool npy = false; ///< stem.npy and its sidecar stem.json
     bool xtf = false; ///< stem.xtf: two float channels, latitude/longitude from xtf_origin_*
     double xtf_origin_latitude_deg = 0, xtf_origin_longitude_deg = 0, xtf_start_unix_s = 0;

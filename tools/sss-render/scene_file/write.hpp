@@ -52,6 +52,8 @@ struct toml_out {
     const auto& b = d.bed;
     o.header("[seabed]");
     o.kv("file", b.file);
+    o.kv("pgm_scale_m", b.pgm_scale_m);
+    o.kv("pgm_offset_m", b.pgm_offset_m);
     o.kv("nx", b.nx);
     o.kv("ny", b.ny);
     o.kv("cell_m", b.cell_m);
@@ -170,6 +172,9 @@ struct toml_out {
     o.kv("stem", d.out.stem);
     o.kv("png", d.out.png);
     o.kv("png_dynamic_range_db", d.out.png_dynamic_range_db);
+    o.kv("png_scale", d.out.png_scale);
+    o.kv("ground_range", d.out.ground_range);
+    o.kv("ground_range_cell_m", d.out.ground_range_cell_m);
     o.kv("npy", d.out.npy);
     o.kv("xtf", d.out.xtf);
     o.kv("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg);
