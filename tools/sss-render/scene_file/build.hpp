@@ -16,6 +16,7 @@
 #include <sss/scene/scene.hpp>
 #include <sss/seabed/composite.hpp>
 #include <sss/seabed/sediment_region.hpp>
+#include <sss/seabed/stamps.hpp>
 #include <sss/seabed/targets.hpp>
 
 #include <cmath>
@@ -50,6 +51,30 @@ using world = sss::scene::scene<sss::scene::height_field<real>>;
     return out;
 }
 
+/// Stamps the scene's features on raster h (raster-local coordinates: world minus origin_m).
+inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
+    namespace sb = sss::seabed;
+    const double x0 = d.bed.origin_m[0], y0 = d.bed.origin_m[1];
+    for (const auto& p : d.bed.stamps) {
+        const real cx = real(p.center_m[0] - x0), cy = real(p.center_m[1] - y0);
+        if (p.type == "plate")
+            sb::stamp(h, sb::plate<real>{.center_x_m = cx, .center_y_m = cy, .length_m = real(p.length_m), .width_m = real(p.width_m),
+                                         .heading_deg = real(p.heading_deg), .top_m = real(p.top_m)});
+        else if (p.type == "mound")
+            sb::stamp(h, sb::mound<real>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = real(p.radius_u_m),
+                                         .radius_v_m = real(p.radius_v_m), .heading_deg = real(p.heading_deg), .height_m = real(p.height_m)});
+        else if (p.type == "scour")
+            sb::stamp(h, sb::scour<real>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = real(p.radius_u_m),
+                                         .radius_v_m = real(p.radius_v_m), .heading_deg = real(p.heading_deg), .depth_m = real(p.depth_m),
+                                         .rim_height_m = real(p.rim_height_m), .rim_width_m = real(p.rim_width_m)});
+        else
+            sb::stamp(h, sb::trench<real>{.x0_m = real(p.start_m[0] - x0), .y0_m = real(p.start_m[1] - y0), .x1_m = real(p.end_m[0] - x0),
+                                          .y1_m = real(p.end_m[1] - y0), .width_m = real(p.width_m), .floor_width_m = real(p.floor_width_m),
+                                          .depth_m = real(p.depth_m), .berm_height_m = real(p.berm_height_m),
+                                          .berm_width_m = real(p.berm_width_m)});
+    }
+}
+
 /// The seabed in `seabed.file`, by its extension: ESRI ASCII (.asc), raw float32 with its sidecar (.raw), or
 /// 16-bit PGM (.pgm) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
 [[nodiscard]] inline sss::scene::height_field<real> load_seabed(const description& d) {
@@ -70,16 +95,19 @@ using world = sss::scene::scene<sss::scene::height_field<real>>;
     const auto nx = std::size_t(b.nx), ny = std::size_t(b.ny);
     const real cell = real(b.cell_m);
     const sss::vec2<real> origin{real(b.origin_m[0]), real(b.origin_m[1])};
-    if (b.regions.empty())
-        return sss::scene::height_field<real>(
-            {.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin, .heights_m = std::vector<real>(nx * ny, real(0))});
+    if (b.regions.empty()) {
+        auto flat = sb::make_raster<real>(nx, ny, cell, real(0));
+        apply_stamps(d, flat);
+        return sss::scene::height_field<real>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin, .heights_m = flat.values});
+    }
     sb::voronoi_partition<real> part{.sites = {}, .warp_m = real(b.warp_m), .warp_scale_m = real(b.warp_scale_m)};
     for (const auto& s : b.sites)
         part.sites.push_back({.x_m = real(s.x_m - b.origin_m[0]), .y_m = real(s.y_m - b.origin_m[1]), .texture = std::size_t(s.region)});
     if (part.sites.empty()) part.sites.push_back({.x_m = real(0), .y_m = real(0), .texture = 0});
     const auto regions = sediment_regions(d);
-    const auto bed = sb::compose(sb::partition(nx, ny, cell, part, std::uint64_t(b.partition_seed)), sb::textures(regions),
-                                 real(b.blend_m), std::uint64_t(b.seed));
+    auto bed = sb::compose(sb::partition(nx, ny, cell, part, std::uint64_t(b.partition_seed)), sb::textures(regions),
+                           real(b.blend_m), std::uint64_t(b.seed));
+    apply_stamps(d, bed.height);
     std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
     for (std::size_t iy = 0; iy + 1 < ny; ++iy)
         for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];

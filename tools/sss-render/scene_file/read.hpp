@@ -292,6 +292,43 @@ private:
             st.finish();
             b.sites.push_back(p);
         }
+        for (auto& st : s.tables("stamp")) {
+            stamp p;
+            st.choice("type", p.type, {"plate", "mound", "scour", "trench"});
+            if (p.type == "trench") {
+                st.point("start_m", p.start_m);
+                st.point("end_m", p.end_m);
+                st.positive("width_m", p.width_m);
+                st.non_negative("floor_width_m", p.floor_width_m);
+                if (!(p.floor_width_m < p.width_m)) st.fail("floor_width_m", "must be below width_m");
+                st.non_negative("depth_m", p.depth_m);
+                st.non_negative("berm_height_m", p.berm_height_m);
+                st.non_negative("berm_width_m", p.berm_width_m);
+                if (p.berm_height_m > 0 && !(p.berm_width_m > 0)) st.fail("berm_height_m", "needs berm_width_m > 0");
+            } else {
+                st.point("center_m", p.center_m);
+                st.number("heading_deg", p.heading_deg);
+                if (p.type == "plate") {
+                    st.positive("length_m", p.length_m);
+                    st.positive("width_m", p.width_m);
+                    st.number("top_m", p.top_m);
+                } else {
+                    st.positive("radius_u_m", p.radius_u_m);
+                    st.positive("radius_v_m", p.radius_v_m);
+                    if (p.type == "mound") {
+                        st.non_negative("height_m", p.height_m);
+                    } else {
+                        st.non_negative("depth_m", p.depth_m);
+                        st.non_negative("rim_height_m", p.rim_height_m);
+                        st.non_negative("rim_width_m", p.rim_width_m);
+                        if (p.rim_height_m > 0 && !(p.rim_width_m > 0)) st.fail("rim_height_m", "needs rim_width_m > 0");
+                    }
+                }
+            }
+            st.finish();
+            b.stamps.push_back(p);
+        }
+        if (!b.file.empty() && !b.stamps.empty()) s.fail("stamp", "a loaded seabed takes no [[seabed.stamp]] tables");
         if (b.regions.size() > 1 && b.sites.empty())
             s.fail("region", "several regions need [[seabed.site]] tables placing them");
         if (!b.file.empty() && !b.regions.empty())

@@ -31,6 +31,18 @@ struct site {
     std::int64_t region = 0;
 };
 
+/// A feature stamped on the generated seabed (seabed/stamps.hpp), world coordinates.
+struct stamp {
+    std::string type = "mound"; ///< plate, mound, scour or trench
+    xy center_m{0, 0};          ///< plate, mound, scour
+    double heading_deg = 90;    ///< plate, mound, scour: the long axis
+    double length_m = 1, width_m = 1, top_m = 0.1;                   // plate
+    double radius_u_m = 1, radius_v_m = 1, height_m = 0.3;           // mound (and scour's radii)
+    double depth_m = 0.3, rim_height_m = 0, rim_width_m = 0;         // scour (depth_m also trench)
+    xy start_m{0, 0}, end_m{1, 0};                                   // trench
+    double floor_width_m = 0, berm_height_m = 0, berm_width_m = 0;   // trench (width_m its top width)
+};
+
 struct seabed {
     std::string file;           ///< a height file to load instead of generating (.asc, .raw + .raw.txt, .pgm); "" generates
     double pgm_scale_m = 0.01, pgm_offset_m = 0; ///< a .pgm's heights: offset + scale x sample (m)
@@ -44,6 +56,7 @@ struct seabed {
     std::int64_t partition_seed = 7;
     std::vector<region> regions; ///< empty: a flat seabed at z = 0 (generated) of material 0
     std::vector<site> sites;     ///< Voronoi sites; empty with one region: that region everywhere
+    std::vector<stamp> stamps;   ///< features stamped on the generated heights, in order
 };
 
 struct object {

@@ -87,6 +87,37 @@ struct toml_out {
         o.kv("y_m", s.y_m);
         o.kv("region", s.region);
     }
+    for (const auto& p : b.stamps) {
+        o.header("[[seabed.stamp]]");
+        o.kv("type", p.type);
+        if (p.type == "trench") {
+            o.kv("start_m", p.start_m);
+            o.kv("end_m", p.end_m);
+            o.kv("width_m", p.width_m);
+            o.kv("floor_width_m", p.floor_width_m);
+            o.kv("depth_m", p.depth_m);
+            o.kv("berm_height_m", p.berm_height_m);
+            o.kv("berm_width_m", p.berm_width_m);
+            continue;
+        }
+        o.kv("center_m", p.center_m);
+        o.kv("heading_deg", p.heading_deg);
+        if (p.type == "plate") {
+            o.kv("length_m", p.length_m);
+            o.kv("width_m", p.width_m);
+            o.kv("top_m", p.top_m);
+            continue;
+        }
+        o.kv("radius_u_m", p.radius_u_m);
+        o.kv("radius_v_m", p.radius_v_m);
+        if (p.type == "mound") {
+            o.kv("height_m", p.height_m);
+        } else {
+            o.kv("depth_m", p.depth_m);
+            o.kv("rim_height_m", p.rim_height_m);
+            o.kv("rim_width_m", p.rim_width_m);
+        }
+    }
     for (const auto& ob : d.objects) {
         o.header("[[object]]");
         o.kv("type", ob.type);
