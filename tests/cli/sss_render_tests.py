@@ -48,7 +48,7 @@ if case == "broken":
 
 elif case == "roundtrip":
     with tempfile.TemporaryDirectory() as d:
-        for scene in [small, os.path.join(src, "examples", "scenes", "demo.toml")]:
+        for scene in [small, os.path.join(cli, "scenes", "primitives.toml"), os.path.join(src, "examples", "scenes", "demo.toml")]:
             first = run([scene, "--dry-run"])
             check(first.returncode == 0, f"{scene}: --dry-run succeeds ({first.stderr})")
             resolved = os.path.join(d, "resolved.toml")
@@ -86,6 +86,9 @@ elif case == "outputs":
         r = run([loaded, "-o", "out"], cwd=d)
         check(r.returncode == 0 and files_in(os.path.join(d, "out")) == ["bed.png", "bed_ground.png"],
               f"a loaded .asc seabed renders a quantised PNG and a ground-range PNG ({files_in(os.path.join(d, 'out'))}, {r.stderr})")
+        r = run([os.path.join(cli, "scenes", "primitives.toml"), "-o", os.path.join(d, "p")])
+        boxes = open(os.path.join(d, "p", "prim.txt")).read().splitlines() if r.returncode == 0 else []
+        check(len(boxes) == 2, f"the sphere and the cylinder each get a YOLO box ({boxes}, {r.stderr})")
         text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
         scene2 = os.path.join(d, "other.toml")
         open(scene2, "w").write(text)

@@ -136,6 +136,16 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
                                                 .heading_deg = real(o.heading_deg), .length_m = real(o.length_m),
                                                 .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
                 h));
+        } else if (o.type == "sphere" || o.type == "cylinder") {
+            const sss::scene::surface_ids ids{.material = material, .object = id, .label = label};
+            const auto at = [&](const xy& p, double above) {
+                return sss::vec3<real>{real(p[0]), real(p[1]), h(real(p[0]), real(p[1])) + real(above)};
+            };
+            if (o.type == "sphere")
+                objects.push_back(sss::scene::object<real>({sss::scene::sphere<real>(at(o.center_m, o.height_m), real(o.radius_m), ids)}, {}));
+            else
+                objects.push_back(sss::scene::object<real>(
+                    {}, {sss::scene::cylinder<real>(at(o.center_m, o.end0_height_m), at(o.end_m, o.end1_height_m), real(o.radius_m), ids)}));
         } else if (o.type == "tethered_mine") {
             objects.push_back(sb::tethered_mine(
                 sb::tethered_mine_params<real>{.anchor_m = {real(o.anchor_m[0]), real(o.anchor_m[1])},

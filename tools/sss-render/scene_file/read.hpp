@@ -337,7 +337,7 @@ private:
     }
     for (auto& ot : top.tables("object")) {
         object o;
-        ot.choice("type", o.type, {"lying_cylinder", "tethered_mine", "pipeline"});
+        ot.choice("type", o.type, {"lying_cylinder", "tethered_mine", "pipeline", "sphere", "cylinder"});
         ot.integer("class_id", o.class_id, 1);
         o.class_name = o.type;
         ot.string("class_name", o.class_name);
@@ -347,6 +347,18 @@ private:
             ot.number("heading_deg", o.heading_deg);
             ot.positive("length_m", o.length_m);
             ot.positive("radius_m", o.radius_m);
+        } else if (o.type == "sphere") {
+            o.radius_m = 0.5;
+            ot.point("center_m", o.center_m);
+            ot.number("height_m", o.height_m);
+            ot.positive("radius_m", o.radius_m);
+        } else if (o.type == "cylinder") {
+            ot.point("center_m", o.center_m);
+            ot.point("end_m", o.end_m);
+            ot.number("end0_height_m", o.end0_height_m);
+            ot.number("end1_height_m", o.end1_height_m);
+            ot.positive("radius_m", o.radius_m);
+            if (o.center_m == o.end_m && o.end0_height_m == o.end1_height_m) ot.fail("end_m", "the cylinder's ends coincide");
         } else if (o.type == "tethered_mine") {
             ot.point("anchor_m", o.anchor_m);
             ot.choice("case_shape", o.case_shape, {"sphere", "cylinder"});

@@ -60,7 +60,7 @@ struct seabed {
 };
 
 struct object {
-    std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline
+    std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline, sphere, cylinder
     std::int64_t class_id = 1;
     std::string class_name; ///< the class's name in the label files; "" in a file: the type
     // lying_cylinder
@@ -70,6 +70,10 @@ struct object {
     xy anchor_m{0, 0};
     std::string case_shape = "sphere";
     double case_height_m = 5, case_radius_m = 0.5, case_length_m = 1.5, case_heading_deg = 90;
+    // sphere (center_m, radius_m) and cylinder (center_m to end_m, radius_m): raw primitives, heights above the seabed
+    double height_m = 1;   ///< sphere: centre above the seabed under center_m (m)
+    xy end_m{1, 0};        ///< cylinder: the second end's plan position
+    double end0_height_m = 0.5, end1_height_m = 0.5; ///< cylinder: each end above the seabed under it (m)
     // pipeline
     std::vector<xy> route_m;
     double max_span_m = 0; ///< 0: unlimited (the pipe follows the seabed only where it is taut)

@@ -128,6 +128,16 @@ struct toml_out {
             o.kv("heading_deg", ob.heading_deg);
             o.kv("length_m", ob.length_m);
             o.kv("radius_m", ob.radius_m);
+        } else if (ob.type == "sphere") {
+            o.kv("center_m", ob.center_m);
+            o.kv("height_m", ob.height_m);
+            o.kv("radius_m", ob.radius_m);
+        } else if (ob.type == "cylinder") {
+            o.kv("center_m", ob.center_m);
+            o.kv("end_m", ob.end_m);
+            o.kv("end0_height_m", ob.end0_height_m);
+            o.kv("end1_height_m", ob.end1_height_m);
+            o.kv("radius_m", ob.radius_m);
         } else if (ob.type == "tethered_mine") {
             o.kv("anchor_m", ob.anchor_m);
             o.kv("case_shape", ob.case_shape);
