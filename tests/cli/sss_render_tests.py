@@ -48,7 +48,7 @@ if case == "broken":
 
 elif case == "roundtrip":
     with tempfile.TemporaryDirectory() as d:
-        for scene in [small, os.path.join(cli, "scenes", "primitives.toml"), os.path.join(src, "examples", "scenes", "demo.toml")]:
+        for scene in [small, os.path.join(cli, "scenes", "primitives.toml"), os.path.join(cli, "scenes", "layered.toml"), os.path.join(src, "examples", "scenes", "demo.toml")]:
             first = run([scene, "--dry-run"])
             check(first.returncode == 0, f"{scene}: --dry-run succeeds ({first.stderr})")
             resolved = os.path.join(d, "resolved.toml")

@@ -7,6 +7,7 @@
 #include "scene.hpp"
 
 #include <sss/io/height_field_io.hpp>
+#include <sss/io/sound_speed_profile.hpp>
 #include <sss/policies.hpp>
 #include <sss/receiver/echo_statistics.hpp>
 #include <sss/receiver/tvg.hpp>
@@ -233,18 +234,39 @@ private:
 
 // ---------------------------------------------------------------------------------------------
 // The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
-// float x {lambertian, jackson seabed + hard_target objects} x straight water x ideal fan x perturbed motion
+// float x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water x ideal fan x perturbed motion
 // (a straight line, a turn, oscillations: one policy, so one instantiation, for all three).
 using policy = sss::policies<real>;
-using lambertian_simulator =
-    sss::simulator<policy::lambertian, policy::straight, policy::ideal_fan, policy::perturbed, receiver_stages>;
+template <class Scattering, class Propagation>
+using simulator_of = sss::simulator<Scattering, Propagation, policy::ideal_fan, policy::perturbed, receiver_stages>;
 using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
-using jackson_simulator = sss::simulator<jackson_scattering, policy::straight, policy::ideal_fan, policy::perturbed, receiver_stages>;
+
+
+template <class Water, class F> decltype(auto) with_water(const description& d, const world& w, const Water& water, F&& f);
 
 /// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
 template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
+    if (d.sea.model == "layered") {
+        auto profile = d.sea.svp_file.empty()
+                           ? sss::propagation::sound_speed_profile<real>(std::vector<real>(d.sea.depth_m.begin(), d.sea.depth_m.end()),
+                                                                         std::vector<real>(d.sea.speed_mps.begin(), d.sea.speed_mps.end()))
+                           : sss::io::read_sound_speed_csv<real>(d.sea.svp_file);
+        const sss::propagation::layered<real> water(
+            std::move(profile),
+            {.surface_z_m = tow_z(d, w) + real(d.sea.towfish_depth_m), .frequency_hz = real(d.sensor.frequency_hz),
+             .water = {.temperature_c = real(d.sea.temperature_c), .salinity_ppt = real(d.sea.salinity_ppt), .ph = real(d.sea.ph)},
+             .absorption = d.sea.absorption_model == "ainslie_mccolm" ? sss::propagation::absorption_formula::ainslie_mccolm
+                                                                      : sss::propagation::absorption_formula::francois_garrison,
+             .reference_speed_mps = real(d.sea.sound_speed_mps)});
+        return with_water(d, w, water, std::forward<F>(f));
+    }
     const sss::propagation::straight<real> water(
         {.sound_speed_mps = real(d.sea.sound_speed_mps), .absorption_db_per_km = real(d.sea.absorption_db_per_km)});
+    return with_water(d, w, water, std::forward<F>(f));
+}
+
+/// with_simulator's second step: the scattering, for the water already chosen.
+template <class Water, class F> decltype(auto) with_water(const description& d, const world& w, const Water& water, F&& f) {
     const sss::beam::ideal_fan<real> fan({.along_width_deg = real(d.sensor.along_width_deg),
                                      .vertical_width_deg = real(d.sensor.vertical_width_deg),
                                      .depression_deg = real(d.sensor.depression_deg)});
@@ -255,13 +277,14 @@ template <class F> decltype(auto) with_simulator(const description& d, const wor
         const jackson_scattering scatter(
             sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
             sss::scattering::hard_target<real>{});
-        return f(jackson_simulator(scatter, water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
+        return f(simulator_of<jackson_scattering, Water>(scatter, water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
     }
     std::vector<real> mu;
     if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
     for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
     mu.push_back(real(d.sensor.target_mu_db));
-    return f(lambertian_simulator(policy::lambertian({.mu_db = mu}), water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
+    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, fan, tow, rx, sss::ray_density{},
+                                                     receiver_stages(d)));
 }
 
 } // namespace sss::scene_file

@@ -382,8 +382,38 @@ private:
     }
     {
         auto w = top.sub("water");
-        w.in_range("sound_speed_mps", d.sea.sound_speed_mps, 1300, 1700);
-        w.non_negative("absorption_db_per_km", d.sea.absorption_db_per_km);
+        auto& o = d.sea;
+        w.choice("model", o.model, {"straight", "layered"});
+        w.in_range("sound_speed_mps", o.sound_speed_mps, 1300, 1700);
+        w.non_negative("absorption_db_per_km", o.absorption_db_per_km);
+        if (o.model == "layered") {
+            w.string("svp_file", o.svp_file);
+            const auto list = [&](std::string_view key, std::vector<double>& v) {
+                if (const auto* n = w.node(key)) {
+                    const auto* a = n->as_array();
+                    if (!a || a->empty()) w.fail(key, "must be a non-empty array of numbers");
+                    v.clear();
+                    for (const auto& e : *a) {
+                        if (!e.is_number()) w.fail(key, "must be a non-empty array of numbers");
+                        v.push_back(e.value<double>().value());
+                    }
+                }
+            };
+            list("depth_m", o.depth_m);
+            list("speed_mps", o.speed_mps);
+            if (o.depth_m.size() != o.speed_mps.size())
+                w.fail("speed_mps", "needs one speed per depth (" + std::to_string(o.depth_m.size()) + " depths, " +
+                                        std::to_string(o.speed_mps.size()) + " speeds)");
+            for (std::size_t i = 0; i < o.depth_m.size(); ++i) {
+                if (i > 0 && !(o.depth_m[i] > o.depth_m[i - 1])) w.fail("depth_m", "must increase strictly");
+                if (!(o.speed_mps[i] >= 1300 && o.speed_mps[i] <= 1700)) w.fail("speed_mps", "each speed must be in [1300, 1700]");
+            }
+            w.non_negative("towfish_depth_m", o.towfish_depth_m);
+            w.choice("absorption_model", o.absorption_model, {"francois_garrison", "ainslie_mccolm"});
+            w.in_range("temperature_c", o.temperature_c, -2, 40);
+            w.in_range("salinity_ppt", o.salinity_ppt, 0, 45);
+            w.in_range("ph", o.ph, 6, 9);
+        }
         w.finish();
     }
     {

@@ -80,8 +80,15 @@ struct object {
 };
 
 struct water {
-    double sound_speed_mps = 1500;
-    double absorption_db_per_km = 30;
+    std::string model = "straight"; ///< straight (isovelocity) or layered (refraction through a profile)
+    double sound_speed_mps = 1500;  ///< straight: the speed; layered: the reference speed of the time axis
+    double absorption_db_per_km = 30; ///< straight: the absorption (and the display's, both models)
+    // layered
+    std::string svp_file;           ///< a sound-speed CSV (depth_m, speed_mps); or the knots below
+    std::vector<double> depth_m{0.0}, speed_mps{1500.0};
+    double towfish_depth_m = 20;    ///< depth of the towfish below the surface (m)
+    std::string absorption_model = "francois_garrison"; ///< or ainslie_mccolm, at sonar.frequency_hz
+    double temperature_c = 10, salinity_ppt = 35, ph = 8;
 };
 
 struct sonar {

@@ -156,6 +156,21 @@ struct toml_out {
     o.header("[water]");
     o.kv("sound_speed_mps", d.sea.sound_speed_mps);
     o.kv("absorption_db_per_km", d.sea.absorption_db_per_km);
+    o.kv("model", d.sea.model);
+    if (d.sea.model == "layered") {
+        o.kv("svp_file", d.sea.svp_file);
+        std::string dl = "depth_m = [", sl = "speed_mps = [";
+        for (std::size_t i = 0; i < d.sea.depth_m.size(); ++i) {
+            dl += (i ? ", " : "") + detail::num(d.sea.depth_m[i]);
+            sl += (i ? ", " : "") + detail::num(d.sea.speed_mps[i]);
+        }
+        o.text += dl + "]\n" + sl + "]\n";
+        o.kv("towfish_depth_m", d.sea.towfish_depth_m);
+        o.kv("absorption_model", d.sea.absorption_model);
+        o.kv("temperature_c", d.sea.temperature_c);
+        o.kv("salinity_ppt", d.sea.salinity_ppt);
+        o.kv("ph", d.sea.ph);
+    }
 
     const auto& s = d.sensor;
     o.header("[sonar]");
