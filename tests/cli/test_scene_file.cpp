@@ -15,6 +15,8 @@
 #include <sss/seabed/sediment_region.hpp>
 #include <sss/seabed/targets.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -92,4 +94,42 @@ TEST_CASE("an unknown key is an error naming its line and column and the closest
     } catch (const sss::scene_file::scene_error& e) {
         CHECK(std::string(e.what()) == "typo.toml:3:1: water.absorbtion_db_per_km: unknown key; did you mean 'absorption_db_per_km'?");
     }
+}
+
+TEST_CASE("receiver.tvg raises each sample by N log10 r + 2 alpha r / 1000 dB, r = c (k + 1/2) dt / 2 (Urick 1983)") {
+    auto d = sss::scene_file::parse_file(small_scene_path());
+    const auto w = sss::scene_file::make_world(d);
+    const auto plain = sss::scene_file::with_simulator(d, w, [&](const auto& s) { return s.render(w, 0, 2, 1); });
+    d.rx.tvg = true;
+    d.rx.tvg_spreading_n = 30;
+    const auto gained = sss::scene_file::with_simulator(d, w, [&](const auto& s) { return s.render(w, 0, 2, 1); });
+    REQUIRE(plain.values.size() == gained.values.size());
+    std::size_t compared = 0;
+    for (std::size_t k = 0; k < plain.samples; ++k) {
+        const std::size_t col = plain.samples + k; // starboard sample k of ping 0
+        const double before = double(plain.at(0, col)), after = double(gained.at(0, col));
+        if (!(before > 0)) continue;
+        const double r = std::max(1.0, 0.5 * 1500.0 * (double(k) + 0.5) * plain.dt_s);
+        const double expected_db = 30.0 * std::log10(r) + 2.0 * 30.0 * r / 1000.0;
+        CHECK(10.0 * std::log10(after / before) == doctest::Approx(expected_db).epsilon(1e-4));
+        ++compared;
+    }
+    CHECK(compared > plain.samples / 2); // most of the line sees the seabed
+}
+
+TEST_CASE("receiver.speckle keeps the mean power of the seabed within 10 % over many samples (exponential intensity)") {
+    auto d = sss::scene_file::parse_file(small_scene_path());
+    const auto w = sss::scene_file::make_world(d);
+    const auto mean = sss::scene_file::with_simulator(d, w, [&](const auto& s) { return s.render(w, 0, 12, 1); });
+    d.rx.speckle = true;
+    const auto speckled = sss::scene_file::with_simulator(d, w, [&](const auto& s) { return s.render(w, 0, 12, 1); });
+    double a = 0, b = 0;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < mean.values.size(); ++i) {
+        a += double(mean.values[i]);
+        b += double(speckled.values[i]);
+        differ += mean.values[i] != speckled.values[i] ? 1 : 0;
+    }
+    CHECK(differ > mean.values.size() / 4); // speckle touches every sample that has an echo
+    CHECK(b / a == doctest::Approx(1.0).epsilon(0.1));
 }
