@@ -4,7 +4,7 @@
 //
 // Progress: a bar (pings done, pings/s, ETA) on a terminal, plain lines otherwise. Outputs are written under
 // temporary names and renamed only when every one of them is complete, so an error or Ctrl-C leaves no file.
-// Any error: one line on stderr, exit status 1 (2 for a bad command line, 130 when interrupted).
+// Any error: one line on stderr, exit status 1 (2 when CLI11 rejects the command line, 130 when interrupted).
 
 #include "scene_file/build.hpp"
 #include "scene_file/coverage.hpp"
