@@ -24,7 +24,7 @@ cp "$src/tests/consumers/cmake/CMakeLists.txt" "$src/tests/consumers/one_ping.cp
 case "$mode" in
 install)
     "$cmake" -S "$src" -B "$work/sss-build" "${generator[@]}" "${compiler[@]}" \
-        -DCMAKE_BUILD_TYPE=Release -DSSS_BUILD_TESTS=OFF -DSSS_BUILD_BENCH=OFF -DSSS_BUILD_EXAMPLES=OFF
+        -DCMAKE_BUILD_TYPE=Release -DSSS_BUILD_TESTS=OFF -DSSS_BUILD_BENCH=OFF -DSSS_BUILD_EXAMPLES=OFF -DSSS_BUILD_TOOLS=OFF
     "$cmake" --build "$work/sss-build"
     "$cmake" --install "$work/sss-build" --prefix "$work/prefix"
     "$cmake" -S "$work/consumer" -B "$work/consumer-build" "${generator[@]}" "${compiler[@]}" \

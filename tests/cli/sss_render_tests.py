@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""The cli tests of sss-render: sss_render_tests.py SSS_RENDER SOURCE_DIR CASE (one case per CTest/Meson test).
+
+broken         every scene in tests/cli/broken/ fails with exit status 1, one error line holding its expected
+               fragment (file, line:column or key path, what is wrong), and writes no file
+roundtrip      --dry-run output, read again, prints the same resolved scene
+outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them)
+interrupt      SIGINT during the render: exit status 130, one line, no file left (not even a temporary one)
+progress_tty   on a pseudo-terminal the progress is a redrawn bar with pings done, pings/s and ETA
+progress_plain without a terminal the progress is plain lines, the last one with every ping done
+"""
+import os, pty, re, signal, subprocess, sys, tempfile, time
+
+exe, src, case = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
+cli = os.path.join(src, "tests", "cli")
+small = os.path.join(cli, "scenes", "small.toml")
+failures = []
+
+
+def check(ok, what):
+    if not ok:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def run(args, cwd=None):
+    return subprocess.run([exe] + args, capture_output=True, text=True, cwd=cwd, timeout=120)
+
+
+def files_in(d):
+    return sorted(os.listdir(d)) if os.path.isdir(d) else []
+
+
+if case == "broken":
+    broken = os.path.join(cli, "broken")
+    table = [l.split("\t") for l in open(os.path.join(broken, "expected.txt")).read().splitlines() if l and not l.startswith("#")]
+    on_disk = sorted(f for f in os.listdir(broken) if f.endswith(".toml"))
+    check(sorted(n for n, _ in table) == on_disk, "expected.txt lists every broken scene once")
+    check(len(table) >= 25, "at least 25 broken scenes")
+    for name, fragment in table:
+        with tempfile.TemporaryDirectory() as out:
+            r = run([name, "-o", os.path.join(out, "o")], cwd=broken)
+            errors = [l for l in r.stderr.splitlines() if "warning:" not in l]
+            check(r.returncode == 1, f"{name}: exit status 1 (got {r.returncode})")
+            check(len(errors) == 1, f"{name}: one error line (got {errors})")
+            check(bool(errors) and fragment in errors[0], f"{name}: message holds '{fragment}' (got {errors})")
+            check(files_in(os.path.join(out, "o")) == [], f"{name}: no file written")
+
+elif case == "roundtrip":
+    with tempfile.TemporaryDirectory() as d:
+        for scene in [small, os.path.join(cli, "scenes", "primitives.toml"), os.path.join(cli, "scenes", "layered.toml"), os.path.join(src, "examples", "scenes", "demo.toml")]:
+            first = run([scene, "--dry-run"])
+            check(first.returncode == 0, f"{scene}: --dry-run succeeds ({first.stderr})")
+            resolved = os.path.join(d, "resolved.toml")
+            open(resolved, "w").write(first.stdout)
+            second = run([resolved, "--dry-run"])
+            check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
+            for key in ["threads =", "blend_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db ="]:
+                check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
+            check(files_in(d) == ["resolved.toml"], "--dry-run writes nothing")
+
+elif case == "outputs":
+    with tempfile.TemporaryDirectory() as d:
+        r = run([small, "-o", os.path.join(d, "a")])
+        check(r.returncode == 0, f"render succeeds ({r.stderr})")
+        check(files_in(os.path.join(d, "a")) == ["small.json", "small.npy", "small.png"], f"exactly the asked files ({files_in(os.path.join(d, 'a'))})")
+        png = open(os.path.join(d, "a", "small.png"), "rb").read()
+        check(png[:8] == b"\x89PNG\r\n\x1a\n", "the PNG is a PNG")
+        npy = open(os.path.join(d, "a", "small.npy"), "rb").read()
+        check(npy[:6] == b"\x93NUMPY" and b"(24, " in npy[:128], "the .npy holds 24 pings")
+        everything = open(small).read().replace("npy = true", "npy = true\nxtf = true\ncoco = true\nyolo = true\nlabel_images = true")
+        scene3 = os.path.join(d, "every.toml")
+        open(scene3, "w").write(everything)
+        r = run([scene3, "-o", os.path.join(d, "e")])
+        want = ["classes.txt", "small.json", "small.npy", "small.png", "small.txt", "small.xtf", "small_coco.json",
+                "small_labels_class.png", "small_labels_instance.png", "small_labels_legend.json"]
+        check(r.returncode == 0 and files_in(os.path.join(d, "e")) == want, f"every product asked, and nothing else ({files_in(os.path.join(d, 'e'))}, {r.stderr})")
+        # A loaded seabed (ESRI ASCII, 0.5 m cells, a gentle slope), quantised counts and a ground-range image.
+        with open(os.path.join(d, "bed.asc"), "w") as f:
+            f.write("ncols 80\nnrows 80\nxllcorner 0\nyllcorner 0\ncellsize 0.5\n")
+            for row in range(80):
+                f.write(" ".join("%.3f" % (0.02 * c) for c in range(80)) + "\n")
+        loaded = os.path.join(d, "loaded.toml")
+        open(loaded, "w").write('[render]\npings = 8\n[seabed]\nfile = "bed.asc"\n[sonar]\nmax_range_m = 20\n'
+                                '[motion]\nstart_m = [20, 5]\naltitude_m = 5\n[output]\nstem = "bed"\npng_scale = "quantised"\nground_range = true\n')
+        r = run([loaded, "-o", "out"], cwd=d)
+        check(r.returncode == 0 and files_in(os.path.join(d, "out")) == ["bed.png", "bed_ground.png"],
+              f"a loaded .asc seabed renders a quantised PNG and a ground-range PNG ({files_in(os.path.join(d, 'out'))}, {r.stderr})")
+        r = run([os.path.join(cli, "scenes", "primitives.toml"), "-o", os.path.join(d, "p")])
+        boxes = open(os.path.join(d, "p", "prim.txt")).read().splitlines() if r.returncode == 0 else []
+        check(len(boxes) == 2, f"the sphere and the cylinder each get a YOLO box ({boxes}, {r.stderr})")
+        text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
+        scene2 = os.path.join(d, "other.toml")
+        open(scene2, "w").write(text)
+        r = run([scene2, "-o", os.path.join(d, "b"), "--pings", "4:10"])
+        check(r.returncode == 0, f"second render succeeds ({r.stderr})")
+        check(files_in(os.path.join(d, "b")) == ["other.png"], f"npy = false writes only the PNG ({files_in(os.path.join(d, 'b'))})")
+        r = run([small, "-o", os.path.join(d, "c"), "--pings", "9:3"])
+        check(r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1, f"an empty --pings range is one error line ({r.stderr})")
+        check(files_in(os.path.join(d, "c")) == [], "a failing command line writes nothing")
+
+elif case == "interrupt":
+    with tempfile.TemporaryDirectory() as d:
+        long_scene = os.path.join(d, "long.toml")
+        open(long_scene, "w").write(open(small).read().replace("pings = 24", "pings = 100000").replace("altitude_m = 6", "altitude_m = 6\nspeed_mps = 0"))
+        out = os.path.join(d, "o")
+        p = subprocess.Popen([exe, long_scene, "-o", out], stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        line = p.stderr.readline()  # the first progress line: the render is under way
+        check("pings" in line, f"progress before the interrupt ({line})")
+        p.send_signal(signal.SIGINT)
+        try:
+            _, rest = p.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            rest = ""
+            check(False, "stops within 60 s of SIGINT")
+        check(p.returncode == 130, f"exit status 130 after SIGINT (got {p.returncode})")
+        check("interrupted" in rest and "no file written" in rest, f"says it was interrupted ({rest})")
+        check(files_in(out) == [], f"no file left after SIGINT ({files_in(out)})")
+
+elif case in ("progress_tty", "progress_plain"):
+    with tempfile.TemporaryDirectory() as d:
+        if case == "progress_tty":
+            pid, fd = pty.fork()
+            if pid == 0:
+                os.execv(exe, [exe, small, "-o", d])
+            data = b""
+            while True:
+                try:
+                    chunk = os.read(fd, 4096)
+                except OSError:
+                    break
+                if not chunk:
+                    break
+                data += chunk
+            _, status = os.waitpid(pid, 0)
+            text = data.decode(errors="replace")
+            check(os.waitstatus_to_exitcode(status) == 0, f"render on a terminal succeeds ({text})")
+            check("\r[" in text, "the bar is redrawn in place (carriage return)")
+            check(re.search(r"\[#{30}\] 24/24 pings +[0-9.]+ pings/s +ETA 0 s", text) is not None, f"the full bar shows pings, rate and ETA ({text!r})")
+        else:
+            r = run([small, "-o", d])
+            lines = [l for l in r.stderr.splitlines() if "/24 pings" in l]
+            check(r.returncode == 0, "render succeeds")
+            check("\r" not in r.stderr, "no carriage returns without a terminal")
+            check(len(lines) >= 2 and re.match(r"sss-render: 24/24 pings, [0-9.]+ pings/s, ETA 0 s$", lines[-1]) is not None,
+                  f"plain progress lines end with every ping done ({lines})")
+else:
+    sys.exit(f"unknown case {case}")
+
+sys.exit(1 if failures else 0)

@@ -1,0 +1,290 @@
+#pragma once
+/// \file
+/// From a resolved `description` to the library's objects: the seabed (generated or loaded), the objects laid
+/// on it, and the simulator, chosen among the compiled instantiations listed once in `with_simulator`.
+
+#include "read.hpp"
+#include "scene.hpp"
+
+#include <sss/io/height_field_io.hpp>
+#include <sss/io/sound_speed_profile.hpp>
+#include <sss/policies.hpp>
+#include <sss/receiver/echo_statistics.hpp>
+#include <sss/receiver/tvg.hpp>
+#include <sss/scattering/by_material.hpp>
+#include <sss/scattering/hard_target.hpp>
+#include <sss/scene/height_field.hpp>
+#include <sss/scene/scene.hpp>
+#include <sss/seabed/composite.hpp>
+#include <sss/seabed/sediment_region.hpp>
+#include <sss/seabed/stamps.hpp>
+#include <sss/seabed/targets.hpp>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sss::scene_file {
+
+/// The scalar type of every compiled instantiation (float: half the memory, and the precision of the data).
+using real = float;
+using world = sss::scene::scene<sss::scene::height_field<real>>;
+
+/// The seabed's regions as the library's sediment regions (a flat or loaded seabed: one default region).
+[[nodiscard]] inline std::vector<sss::seabed::sediment_region<real>> sediment_regions(const description& d) {
+    std::vector<region> regions = d.bed.regions;
+    if (regions.empty()) regions.push_back(region{});
+    std::vector<sss::seabed::sediment_region<real>> out;
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const auto& g = regions[i];
+        sss::seabed::sediment_region<real> r{.id = std::uint32_t(i), .sediment = sss::seabed::sediment_named<real>(g.sediment),
+                                             .mean_height_m = real(g.mean_height_m), .outer_scale_m = real(g.outer_scale_m)};
+        for (const auto& p : g.ripple_sets)
+            r.ripples.push_back({.wavelength_m = real(p.wavelength_m), .height_m = real(p.height_m),
+                                 .crest_heading_deg = real(p.crest_heading_deg), .symmetry_index = real(p.symmetry_index),
+                                 .sinuosity_m = real(p.sinuosity_m), .sinuosity_wavelength_m = real(p.sinuosity_wavelength_m),
+                                 .perturbation_m = real(p.perturbation_m), .height_variation = real(p.height_variation)});
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+/// Stamps the scene's features on raster h (raster-local coordinates: world minus origin_m).
+inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
+    namespace sb = sss::seabed;
+    const double x0 = d.bed.origin_m[0], y0 = d.bed.origin_m[1];
+    for (const auto& p : d.bed.stamps) {
+        const real cx = real(p.center_m[0] - x0), cy = real(p.center_m[1] - y0);
+        if (p.type == "plate")
+            sb::stamp(h, sb::plate<real>{.center_x_m = cx, .center_y_m = cy, .length_m = real(p.length_m), .width_m = real(p.width_m),
+                                         .heading_deg = real(p.heading_deg), .top_m = real(p.top_m)});
+        else if (p.type == "mound")
+            sb::stamp(h, sb::mound<real>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = real(p.radius_u_m),
+                                         .radius_v_m = real(p.radius_v_m), .heading_deg = real(p.heading_deg), .height_m = real(p.height_m)});
+        else if (p.type == "scour")
+            sb::stamp(h, sb::scour<real>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = real(p.radius_u_m),
+                                         .radius_v_m = real(p.radius_v_m), .heading_deg = real(p.heading_deg), .depth_m = real(p.depth_m),
+                                         .rim_height_m = real(p.rim_height_m), .rim_width_m = real(p.rim_width_m)});
+        else
+            sb::stamp(h, sb::trench<real>{.x0_m = real(p.start_m[0] - x0), .y0_m = real(p.start_m[1] - y0), .x1_m = real(p.end_m[0] - x0),
+                                          .y1_m = real(p.end_m[1] - y0), .width_m = real(p.width_m), .floor_width_m = real(p.floor_width_m),
+                                          .depth_m = real(p.depth_m), .berm_height_m = real(p.berm_height_m),
+                                          .berm_width_m = real(p.berm_width_m)});
+    }
+}
+
+/// The seabed in `seabed.file`, by its extension: ESRI ASCII (.asc), raw float32 with its sidecar (.raw), or
+/// 16-bit PGM (.pgm) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
+[[nodiscard]] inline sss::scene::height_field<real> load_seabed(const description& d) {
+    const auto& b = d.bed;
+    const auto ext = b.file.substr(b.file.size() - 4);
+    if (ext == ".raw") return sss::io::read_raw_f32<real>(b.file);
+    if (ext == ".pgm")
+        return sss::io::read_pgm16<real>(b.file, real(b.cell_m), {real(b.origin_m[0]), real(b.origin_m[1])},
+                                         {.scale_m = real(b.pgm_scale_m), .offset_m = real(b.pgm_offset_m)});
+    return sss::io::read_esri_ascii<real>(b.file);
+}
+
+/// The seabed: loaded from `file`, flat at z = 0 without regions, else composed from the regions.
+[[nodiscard]] inline sss::scene::height_field<real> make_seabed(const description& d) {
+    namespace sb = sss::seabed;
+    const auto& b = d.bed;
+    if (!b.file.empty()) return load_seabed(d);
+    const auto nx = std::size_t(b.nx), ny = std::size_t(b.ny);
+    const real cell = real(b.cell_m);
+    const sss::vec2<real> origin{real(b.origin_m[0]), real(b.origin_m[1])};
+    if (b.regions.empty()) {
+        auto flat = sb::make_raster<real>(nx, ny, cell, real(0));
+        apply_stamps(d, flat);
+        return sss::scene::height_field<real>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin, .heights_m = flat.values});
+    }
+    sb::voronoi_partition<real> part{.sites = {}, .warp_m = real(b.warp_m), .warp_scale_m = real(b.warp_scale_m)};
+    for (const auto& s : b.sites)
+        part.sites.push_back({.x_m = real(s.x_m - b.origin_m[0]), .y_m = real(s.y_m - b.origin_m[1]), .texture = std::size_t(s.region)});
+    if (part.sites.empty()) part.sites.push_back({.x_m = real(0), .y_m = real(0), .texture = 0});
+    const auto regions = sediment_regions(d);
+    auto bed = sb::compose(sb::partition(nx, ny, cell, part, std::uint64_t(b.partition_seed)), sb::textures(regions),
+                           real(b.blend_m), std::uint64_t(b.seed));
+    apply_stamps(d, bed.height);
+    std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
+    for (std::size_t iy = 0; iy + 1 < ny; ++iy)
+        for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];
+    return sss::scene::height_field<real>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin,
+                                           .heights_m = bed.height.values, .materials = material, .regions = material});
+}
+
+/// The material id of every object: the first after the seabed's regions.
+[[nodiscard]] inline std::uint32_t object_material(const description& d) {
+    return std::uint32_t(std::max<std::size_t>(1, d.bed.regions.size()));
+}
+
+/// The scene: the seabed and the objects laid on it; object k has object id k + 1.
+[[nodiscard]] inline world make_world(const description& d) {
+    namespace sb = sss::seabed;
+    auto seabed = make_seabed(d);
+    const auto h = sb::seabed_height_of(seabed);
+    const std::uint32_t material = object_material(d);
+    std::vector<sss::scene::object<real>> objects;
+    for (std::size_t k = 0; k < d.objects.size(); ++k) {
+        const auto& o = d.objects[k];
+        const auto id = std::uint32_t(k + 1), label = std::uint32_t(o.class_id);
+        if (o.type == "lying_cylinder") {
+            objects.push_back(sb::lying_cylinder(
+                sb::lying_cylinder_params<real>{.center_m = {real(o.center_m[0]), real(o.center_m[1])},
+                                                .heading_deg = real(o.heading_deg), .length_m = real(o.length_m),
+                                                .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
+                h));
+        } else if (o.type == "sphere" || o.type == "cylinder") {
+            const sss::scene::surface_ids ids{.material = material, .object = id, .label = label};
+            const auto at = [&](const xy& p, double above) {
+                return sss::vec3<real>{real(p[0]), real(p[1]), h(real(p[0]), real(p[1])) + real(above)};
+            };
+            if (o.type == "sphere")
+                objects.push_back(sss::scene::object<real>({sss::scene::sphere<real>(at(o.center_m, o.height_m), real(o.radius_m), ids)}, {}));
+            else
+                objects.push_back(sss::scene::object<real>(
+                    {}, {sss::scene::cylinder<real>(at(o.center_m, o.end0_height_m), at(o.end_m, o.end1_height_m), real(o.radius_m), ids)}));
+        } else if (o.type == "tethered_mine") {
+            objects.push_back(sb::tethered_mine(
+                sb::tethered_mine_params<real>{.anchor_m = {real(o.anchor_m[0]), real(o.anchor_m[1])},
+                                               .case_height_m = real(o.case_height_m),
+                                               .shape = o.case_shape == "sphere" ? sb::mine_case::sphere : sb::mine_case::cylinder,
+                                               .case_radius_m = real(o.case_radius_m), .case_length_m = real(o.case_length_m),
+                                               .case_heading_deg = real(o.case_heading_deg), .object_id = id, .class_id = label,
+                                               .case_material = material, .tether_material = material, .anchor_material = material},
+                h));
+        } else {
+            sb::pipeline_params<real> p{.route_m = {}, .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}};
+            for (const auto& q : o.route_m) p.route_m.push_back({real(q[0]), real(q[1])});
+            if (o.max_span_m > 0) p.max_span_m = real(o.max_span_m);
+            objects.push_back(sb::pipeline(p, h));
+        }
+    }
+    return world(std::move(seabed), sss::scene::object_set<real>(std::move(objects)));
+}
+
+[[nodiscard]] inline sss::receiver_params receiver_of(const description& d) {
+    const auto& s = d.sensor;
+    const sss::pulse_shape shape = s.pulse_shape == "hann" ? sss::pulse_shape::hann
+                                   : s.pulse_shape == "lfm" ? sss::pulse_shape::lfm
+                                                            : sss::pulse_shape::rectangular;
+    return {.sample_rate_hz = s.sample_rate_hz, .max_range_m = s.max_range_m,
+            .pulse = {.length_s = s.pulse_length_s, .shape = shape, .bandwidth_hz = s.pulse_bandwidth_hz},
+            .source_level_db = s.source_level_db};
+}
+
+/// World z of the towfish: altitude_m above the seabed under start_m.
+[[nodiscard]] inline real tow_z(const description& d, const world& w) {
+    return w.seabed().seabed_height_m(real(d.tow.start_m[0]), real(d.tow.start_m[1])) + real(d.tow.altitude_m);
+}
+
+/// The towfish's motion at world z `z_m`: a straight line, turns and oscillations all in `perturbed`.
+[[nodiscard]] inline sss::motion::perturbed<real> motion_of(const description& d, real z_m) {
+    const auto& m = d.tow;
+    const auto wobble = [](const oscillation& o) {
+        return sss::motion::oscillation<real>{.amplitude = real(o.amplitude), .period_s = real(o.period_s), .phase_deg = real(o.phase_deg)};
+    };
+    sss::motion::perturbed_params<real> p{.start_m = {real(m.start_m[0]), real(m.start_m[1])}, .heading_deg = real(m.heading_deg),
+                                          .speed_mps = real(m.speed_mps), .altitude_m = z_m, .ping_interval_s = real(m.ping_interval_s),
+                                          .turn = {}, .yaw_deg = wobble(m.yaw_deg), .sway_m = wobble(m.sway_m),
+                                          .pitch_deg = wobble(m.pitch_deg), .heave_m = wobble(m.heave_m), .roll_deg = wobble(m.roll_deg)};
+    if (m.turn != "none")
+        p.turn = sss::motion::constant_turn<real>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
+                                                  .radius_m = real(m.turn_radius_m), .rate_deg_s = real(m.turn_rate_deg_s)};
+    return sss::motion::perturbed<real>(p);
+}
+
+/// The receiver's stages chosen at run time: echo statistics (speckle, noise, volume reverberation), then TVG,
+/// each only when the scene asks. With neither, the lines pass through untouched (bit for bit), so one type
+/// serves scenes with and without a receiver chain.
+class receiver_stages {
+public:
+    receiver_stages() = default;
+    explicit receiver_stages(const description& d) {
+        const auto& r = d.rx;
+        if (r.speckle || r.noise || r.volume) {
+            sss::echo_statistics_params p{.seed = std::uint64_t(r.seed), .speckle = std::nullopt, .noise = std::nullopt, .volume = std::nullopt};
+            if (r.speckle)
+                p.speckle = sss::speckle_params{.transducer_length_m = r.transducer_length_m, .k_shape = r.k_shape,
+                                                .texture_patch_m = r.texture_patch_m};
+            if (r.noise)
+                p.noise = sss::noise_params{.frequency_hz = d.sensor.frequency_hz, .sea_state = r.sea_state,
+                                            .directivity_index_db = r.directivity_index_db, .source_level_db = r.noise_source_level_db};
+            if (r.volume)
+                p.volume = sss::volume_params{.sv_db = r.sv_db, .psi_sr = r.psi_sr, .absorption_db_per_m = d.sea.absorption_db_per_km / 1e3};
+            statistics_.emplace(p);
+        }
+        if (r.tvg)
+            gain_.emplace(sss::tvg_params{.spreading_n = r.tvg_spreading_n, .absorption_db_per_km = d.sea.absorption_db_per_km,
+                                          .gain_db = r.tvg_gain_db});
+    }
+    [[nodiscard]] bool needs_materials() const noexcept { return statistics_ && statistics_->needs_materials(); }
+    template <Real T> void process(std::vector<T>& line, const sss::line_context<T>& ctx) const {
+        if (statistics_) statistics_->process(line, ctx);
+        if (gain_) gain_->process(line, ctx);
+    }
+
+private:
+    std::optional<sss::echo_statistics> statistics_;
+    std::optional<sss::tvg> gain_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
+// float x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water x ideal fan x perturbed motion
+// (a straight line, a turn, oscillations: one policy, so one instantiation, for all three).
+using policy = sss::policies<real>;
+template <class Scattering, class Propagation>
+using simulator_of = sss::simulator<Scattering, Propagation, policy::ideal_fan, policy::perturbed, receiver_stages>;
+using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
+
+
+template <class Water, class F> decltype(auto) with_water(const description& d, const world& w, const Water& water, F&& f);
+
+/// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
+template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
+    if (d.sea.model == "layered") {
+        auto profile = d.sea.svp_file.empty()
+                           ? sss::propagation::sound_speed_profile<real>(std::vector<real>(d.sea.depth_m.begin(), d.sea.depth_m.end()),
+                                                                         std::vector<real>(d.sea.speed_mps.begin(), d.sea.speed_mps.end()))
+                           : sss::io::read_sound_speed_csv<real>(d.sea.svp_file);
+        const sss::propagation::layered<real> water(
+            std::move(profile),
+            {.surface_z_m = tow_z(d, w) + real(d.sea.towfish_depth_m), .frequency_hz = real(d.sensor.frequency_hz),
+             .water = {.temperature_c = real(d.sea.temperature_c), .salinity_ppt = real(d.sea.salinity_ppt), .ph = real(d.sea.ph)},
+             .absorption = d.sea.absorption_model == "ainslie_mccolm" ? sss::propagation::absorption_formula::ainslie_mccolm
+                                                                      : sss::propagation::absorption_formula::francois_garrison,
+             .reference_speed_mps = real(d.sea.sound_speed_mps)});
+        return with_water(d, w, water, std::forward<F>(f));
+    }
+    const sss::propagation::straight<real> water(
+        {.sound_speed_mps = real(d.sea.sound_speed_mps), .absorption_db_per_km = real(d.sea.absorption_db_per_km)});
+    return with_water(d, w, water, std::forward<F>(f));
+}
+
+/// with_simulator's second step: the scattering, for the water already chosen.
+template <class Water, class F> decltype(auto) with_water(const description& d, const world& w, const Water& water, F&& f) {
+    const sss::beam::ideal_fan<real> fan({.along_width_deg = real(d.sensor.along_width_deg),
+                                     .vertical_width_deg = real(d.sensor.vertical_width_deg),
+                                     .depression_deg = real(d.sensor.depression_deg)});
+    const auto tow = motion_of(d, tow_z(d, w));
+    const auto rx = receiver_of(d);
+    const auto regions = sediment_regions(d);
+    if (d.sensor.scattering == "jackson") {
+        const jackson_scattering scatter(
+            sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
+            sss::scattering::hard_target<real>{});
+        return f(simulator_of<jackson_scattering, Water>(scatter, water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
+    }
+    std::vector<real> mu;
+    if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
+    for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
+    mu.push_back(real(d.sensor.target_mu_db));
+    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, fan, tow, rx, sss::ray_density{},
+                                                     receiver_stages(d)));
+}
+
+} // namespace sss::scene_file

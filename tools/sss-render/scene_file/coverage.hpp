@@ -1,0 +1,74 @@
+#pragma once
+/// \file
+/// Coverage problems of a scene, reported rather than left to show as black: a track or a swath that leaves
+/// the seabed, a towfish at or below the seabed.
+
+#include "build.hpp"
+#include "scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace sss::scene_file {
+
+/// The seabed's plan extent: west, south, east, north edges (m).
+struct extent {
+    double west_m = 0, south_m = 0, east_m = 0, north_m = 0;
+};
+
+[[nodiscard]] inline extent extent_of(const description& d) {
+    const auto& b = d.bed;
+    return {b.origin_m[0], b.origin_m[1], b.origin_m[0] + double(b.nx - 1) * b.cell_m, b.origin_m[1] + double(b.ny - 1) * b.cell_m};
+}
+[[nodiscard]] inline extent extent_of(const sss::scene::height_field<real>& h) {
+    const double x0 = h.origin_m().x, y0 = h.origin_m().y, c = h.cell_m();
+    return {x0, y0, x0 + double(h.nx() - 1) * c, y0 + double(h.ny() - 1) * c};
+}
+
+/// The problems of pings [first, first + count): each a sentence naming the ping and the edge. Planar
+/// geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side of the track.
+[[nodiscard]] inline std::vector<std::string> swath_problems(const description& d, const extent& e, std::size_t first, std::size_t count) {
+    std::vector<std::string> out;
+    const auto tow = motion_of(d, real(d.tow.altitude_m));
+    const double alt = d.tow.altitude_m, r = d.sensor.max_range_m;
+    const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
+    auto check = [&](std::size_t ping, const char* what, double x, double y) {
+        std::string edges;
+        if (x < e.west_m - 1e-9) edges += " west by " + detail::table_reader::fmt(e.west_m - x) + " m";
+        if (x > e.east_m + 1e-9) edges += " east by " + detail::table_reader::fmt(x - e.east_m) + " m";
+        if (y < e.south_m - 1e-9) edges += " south by " + detail::table_reader::fmt(e.south_m - y) + " m";
+        if (y > e.north_m + 1e-9) edges += " north by " + detail::table_reader::fmt(y - e.north_m) + " m";
+        if (!edges.empty()) out.push_back(std::string(what) + " at ping " + std::to_string(ping) + " lies beyond the seabed:" + edges);
+    };
+    for (std::size_t ping : {first, first + count / 2, first + count - 1}) {
+        const auto pose = tow.nominal_pose_at(ping);
+        const double x = pose.position.x, y = pose.position.y;
+        const auto f = pose.to_world({real(1), real(0), real(0)});
+        const double fl = std::hypot(double(f.x), double(f.y));
+        const double fx = double(f.x) / fl, fy = double(f.y) / fl; // forward; starboard is (fy, -fx)
+        check(ping, "the towfish", x, y);
+        check(ping, "the port swath edge", x - reach * fy, y + reach * fx);
+        check(ping, "the starboard swath edge", x + reach * fy, y - reach * fx);
+    }
+    if (!(r > alt)) out.push_back("sonar.max_range_m (" + detail::table_reader::fmt(r) + " m) does not reach the seabed " +
+                                  detail::table_reader::fmt(alt) + " m below: the image holds only water");
+    return out;
+}
+
+/// The pings among [first, first + count) where the towfish is at or below the seabed (the first one), or "".
+[[nodiscard]] inline std::string below_seabed(const description& d, const world& w, std::size_t first, std::size_t count) {
+    const auto tow = motion_of(d, tow_z(d, w));
+    for (std::size_t ping = first; ping < first + count; ++ping) {
+        const auto pose = tow.pose_at(ping);
+        const real z = pose.position.z;
+        const real ground = w.seabed().seabed_height_m(pose.position.x, pose.position.y);
+        if (std::isfinite(ground) && ground >= z)
+            return "the towfish (z " + detail::table_reader::fmt(z) + " m) is at or below the seabed (z " +
+                   detail::table_reader::fmt(ground) + " m) at ping " + std::to_string(ping);
+    }
+    return "";
+}
+
+} // namespace sss::scene_file

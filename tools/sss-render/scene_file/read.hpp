@@ -1,0 +1,521 @@
+#pragma once
+/// \file
+/// Reading a scene file (TOML, through toml++) into a resolved `description`. Every error is a `scene_error`
+/// whose one-line message names the file, the line and column, the key path and what is wrong; an unknown key
+/// is an error that suggests the closest valid key.
+
+#include "scene.hpp"
+
+#include <sss/core/error.hpp>
+#include <sss/scattering/sediments.hpp>
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sss::scene_file {
+
+/// A scene file that cannot be used: "file:line:column: key.path: what is wrong".
+class scene_error : public sss::error {
+public:
+    using sss::error::error;
+};
+
+namespace detail {
+
+/// Levenshtein distance (Levenshtein, 1966, Soviet Physics Doklady 10(8)), for "did you mean".
+inline std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diag = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+/// Reads one table: typed getters that record each key they read, then `finish()` rejects the others.
+class table_reader {
+public:
+    table_reader(const std::string& file, const toml::table& t, std::string path)
+        : file_(file), t_(t), path_(std::move(path)) {}
+
+    [[nodiscard]] std::string key_path(std::string_view key) const {
+        return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+    }
+    [[noreturn]] void fail_at(const toml::source_region& where, std::string_view key, const std::string& why) const {
+        std::ostringstream s;
+        s << file_;
+        if (where.begin.line != 0) s << ':' << where.begin.line << ':' << where.begin.column;
+        s << ": " << key_path(key) << ": " << why;
+        throw scene_error(s.str());
+    }
+    [[noreturn]] void fail(std::string_view key, const std::string& why) const {
+        const toml::node* n = t_.get(key);
+        fail_at(n ? n->source() : t_.source(), key, why);
+    }
+
+    [[nodiscard]] const toml::node* node(std::string_view key) {
+        seen_.insert(std::string(key));
+        return t_.get(key);
+    }
+
+    void number(std::string_view key, double& v) {
+        if (const auto* n = node(key)) {
+            if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
+                if (!std::isfinite(*d)) fail(key, "must be a finite number");
+                v = *d;
+            } else
+                fail(key, std::string("must be a number, not ") + type_name(*n));
+        }
+    }
+    void positive(std::string_view key, double& v) {
+        number(key, v);
+        if (!(v > 0)) fail(key, "must be > 0, got " + fmt(v));
+    }
+    void non_negative(std::string_view key, double& v) {
+        number(key, v);
+        if (!(v >= 0)) fail(key, "must be >= 0, got " + fmt(v));
+    }
+    void in_range(std::string_view key, double& v, double lo, double hi) {
+        number(key, v);
+        if (!(v >= lo && v <= hi)) fail(key, "must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(v));
+    }
+    void integer(std::string_view key, std::int64_t& v, std::int64_t lo = std::numeric_limits<std::int64_t>::min()) {
+        if (const auto* n = node(key)) {
+            if (!n->is_integer()) fail(key, std::string("must be an integer, not ") + type_name(*n));
+            v = n->value<std::int64_t>().value();
+            if (v < lo) fail(key, "must be >= " + std::to_string(lo) + ", got " + std::to_string(v));
+        }
+    }
+    void boolean(std::string_view key, bool& v) {
+        if (const auto* n = node(key)) {
+            if (!n->is_boolean()) fail(key, std::string("must be true or false, not ") + type_name(*n));
+            v = n->value<bool>().value();
+        }
+    }
+    void string(std::string_view key, std::string& v) {
+        if (const auto* n = node(key)) {
+            if (!n->is_string()) fail(key, std::string("must be a string, not ") + type_name(*n));
+            v = n->value<std::string>().value();
+        }
+    }
+    void choice(std::string_view key, std::string& v, std::initializer_list<std::string_view> allowed) {
+        string(key, v);
+        if (std::find(allowed.begin(), allowed.end(), v) != allowed.end()) return;
+        std::string list;
+        for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        fail(key, "unknown value '" + v + "'" + suggestion(v, allowed) + " (one of: " + list + ")");
+    }
+    void point(std::string_view key, xy& v) {
+        if (const auto* n = node(key)) v = point_of(*n, key);
+    }
+    [[nodiscard]] xy point_of(const toml::node& n, std::string_view key) const {
+        const auto* a = n.as_array();
+        if (!a || a->size() != 2 || !all_numbers(*a))
+            fail_at(n.source(), key, "must be a pair of numbers [x_m, y_m]");
+        return {a->get(0)->value<double>().value(), a->get(1)->value<double>().value()};
+    }
+    /// The sub-table at key (absent: an empty table).
+    [[nodiscard]] table_reader sub(std::string_view key) {
+        static const toml::table empty;
+        const auto* n = node(key);
+        if (!n) return {file_, empty, key_path(key)};
+        if (!n->is_table()) fail(key, std::string("must be a table, not ") + type_name(*n));
+        return {file_, *n->as_table(), key_path(key)};
+    }
+    /// Each table of the array of tables at key ([[key]] in TOML).
+    [[nodiscard]] std::vector<table_reader> tables(std::string_view key) {
+        std::vector<table_reader> out;
+        const auto* n = node(key);
+        if (!n) return out;
+        const auto* a = n->as_array();
+        if (!a) fail(key, std::string("must be an array of tables ([[") + key_path(key) + "]]), not " + type_name(*n));
+        for (std::size_t i = 0; i < a->size(); ++i) {
+            const auto* t = a->get(i)->as_table();
+            if (!t) fail_at(a->get(i)->source(), key, "element " + std::to_string(i) + " must be a table");
+            out.emplace_back(file_, *t, key_path(key) + "[" + std::to_string(i) + "]");
+        }
+        return out;
+    }
+    /// Rejects every key not read, suggesting the closest one that was.
+    void finish() const {
+        for (const auto& [k, v] : t_) {
+            const std::string name(k.str());
+            if (seen_.count(name)) continue;
+            std::vector<std::string_view> known(seen_.begin(), seen_.end());
+            fail_at(k.source(), name, "unknown key" + suggestion(name, known));
+        }
+    }
+    [[nodiscard]] const toml::table& table() const noexcept { return t_; }
+    [[nodiscard]] const std::string& path() const noexcept { return path_; }
+
+    template <class Range> static std::string suggestion(std::string_view got, const Range& known) {
+        std::string best;
+        std::size_t best_d = std::numeric_limits<std::size_t>::max();
+        for (std::string_view k : known) {
+            const std::size_t d = edit_distance(got, k);
+            if (d < best_d) best_d = d, best = std::string(k);
+        }
+        if (best.empty() || best_d > std::max<std::size_t>(2, got.size() / 2)) return "";
+        return "; did you mean '" + best + "'?";
+    }
+    static std::string suggestion(std::string_view got, std::initializer_list<std::string_view> known) {
+        return suggestion<std::initializer_list<std::string_view>>(got, known);
+    }
+    static std::string fmt(double v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    }
+
+private:
+    static bool all_numbers(const toml::array& a) {
+        for (const auto& e : a)
+            if (!e.is_number()) return false;
+        return true;
+    }
+    static const char* type_name(const toml::node& n) {
+        switch (n.type()) {
+        case toml::node_type::table: return "a table";
+        case toml::node_type::array: return "an array";
+        case toml::node_type::string: return "a string";
+        case toml::node_type::integer: return "an integer";
+        case toml::node_type::floating_point: return "a number";
+        case toml::node_type::boolean: return "a boolean";
+        default: return "a date or time";
+        }
+    }
+
+    const std::string& file_;
+    const toml::table& t_;
+    std::string path_;
+    std::set<std::string> seen_;
+};
+
+} // namespace detail
+
+/// The scene in TOML text `text`, read as if from file `file` (its name is used in messages).
+[[nodiscard]] inline description parse(std::string_view text, const std::string& file) {
+    toml::table root;
+    try {
+        root = toml::parse(text, file);
+    } catch (const toml::parse_error& e) {
+        std::ostringstream s;
+        s << file << ':' << e.source().begin.line << ':' << e.source().begin.column << ": " << e.description();
+        throw scene_error(s.str());
+    }
+    description d;
+    d.path = file;
+    detail::table_reader top(file, root, "");
+
+    {
+        auto r = top.sub("render");
+        r.integer("pings", d.run.pings, 1);
+        r.integer("threads", d.run.threads, 0);
+        r.finish();
+    }
+    {
+        auto s = top.sub("seabed");
+        auto& b = d.bed;
+        s.string("file", b.file);
+        if (!b.file.empty()) {
+            const auto ends = [&](std::string_view x) { return b.file.size() >= x.size() && b.file.compare(b.file.size() - x.size(), x.size(), x) == 0; };
+            if (!ends(".asc") && !ends(".raw") && !ends(".pgm"))
+                s.fail("file", "'" + b.file + "' is not a height file sss reads (.asc, .raw with its .raw.txt sidecar, .pgm)");
+        }
+        s.number("pgm_scale_m", b.pgm_scale_m);
+        if (b.pgm_scale_m == 0) s.fail("pgm_scale_m", "must not be 0");
+        s.number("pgm_offset_m", b.pgm_offset_m);
+        s.integer("nx", b.nx, 2);
+        s.integer("ny", b.ny, 2);
+        s.positive("cell_m", b.cell_m);
+        s.point("origin_m", b.origin_m);
+        s.integer("seed", b.seed, 0);
+        s.non_negative("blend_m", b.blend_m);
+        s.non_negative("warp_m", b.warp_m);
+        s.positive("warp_scale_m", b.warp_scale_m);
+        s.integer("partition_seed", b.partition_seed, 0);
+        for (auto& rt : s.tables("region")) {
+            region g;
+            rt.string("sediment", g.sediment);
+            try {
+                (void)sss::scattering::sediment_preset<double>(g.sediment);
+            } catch (const sss::error&) {
+                rt.fail("sediment", "unknown sediment '" + g.sediment + "' (one of: " + sss::scattering::sediment_names() + ")");
+            }
+            rt.number("mean_height_m", g.mean_height_m);
+            rt.non_negative("outer_scale_m", g.outer_scale_m);
+            rt.number("mu_db", g.mu_db);
+            for (auto& pt : rt.tables("ripples")) {
+                ripples p;
+                pt.positive("wavelength_m", p.wavelength_m);
+                if (p.wavelength_m < 2 * b.cell_m)
+                    pt.fail("wavelength_m", "must be at least 2 cells (" + detail::table_reader::fmt(2 * b.cell_m) + " m)");
+                pt.non_negative("height_m", p.height_m);
+                pt.number("crest_heading_deg", p.crest_heading_deg);
+                pt.positive("symmetry_index", p.symmetry_index);
+                pt.non_negative("sinuosity_m", p.sinuosity_m);
+                pt.non_negative("sinuosity_wavelength_m", p.sinuosity_wavelength_m);
+                if (p.sinuosity_m > 0 && !(p.sinuosity_wavelength_m > 0))
+                    pt.fail("sinuosity_m", "needs sinuosity_wavelength_m > 0 (the meander's wavelength)");
+                pt.non_negative("perturbation_m", p.perturbation_m);
+                pt.in_range("height_variation", p.height_variation, 0, 1);
+                pt.finish();
+                g.ripple_sets.push_back(p);
+            }
+            rt.finish();
+            b.regions.push_back(g);
+        }
+        for (auto& st : s.tables("site")) {
+            site p;
+            st.number("x_m", p.x_m);
+            st.number("y_m", p.y_m);
+            st.integer("region", p.region, 0);
+            if (p.region >= std::int64_t(b.regions.size()))
+                st.fail("region", "no region " + std::to_string(p.region) + " (the scene has " +
+                                      std::to_string(b.regions.size()) + " [[seabed.region]] tables)");
+            st.finish();
+            b.sites.push_back(p);
+        }
+        for (auto& st : s.tables("stamp")) {
+            stamp p;
+            st.choice("type", p.type, {"plate", "mound", "scour", "trench"});
+            if (p.type == "trench") {
+                st.point("start_m", p.start_m);
+                st.point("end_m", p.end_m);
+                st.positive("width_m", p.width_m);
+                st.non_negative("floor_width_m", p.floor_width_m);
+                if (!(p.floor_width_m < p.width_m)) st.fail("floor_width_m", "must be below width_m");
+                st.non_negative("depth_m", p.depth_m);
+                st.non_negative("berm_height_m", p.berm_height_m);
+                st.non_negative("berm_width_m", p.berm_width_m);
+                if (p.berm_height_m > 0 && !(p.berm_width_m > 0)) st.fail("berm_height_m", "needs berm_width_m > 0");
+            } else {
+                st.point("center_m", p.center_m);
+                st.number("heading_deg", p.heading_deg);
+                if (p.type == "plate") {
+                    st.positive("length_m", p.length_m);
+                    st.positive("width_m", p.width_m);
+                    st.number("top_m", p.top_m);
+                } else {
+                    st.positive("radius_u_m", p.radius_u_m);
+                    st.positive("radius_v_m", p.radius_v_m);
+                    if (p.type == "mound") {
+                        st.non_negative("height_m", p.height_m);
+                    } else {
+                        st.non_negative("depth_m", p.depth_m);
+                        st.non_negative("rim_height_m", p.rim_height_m);
+                        st.non_negative("rim_width_m", p.rim_width_m);
+                        if (p.rim_height_m > 0 && !(p.rim_width_m > 0)) st.fail("rim_height_m", "needs rim_width_m > 0");
+                    }
+                }
+            }
+            st.finish();
+            b.stamps.push_back(p);
+        }
+        if (!b.file.empty() && !b.stamps.empty()) s.fail("stamp", "a loaded seabed takes no [[seabed.stamp]] tables");
+        if (b.regions.size() > 1 && b.sites.empty())
+            s.fail("region", "several regions need [[seabed.site]] tables placing them");
+        if (!b.file.empty() && !b.regions.empty())
+            s.fail("file", "a loaded seabed takes no [[seabed.region]] tables");
+        s.finish();
+    }
+    for (auto& ot : top.tables("object")) {
+        object o;
+        ot.choice("type", o.type, {"lying_cylinder", "tethered_mine", "pipeline", "sphere", "cylinder"});
+        ot.integer("class_id", o.class_id, 1);
+        o.class_name = o.type;
+        ot.string("class_name", o.class_name);
+        if (o.class_name.empty()) ot.fail("class_name", "must not be empty");
+        if (o.type == "lying_cylinder") {
+            ot.point("center_m", o.center_m);
+            ot.number("heading_deg", o.heading_deg);
+            ot.positive("length_m", o.length_m);
+            ot.positive("radius_m", o.radius_m);
+        } else if (o.type == "sphere") {
+            o.radius_m = 0.5;
+            ot.point("center_m", o.center_m);
+            ot.number("height_m", o.height_m);
+            ot.positive("radius_m", o.radius_m);
+        } else if (o.type == "cylinder") {
+            ot.point("center_m", o.center_m);
+            ot.point("end_m", o.end_m);
+            ot.number("end0_height_m", o.end0_height_m);
+            ot.number("end1_height_m", o.end1_height_m);
+            ot.positive("radius_m", o.radius_m);
+            if (o.center_m == o.end_m && o.end0_height_m == o.end1_height_m) ot.fail("end_m", "the cylinder's ends coincide");
+        } else if (o.type == "tethered_mine") {
+            ot.point("anchor_m", o.anchor_m);
+            ot.choice("case_shape", o.case_shape, {"sphere", "cylinder"});
+            ot.positive("case_height_m", o.case_height_m);
+            ot.positive("case_radius_m", o.case_radius_m);
+            ot.positive("case_length_m", o.case_length_m);
+            ot.number("case_heading_deg", o.case_heading_deg);
+        } else {
+            o.radius_m = 0.3;
+            if (const auto* n = ot.node("route_m")) {
+                const auto* a = n->as_array();
+                if (!a || a->size() < 2) ot.fail("route_m", "must be an array of at least two [x_m, y_m] points");
+                for (const auto& e : *a) o.route_m.push_back(ot.point_of(e, "route_m"));
+            } else
+                ot.fail("type", "a pipeline needs route_m");
+            ot.positive("radius_m", o.radius_m);
+            ot.non_negative("max_span_m", o.max_span_m);
+        }
+        ot.finish();
+        d.objects.push_back(o);
+    }
+    {
+        auto w = top.sub("water");
+        auto& o = d.sea;
+        w.choice("model", o.model, {"straight", "layered"});
+        w.in_range("sound_speed_mps", o.sound_speed_mps, 1300, 1700);
+        w.non_negative("absorption_db_per_km", o.absorption_db_per_km);
+        if (o.model == "layered") {
+            w.string("svp_file", o.svp_file);
+            const auto list = [&](std::string_view key, std::vector<double>& v) {
+                if (const auto* n = w.node(key)) {
+                    const auto* a = n->as_array();
+                    if (!a || a->empty()) w.fail(key, "must be a non-empty array of numbers");
+                    v.clear();
+                    for (const auto& e : *a) {
+                        if (!e.is_number()) w.fail(key, "must be a non-empty array of numbers");
+                        v.push_back(e.value<double>().value());
+                    }
+                }
+            };
+            list("depth_m", o.depth_m);
+            list("speed_mps", o.speed_mps);
+            if (o.depth_m.size() != o.speed_mps.size())
+                w.fail("speed_mps", "needs one speed per depth (" + std::to_string(o.depth_m.size()) + " depths, " +
+                                        std::to_string(o.speed_mps.size()) + " speeds)");
+            for (std::size_t i = 0; i < o.depth_m.size(); ++i) {
+                if (i > 0 && !(o.depth_m[i] > o.depth_m[i - 1])) w.fail("depth_m", "must increase strictly");
+                if (!(o.speed_mps[i] >= 1300 && o.speed_mps[i] <= 1700)) w.fail("speed_mps", "each speed must be in [1300, 1700]");
+            }
+            w.non_negative("towfish_depth_m", o.towfish_depth_m);
+            w.choice("absorption_model", o.absorption_model, {"francois_garrison", "ainslie_mccolm"});
+            w.in_range("temperature_c", o.temperature_c, -2, 40);
+            w.in_range("salinity_ppt", o.salinity_ppt, 0, 45);
+            w.in_range("ph", o.ph, 6, 9);
+        }
+        w.finish();
+    }
+    {
+        auto s = top.sub("sonar");
+        auto& o = d.sensor;
+        s.choice("scattering", o.scattering, {"lambertian", "jackson"});
+        s.choice("beam", o.beam, {"ideal_fan"});
+        s.positive("frequency_hz", o.frequency_hz);
+        s.number("target_mu_db", o.target_mu_db);
+        s.in_range("along_width_deg", o.along_width_deg, 1e-6, 179.999);
+        s.in_range("vertical_width_deg", o.vertical_width_deg, 1e-6, 180);
+        s.in_range("depression_deg", o.depression_deg, -90, 90);
+        s.positive("sample_rate_hz", o.sample_rate_hz);
+        s.positive("max_range_m", o.max_range_m);
+        s.number("source_level_db", o.source_level_db);
+        s.positive("pulse_length_s", o.pulse_length_s);
+        s.choice("pulse_shape", o.pulse_shape, {"rectangular", "hann", "lfm"});
+        s.non_negative("pulse_bandwidth_hz", o.pulse_bandwidth_hz);
+        if (o.pulse_shape == "lfm" && o.pulse_bandwidth_hz * o.pulse_length_s < 1)
+            s.fail("pulse_bandwidth_hz", "an lfm pulse needs pulse_bandwidth_hz x pulse_length_s >= 1");
+        s.finish();
+    }
+    {
+        auto m = top.sub("motion");
+        auto& o = d.tow;
+        m.point("start_m", o.start_m);
+        m.number("heading_deg", o.heading_deg);
+        m.non_negative("speed_mps", o.speed_mps);
+        m.positive("altitude_m", o.altitude_m);
+        m.positive("ping_interval_s", o.ping_interval_s);
+        m.choice("turn", o.turn, {"none", "port", "starboard"});
+        m.non_negative("turn_radius_m", o.turn_radius_m);
+        m.non_negative("turn_rate_deg_s", o.turn_rate_deg_s);
+        if (o.turn != "none" && !(o.turn_radius_m > 0) && !(o.turn_rate_deg_s > 0))
+            m.fail("turn", "a turn needs turn_radius_m > 0 or turn_rate_deg_s > 0");
+        const auto wobble = [&](std::string_view key, oscillation& w, double limit) {
+            auto t = m.sub(key);
+            t.number("amplitude", w.amplitude);
+            if (limit > 0 && !(std::abs(w.amplitude) < limit))
+                t.fail("amplitude", "must be below " + detail::table_reader::fmt(limit) + " in magnitude");
+            t.positive("period_s", w.period_s);
+            t.number("phase_deg", w.phase_deg);
+            t.finish();
+        };
+        wobble("yaw_deg", o.yaw_deg, 0);
+        wobble("sway_m", o.sway_m, 0);
+        wobble("pitch_deg", o.pitch_deg, 90);
+        wobble("heave_m", o.heave_m, 0);
+        wobble("roll_deg", o.roll_deg, 90);
+        m.finish();
+    }
+    {
+        auto r = top.sub("receiver");
+        auto& o = d.rx;
+        r.integer("seed", o.seed, 0);
+        r.boolean("speckle", o.speckle);
+        r.positive("transducer_length_m", o.transducer_length_m);
+        r.non_negative("k_shape", o.k_shape);
+        r.positive("texture_patch_m", o.texture_patch_m);
+        r.boolean("noise", o.noise);
+        r.in_range("sea_state", o.sea_state, 0, 6);
+        r.non_negative("directivity_index_db", o.directivity_index_db);
+        r.number("noise_source_level_db", o.noise_source_level_db);
+        r.boolean("volume", o.volume);
+        r.number("sv_db", o.sv_db);
+        r.positive("psi_sr", o.psi_sr);
+        r.boolean("tvg", o.tvg);
+        r.number("tvg_spreading_n", o.tvg_spreading_n);
+        r.number("tvg_gain_db", o.tvg_gain_db);
+        r.finish();
+    }
+    {
+        auto o = top.sub("output");
+        o.string("stem", d.out.stem);
+        if (d.out.stem.empty() || d.out.stem.find('/') != std::string::npos)
+            o.fail("stem", "must be a non-empty file name without '/'");
+        o.boolean("png", d.out.png);
+        o.positive("png_dynamic_range_db", d.out.png_dynamic_range_db);
+        o.choice("png_scale", d.out.png_scale, {"db", "quantised"});
+        o.boolean("ground_range", d.out.ground_range);
+        o.positive("ground_range_cell_m", d.out.ground_range_cell_m);
+        o.boolean("npy", d.out.npy);
+        o.boolean("xtf", d.out.xtf);
+        o.in_range("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg, -89.9, 89.9);
+        o.in_range("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg, -180, 180);
+        o.non_negative("xtf_start_unix_s", d.out.xtf_start_unix_s);
+        o.boolean("coco", d.out.coco);
+        o.boolean("yolo", d.out.yolo);
+        o.boolean("label_images", d.out.label_images);
+        o.finish();
+    }
+    top.finish();
+    return d;
+}
+
+/// The scene in file `path`.
+[[nodiscard]] inline description parse_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw scene_error(path + ": cannot open the scene file");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return parse(s.str(), path);
+}
+
+} // namespace sss::scene_file

@@ -1,0 +1,166 @@
+#pragma once
+/// \file
+/// The resolved scene of a scene file: every setting, each default filled in. Plain data in the units and the
+/// field names of the library's parameter structs (docs/scene-format.md lists each key). Angles are degrees,
+/// headings clockwise from north, as everywhere at sss's public boundaries.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sss::scene_file {
+
+using xy = std::array<double, 2>;
+
+struct ripples {
+    double wavelength_m = 0.5, height_m = 0.05, crest_heading_deg = 90, symmetry_index = 1;
+    double sinuosity_m = 0, sinuosity_wavelength_m = 0, perturbation_m = 0, height_variation = 0;
+};
+
+struct region {
+    std::string sediment = "medium_sand"; ///< a Table 2 sediment (APL-UW TR 9407) by name: roughness and Jackson scattering
+    double mean_height_m = 0;
+    double outer_scale_m = 20;
+    double mu_db = -27; ///< Lambert strength under `scattering = "lambertian"`
+    std::vector<ripples> ripple_sets;
+};
+
+struct site {
+    double x_m = 0, y_m = 0;
+    std::int64_t region = 0;
+};
+
+/// A feature stamped on the generated seabed (seabed/stamps.hpp), world coordinates.
+struct stamp {
+    std::string type = "mound"; ///< plate, mound, scour or trench
+    xy center_m{0, 0};          ///< plate, mound, scour
+    double heading_deg = 90;    ///< plate, mound, scour: the long axis
+    double length_m = 1, width_m = 1, top_m = 0.1;                   // plate
+    double radius_u_m = 1, radius_v_m = 1, height_m = 0.3;           // mound (and scour's radii)
+    double depth_m = 0.3, rim_height_m = 0, rim_width_m = 0;         // scour (depth_m also trench)
+    xy start_m{0, 0}, end_m{1, 0};                                   // trench
+    double floor_width_m = 0, berm_height_m = 0, berm_width_m = 0;   // trench (width_m its top width)
+};
+
+struct seabed {
+    std::string file;           ///< a height file to load instead of generating (.asc, .raw + .raw.txt, .pgm); "" generates
+    double pgm_scale_m = 0.01, pgm_offset_m = 0; ///< a .pgm's heights: offset + scale x sample (m)
+    std::int64_t nx = 512, ny = 512;
+    double cell_m = 0.1;
+    xy origin_m{0, 0};
+    std::int64_t seed = 11;     ///< roughness and ripple seed
+    double blend_m = 0.5;       ///< width of the blend between regions (m)
+    double warp_m = 0;          ///< RMS displacement of the region boundaries (m): fractal boundaries
+    double warp_scale_m = 10;
+    std::int64_t partition_seed = 7;
+    std::vector<region> regions; ///< empty: a flat seabed at z = 0 (generated) of material 0
+    std::vector<site> sites;     ///< Voronoi sites; empty with one region: that region everywhere
+    std::vector<stamp> stamps;   ///< features stamped on the generated heights, in order
+};
+
+struct object {
+    std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline, sphere, cylinder
+    std::int64_t class_id = 1;
+    std::string class_name; ///< the class's name in the label files; "" in a file: the type
+    // lying_cylinder
+    xy center_m{0, 0};
+    double heading_deg = 90, length_m = 2, radius_m = 0.25;
+    // tethered_mine
+    xy anchor_m{0, 0};
+    std::string case_shape = "sphere";
+    double case_height_m = 5, case_radius_m = 0.5, case_length_m = 1.5, case_heading_deg = 90;
+    // sphere (center_m, radius_m) and cylinder (center_m to end_m, radius_m): raw primitives, heights above the seabed
+    double height_m = 1;   ///< sphere: centre above the seabed under center_m (m)
+    xy end_m{1, 0};        ///< cylinder: the second end's plan position
+    double end0_height_m = 0.5, end1_height_m = 0.5; ///< cylinder: each end above the seabed under it (m)
+    // pipeline
+    std::vector<xy> route_m;
+    double max_span_m = 0; ///< 0: unlimited (the pipe follows the seabed only where it is taut)
+};
+
+struct water {
+    std::string model = "straight"; ///< straight (isovelocity) or layered (refraction through a profile)
+    double sound_speed_mps = 1500;  ///< straight: the speed; layered: the reference speed of the time axis
+    double absorption_db_per_km = 30; ///< straight: the absorption (and the display's, both models)
+    // layered
+    std::string svp_file;           ///< a sound-speed CSV (depth_m, speed_mps); or the knots below
+    std::vector<double> depth_m{0.0}, speed_mps{1500.0};
+    double towfish_depth_m = 20;    ///< depth of the towfish below the surface (m)
+    std::string absorption_model = "francois_garrison"; ///< or ainslie_mccolm, at sonar.frequency_hz
+    double temperature_c = 10, salinity_ppt = 35, ph = 8;
+};
+
+struct sonar {
+    std::string scattering = "lambertian"; ///< lambertian or jackson (seabed Jackson + targets hard_target)
+    std::string beam = "ideal_fan";
+    double frequency_hz = 100000;
+    double target_mu_db = -8; ///< Lambert strength of the objects under lambertian
+    double along_width_deg = 1, vertical_width_deg = 50, depression_deg = 20;
+    double sample_rate_hz = 20000, max_range_m = 50, source_level_db = 0;
+    double pulse_length_s = 100e-6;
+    std::string pulse_shape = "rectangular"; ///< rectangular, hann, lfm
+    double pulse_bandwidth_hz = 0;
+};
+
+/// A periodic perturbation of the towfish: amplitude x sin(2 pi t / period + phase).
+struct oscillation {
+    double amplitude = 0, period_s = 1, phase_deg = 0;
+};
+
+struct motion {
+    xy start_m{0, 0};
+    double heading_deg = 0, speed_mps = 2;
+    double altitude_m = 10; ///< above the seabed under start_m (m)
+    double ping_interval_s = 0.1;
+    std::string turn = "none"; ///< none, port or starboard: a constant turn from ping 0
+    double turn_radius_m = 0, turn_rate_deg_s = 0;
+    oscillation yaw_deg, sway_m, pitch_deg, heave_m, roll_deg;
+};
+
+/// The receiver's line stages (receiver/line_stage.hpp), each off unless asked for.
+struct receiver {
+    std::int64_t seed = 1; ///< speckle and noise seed
+    bool speckle = false;
+    double transducer_length_m = 0.5, k_shape = 0, texture_patch_m = 1;
+    bool noise = false;
+    double sea_state = 2, directivity_index_db = 20, noise_source_level_db = 210;
+    bool volume = false;
+    double sv_db = -80, psi_sr = 0.05;
+    bool tvg = false;
+    double tvg_spreading_n = 30, tvg_gain_db = 0;
+};
+
+struct output {
+    std::string stem = "sss";
+    bool png = true;
+    double png_dynamic_range_db = 40;
+    std::string png_scale = "db"; ///< db: a dB window; quantised: 8-bit amplitude counts, the 95th percentile at 100
+    bool ground_range = false;    ///< stem_ground.png: the PNG resampled to ground range (flat seabed at each ping's altitude)
+    double ground_range_cell_m = 0.1;
+    bool npy = false; ///< stem.npy and its sidecar stem.json
+    bool xtf = false; ///< stem.xtf: two float channels, latitude/longitude from xtf_origin_*
+    double xtf_origin_latitude_deg = 0, xtf_origin_longitude_deg = 0, xtf_start_unix_s = 0;
+    bool coco = false;         ///< stem_coco.json: boxes (highlight and shadow) and masks of the objects
+    bool yolo = false;         ///< stem.txt and classes.txt
+    bool label_images = false; ///< stem_labels_class.png, stem_labels_instance.png, stem_labels_legend.json
+};
+
+struct render {
+    std::int64_t pings = 100;
+    std::int64_t threads = 0; ///< 0: every core
+};
+
+struct description {
+    std::string path; ///< the file it came from (for messages)
+    render run;
+    seabed bed;
+    std::vector<object> objects;
+    water sea;
+    sonar sensor;
+    motion tow;
+    receiver rx;
+    output out;
+};
+
+} // namespace sss::scene_file

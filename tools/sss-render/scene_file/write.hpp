@@ -1,0 +1,245 @@
+#pragma once
+/// \file
+/// Writing a resolved `description` back as a scene file (TOML): every key, every default filled in, numbers
+/// in their shortest round-trip form, so that reading the text again gives the same description.
+
+#include "scene.hpp"
+
+#include <charconv>
+#include <string>
+#include <utility>
+
+namespace sss::scene_file {
+
+namespace detail {
+
+inline std::string num(double v) {
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    std::string s(buf, r.ptr);
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0"; // stays a TOML float
+    return s;
+}
+inline std::string quoted(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+inline std::string pt(const xy& p) { return "[" + num(p[0]) + ", " + num(p[1]) + "]"; }
+
+struct toml_out {
+    std::string text;
+    void header(const std::string& h) { text += (text.empty() ? "" : "\n") + h + "\n"; }
+    void kv(const char* k, double v) { text += std::string(k) + " = " + num(v) + "\n"; }
+    void kv(const char* k, std::int64_t v) { text += std::string(k) + " = " + std::to_string(v) + "\n"; }
+    void kv(const char* k, bool v) { text += std::string(k) + " = " + (v ? "true" : "false") + "\n"; }
+    void kv(const char* k, const std::string& v) { text += std::string(k) + " = " + quoted(v) + "\n"; }
+    void kv(const char* k, const xy& v) { text += std::string(k) + " = " + pt(v) + "\n"; }
+};
+
+} // namespace detail
+
+/// The scene file text of d (its `path` is not written).
+[[nodiscard]] inline std::string to_toml(const description& d) {
+    detail::toml_out o;
+    o.header("[render]");
+    o.kv("pings", d.run.pings);
+    o.kv("threads", d.run.threads);
+
+    const auto& b = d.bed;
+    o.header("[seabed]");
+    o.kv("file", b.file);
+    o.kv("pgm_scale_m", b.pgm_scale_m);
+    o.kv("pgm_offset_m", b.pgm_offset_m);
+    o.kv("nx", b.nx);
+    o.kv("ny", b.ny);
+    o.kv("cell_m", b.cell_m);
+    o.kv("origin_m", b.origin_m);
+    o.kv("seed", b.seed);
+    o.kv("blend_m", b.blend_m);
+    o.kv("warp_m", b.warp_m);
+    o.kv("warp_scale_m", b.warp_scale_m);
+    o.kv("partition_seed", b.partition_seed);
+    for (const auto& g : b.regions) {
+        o.header("[[seabed.region]]");
+        o.kv("sediment", g.sediment);
+        o.kv("mean_height_m", g.mean_height_m);
+        o.kv("outer_scale_m", g.outer_scale_m);
+        o.kv("mu_db", g.mu_db);
+        for (const auto& p : g.ripple_sets) {
+            o.header("[[seabed.region.ripples]]");
+            o.kv("wavelength_m", p.wavelength_m);
+            o.kv("height_m", p.height_m);
+            o.kv("crest_heading_deg", p.crest_heading_deg);
+            o.kv("symmetry_index", p.symmetry_index);
+            o.kv("sinuosity_m", p.sinuosity_m);
+            o.kv("sinuosity_wavelength_m", p.sinuosity_wavelength_m);
+            o.kv("perturbation_m", p.perturbation_m);
+            o.kv("height_variation", p.height_variation);
+        }
+    }
+    for (const auto& s : b.sites) {
+        o.header("[[seabed.site]]");
+        o.kv("x_m", s.x_m);
+        o.kv("y_m", s.y_m);
+        o.kv("region", s.region);
+    }
+    for (const auto& p : b.stamps) {
+        o.header("[[seabed.stamp]]");
+        o.kv("type", p.type);
+        if (p.type == "trench") {
+            o.kv("start_m", p.start_m);
+            o.kv("end_m", p.end_m);
+            o.kv("width_m", p.width_m);
+            o.kv("floor_width_m", p.floor_width_m);
+            o.kv("depth_m", p.depth_m);
+            o.kv("berm_height_m", p.berm_height_m);
+            o.kv("berm_width_m", p.berm_width_m);
+            continue;
+        }
+        o.kv("center_m", p.center_m);
+        o.kv("heading_deg", p.heading_deg);
+        if (p.type == "plate") {
+            o.kv("length_m", p.length_m);
+            o.kv("width_m", p.width_m);
+            o.kv("top_m", p.top_m);
+            continue;
+        }
+        o.kv("radius_u_m", p.radius_u_m);
+        o.kv("radius_v_m", p.radius_v_m);
+        if (p.type == "mound") {
+            o.kv("height_m", p.height_m);
+        } else {
+            o.kv("depth_m", p.depth_m);
+            o.kv("rim_height_m", p.rim_height_m);
+            o.kv("rim_width_m", p.rim_width_m);
+        }
+    }
+    for (const auto& ob : d.objects) {
+        o.header("[[object]]");
+        o.kv("type", ob.type);
+        o.kv("class_id", ob.class_id);
+        o.kv("class_name", ob.class_name);
+        if (ob.type == "lying_cylinder") {
+            o.kv("center_m", ob.center_m);
+            o.kv("heading_deg", ob.heading_deg);
+            o.kv("length_m", ob.length_m);
+            o.kv("radius_m", ob.radius_m);
+        } else if (ob.type == "sphere") {
+            o.kv("center_m", ob.center_m);
+            o.kv("height_m", ob.height_m);
+            o.kv("radius_m", ob.radius_m);
+        } else if (ob.type == "cylinder") {
+            o.kv("center_m", ob.center_m);
+            o.kv("end_m", ob.end_m);
+            o.kv("end0_height_m", ob.end0_height_m);
+            o.kv("end1_height_m", ob.end1_height_m);
+            o.kv("radius_m", ob.radius_m);
+        } else if (ob.type == "tethered_mine") {
+            o.kv("anchor_m", ob.anchor_m);
+            o.kv("case_shape", ob.case_shape);
+            o.kv("case_height_m", ob.case_height_m);
+            o.kv("case_radius_m", ob.case_radius_m);
+            o.kv("case_length_m", ob.case_length_m);
+            o.kv("case_heading_deg", ob.case_heading_deg);
+        } else {
+            std::string r = "route_m = [";
+            for (std::size_t i = 0; i < ob.route_m.size(); ++i) r += (i ? ", " : "") + detail::pt(ob.route_m[i]);
+            o.text += r + "]\n";
+            o.kv("radius_m", ob.radius_m);
+            o.kv("max_span_m", ob.max_span_m);
+        }
+    }
+    o.header("[water]");
+    o.kv("sound_speed_mps", d.sea.sound_speed_mps);
+    o.kv("absorption_db_per_km", d.sea.absorption_db_per_km);
+    o.kv("model", d.sea.model);
+    if (d.sea.model == "layered") {
+        o.kv("svp_file", d.sea.svp_file);
+        std::string dl = "depth_m = [", sl = "speed_mps = [";
+        for (std::size_t i = 0; i < d.sea.depth_m.size(); ++i) {
+            dl += (i ? ", " : "") + detail::num(d.sea.depth_m[i]);
+            sl += (i ? ", " : "") + detail::num(d.sea.speed_mps[i]);
+        }
+        o.text += dl + "]\n" + sl + "]\n";
+        o.kv("towfish_depth_m", d.sea.towfish_depth_m);
+        o.kv("absorption_model", d.sea.absorption_model);
+        o.kv("temperature_c", d.sea.temperature_c);
+        o.kv("salinity_ppt", d.sea.salinity_ppt);
+        o.kv("ph", d.sea.ph);
+    }
+
+    const auto& s = d.sensor;
+    o.header("[sonar]");
+    o.kv("scattering", s.scattering);
+    o.kv("beam", s.beam);
+    o.kv("frequency_hz", s.frequency_hz);
+    o.kv("target_mu_db", s.target_mu_db);
+    o.kv("along_width_deg", s.along_width_deg);
+    o.kv("vertical_width_deg", s.vertical_width_deg);
+    o.kv("depression_deg", s.depression_deg);
+    o.kv("sample_rate_hz", s.sample_rate_hz);
+    o.kv("max_range_m", s.max_range_m);
+    o.kv("source_level_db", s.source_level_db);
+    o.kv("pulse_length_s", s.pulse_length_s);
+    o.kv("pulse_shape", s.pulse_shape);
+    o.kv("pulse_bandwidth_hz", s.pulse_bandwidth_hz);
+
+    o.header("[motion]");
+    o.kv("start_m", d.tow.start_m);
+    o.kv("heading_deg", d.tow.heading_deg);
+    o.kv("speed_mps", d.tow.speed_mps);
+    o.kv("altitude_m", d.tow.altitude_m);
+    o.kv("ping_interval_s", d.tow.ping_interval_s);
+    o.kv("turn", d.tow.turn);
+    o.kv("turn_radius_m", d.tow.turn_radius_m);
+    o.kv("turn_rate_deg_s", d.tow.turn_rate_deg_s);
+    const std::pair<const char*, const oscillation*> wobbles[] = {{"yaw_deg", &d.tow.yaw_deg}, {"sway_m", &d.tow.sway_m},
+        {"pitch_deg", &d.tow.pitch_deg}, {"heave_m", &d.tow.heave_m}, {"roll_deg", &d.tow.roll_deg}};
+    for (const auto& [name, w] : wobbles) {
+        o.header(std::string("[motion.") + name + "]");
+        o.kv("amplitude", w->amplitude);
+        o.kv("period_s", w->period_s);
+        o.kv("phase_deg", w->phase_deg);
+    }
+
+    const auto& r = d.rx;
+    o.header("[receiver]");
+    o.kv("seed", r.seed);
+    o.kv("speckle", r.speckle);
+    o.kv("transducer_length_m", r.transducer_length_m);
+    o.kv("k_shape", r.k_shape);
+    o.kv("texture_patch_m", r.texture_patch_m);
+    o.kv("noise", r.noise);
+    o.kv("sea_state", r.sea_state);
+    o.kv("directivity_index_db", r.directivity_index_db);
+    o.kv("noise_source_level_db", r.noise_source_level_db);
+    o.kv("volume", r.volume);
+    o.kv("sv_db", r.sv_db);
+    o.kv("psi_sr", r.psi_sr);
+    o.kv("tvg", r.tvg);
+    o.kv("tvg_spreading_n", r.tvg_spreading_n);
+    o.kv("tvg_gain_db", r.tvg_gain_db);
+
+    o.header("[output]");
+    o.kv("stem", d.out.stem);
+    o.kv("png", d.out.png);
+    o.kv("png_dynamic_range_db", d.out.png_dynamic_range_db);
+    o.kv("png_scale", d.out.png_scale);
+    o.kv("ground_range", d.out.ground_range);
+    o.kv("ground_range_cell_m", d.out.ground_range_cell_m);
+    o.kv("npy", d.out.npy);
+    o.kv("xtf", d.out.xtf);
+    o.kv("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg);
+    o.kv("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg);
+    o.kv("xtf_start_unix_s", d.out.xtf_start_unix_s);
+    o.kv("coco", d.out.coco);
+    o.kv("yolo", d.out.yolo);
+    o.kv("label_images", d.out.label_images);
+    return o.text;
+}
+
+} // namespace sss::scene_file
