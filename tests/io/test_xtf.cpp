@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -214,6 +215,14 @@ TEST_CASE("Broken XTF files each give their own error with the byte offset of th
         const auto e = error_of(b);
         CHECK(e.byte_offset() == 0);
         CHECK(std::string(e.what()).find("0x7B") != std::string::npos);
+    }
+    SUBCASE("a float sample that is not finite") {
+        auto b = bytes_of(io::make_xtf<double>(r.w, r.poses, params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m)));
+        const std::size_t sample = 1024 + 256 + 64 + 4 * 3; // the first ping's port channel, fourth sample stored
+        detail::put_le<float>(b.data(), sample, std::numeric_limits<float>::quiet_NaN());
+        const auto e = error_of(b);
+        CHECK(e.byte_offset() == sample);
+        CHECK(std::string(e.what()).find("not finite") != std::string::npos);
     }
     SUBCASE("zero channels") {
         auto b = good;

@@ -410,6 +410,10 @@ inline void write_xtf(const std::string& path, const xtf_file& f) {
                     else if (info.format == 5 || info.format == 0) x = double(get_le<float>(s, 4 * j));
                     else x = info.unipolar ? double(get_le<std::uint32_t>(s, 4 * j)) : double(get_le<std::int32_t>(s, 4 * j));
                     v[j] = static_cast<float>(info.bps == 4 && (info.format == 5 || info.format == 0) ? x : x * unit);
+                    if (!std::isfinite(v[j]))
+                        fail(at + c + xtf_chan_header_bytes + j * info.bps,
+                             "sample " + std::to_string(j) + " of channel " + std::to_string(number) +
+                                 " is not finite (or its Weight scales it out of range)");
                 }
                 if (int(number) == port || int(number) == stbd) {
                     p.slant_range_m = get_le<float>(ch, 4);
