@@ -52,7 +52,7 @@ fi
 
 cxx="${CXX_FUZZ:-clang++}"
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
-       -I "$root/include" -I "$root/tests")
+       -I "$root/include" -I "$root/tests" -I "$root/tools")
 mkdir -p "$build"
 export TMPDIR="$build/tmp"
 mkdir -p "$TMPDIR"
@@ -69,7 +69,7 @@ if [[ $fuzz -eq 1 ]]; then
         src="$root/tests/fuzz/fuzz_$t.cpp"
         [[ -f "$src" ]] || { echo "run.sh: no target $src" >&2; exit 2; }
         exe="$build/fuzz_$t"
-        if [[ ! -x "$exe" || "$src" -nt "$exe" || -n "$(find "$root/include" "$root/tests/fuzz" -newer "$exe" -name '*.hpp' -print -quit)" ]]; then
+        if [[ ! -x "$exe" || "$src" -nt "$exe" || -n "$(find "$root/include" "$root/tests/fuzz" "$root/tools" -newer "$exe" -name '*.hpp' -print -quit)" ]]; then
             echo "== building fuzz_$t"
             "$cxx" "${flags[@]}" "$src" -o "$exe.new" && mv "$exe.new" "$exe" &
             pids+=($!)
@@ -85,6 +85,8 @@ if [[ $fuzz -eq 1 ]]; then
         seeds=()
         [[ -d "$root/tests/fuzz/corpus/$t" ]] && seeds=("$root/tests/fuzz/corpus/$t")
         log="$build/fuzz_$t.log"
+        stamp="$build/.start_$t"
+        : >"$stamp" # findings of earlier runs stay in $findings but are not counted again
         echo "== fuzz_$t: up to $runs runs or $max_time s"
         rc=0
         "$exe" -runs="$runs" -max_total_time="$max_time" -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
@@ -92,7 +94,7 @@ if [[ $fuzz -eq 1 ]]; then
             >"$log" 2>&1 || rc=$?
         execs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)"
         secs="$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' | tail -1 || true)"
-        found="$(find "$findings" -type f | wc -l)"
+        found="$(find "$findings" -type f -newer "$stamp" | wc -l)"
         if [[ $rc -ne 0 || $found -ne 0 ]]; then
             status=1
             echo "!! fuzz_$t: finding (exit $rc); log $log, inputs in $findings"
