@@ -221,7 +221,57 @@ private:
 } // namespace detail
 
 /// The scene in TOML text `text`, read as if from file `file` (its name is used in messages).
+namespace detail {
+/// Where the first byte outside ASCII stands outside a comment or a string, as "line:column", or "" if none.
+/// toml++ 3.3 reaches an unreachable branch (undefined behaviour) on some non-ASCII characters where it looks for
+/// whitespace (found by fuzzing), so scene files keep non-ASCII text (UTF-8) to comments and strings.
+inline std::string non_ascii_outside_text(std::string_view t) {
+    std::size_t line = 1, column = 1;
+    enum class in { code, comment, basic, literal, multi_basic, multi_literal } state = in::code;
+    const auto at = [&](std::size_t i, std::string_view s) { return t.substr(i, s.size()) == s; };
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const char c = t[i];
+        std::size_t skip = 0; // further bytes of a token read here
+        switch (state) {
+        case in::code:
+            if (static_cast<unsigned char>(c) >= 0x80) return std::to_string(line) + ":" + std::to_string(column);
+            if (c == '#') state = in::comment;
+            else if (at(i, "\"\"\"")) state = in::multi_basic, skip = 2;
+            else if (at(i, "'''")) state = in::multi_literal, skip = 2;
+            else if (c == '"') state = in::basic;
+            else if (c == '\'') state = in::literal;
+            break;
+        case in::comment:
+            if (c == '\n') state = in::code;
+            break;
+        case in::basic:
+            if (c == '\\') skip = 1; // an escaped character, whatever it is
+            else if (c == '"' || c == '\n') state = in::code;
+            break;
+        case in::multi_basic:
+            if (c == '\\') skip = 1;
+            else if (at(i, "\"\"\"")) state = in::code, skip = 2;
+            break;
+        case in::literal:
+            if (c == '\'' || c == '\n') state = in::code;
+            break;
+        case in::multi_literal:
+            if (at(i, "'''")) state = in::code, skip = 2;
+            break;
+        }
+        for (std::size_t k = 0; k <= skip && i < t.size(); ++k, ++i) {
+            if (t[i] == '\n') ++line, column = 1;
+            else ++column;
+        }
+        --i;
+    }
+    return {};
+}
+} // namespace detail
+
 [[nodiscard]] inline description parse(std::string_view text, const std::string& file) {
+    if (const std::string where = detail::non_ascii_outside_text(text); !where.empty())
+        throw scene_error(file + ":" + where + ": a character outside ASCII outside a comment or a string");
     toml::table root;
     try {
         root = toml::parse(text, file);
