@@ -7,7 +7,7 @@
 #   --runs N        executions per target (default 1000000)
 #   --time S        at most S seconds per target (default 1800); whichever of --runs and --time comes first
 #   --build DIR     where binaries, working corpora and findings go (default build-fuzz in the repository root)
-#   --jobs J        build up to J targets at once (default 1); the targets still run one at a time
+#   --jobs J        build and run up to J targets at once (default 1)
 #   --sweep SCENES  also build tests/robustness/test_scene_sweep.cpp and run it over SCENES random scenes
 #   --no-fuzz       skip the fuzz targets (with --sweep: the sweep only)
 #   target          fuzz_<target>.cpp in tests/fuzz/ (default: all of them)
@@ -77,31 +77,40 @@ if [[ $fuzz -eq 1 ]]; then
         fi
     done
     for p in "${pids[@]}"; do wait "$p"; done
-    for t in "${targets[@]}"; do
-        exe="$build/fuzz_$t"
-        work="$build/corpus/$t"
-        findings="$build/findings/$t"
+    # fuzz_one <target>: runs it; its report line goes to $build/.report_<target>, its status is the finding's.
+    fuzz_one() {
+        local t="$1" exe="$build/fuzz_$1" work="$build/corpus/$1" findings="$build/findings/$1"
+        local log="$build/fuzz_$1.log" stamp="$build/.start_$1" rc=0 execs secs found
         mkdir -p "$work" "$findings"
-        seeds=()
+        local seeds=()
         [[ -d "$root/tests/fuzz/corpus/$t" ]] && seeds=("$root/tests/fuzz/corpus/$t")
-        log="$build/fuzz_$t.log"
-        stamp="$build/.start_$t"
         : >"$stamp" # findings of earlier runs stay in $findings but are not counted again
         echo "== fuzz_$t: up to $runs runs or $max_time s"
-        rc=0
         "$exe" -runs="$runs" -max_total_time="$max_time" -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
             -malloc_limit_mb=512 -print_final_stats=1 -artifact_prefix="$findings/" "$work" "${seeds[@]}" \
             >"$log" 2>&1 || rc=$?
         execs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)"
         secs="$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' | tail -1 || true)"
         found="$(find "$findings" -type f -newer "$stamp" | wc -l)"
+        printf '%-16s %12s executions %6s s %4s findings\n' "$t" "${execs:-?}" "${secs:-?}" "$found" >"$build/.report_$t"
         if [[ $rc -ne 0 || $found -ne 0 ]]; then
-            status=1
             echo "!! fuzz_$t: finding (exit $rc); log $log, inputs in $findings"
             grep -m 5 -E 'ERROR|runtime error|sss fuzz finding|SUMMARY' "$log" || true
+            return 1
         fi
-        report+=("$(printf '%-16s %12s executions %6s s %4s findings' "$t" "${execs:-?}" "${secs:-?}" "$found")")
+    }
+    # Up to $jobs targets at once (each libFuzzer process uses one core).
+    running=()
+    for t in "${targets[@]}"; do
+        fuzz_one "$t" &
+        running+=($!)
+        if [[ ${#running[@]} -ge $jobs ]]; then
+            wait "${running[0]}" || status=1
+            running=("${running[@]:1}")
+        fi
     done
+    for p in "${running[@]}"; do wait "$p" || status=1; done
+    for t in "${targets[@]}"; do report+=("$(cat "$build/.report_$t" 2>/dev/null || echo "$t: no report")"); done
 fi
 
 if [[ $sweep -gt 0 ]]; then

@@ -42,6 +42,86 @@ public:
 };
 
 namespace detail {
+/// toml++ 3.3 tells whitespace from other code points through a table with gaps: for most code points of the Basic
+/// Multilingual Plane outside ASCII (U+00A1 to U+0499 among them) it reaches an unreachable branch, undefined
+/// behaviour wherever it checks for whitespace (found by fuzzing: a bare value such as `3t"\u0159`, or the first
+/// character after a line-ending backslash in a multi-line string). Before toml++ reads a scene, every such code
+/// point is therefore moved to plane 16 (private use: U+100000 plus the code point), where toml++'s checks return
+/// at once; strings, key names and messages are moved back. Plane 16 is not available to scene files.
+inline constexpr char32_t plane16 = 0x100000;
+
+/// The well-formed UTF-8 sequence (RFC 3629) at t[i]: its code point and length, or length 0.
+inline std::size_t utf8_at(std::string_view t, std::size_t i, char32_t& cp) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(t[k]); };
+    const unsigned lead = byte(i);
+    std::size_t n = 0;
+    if (lead >= 0xC2 && lead <= 0xDF) n = 2, cp = lead & 0x1Fu;
+    else if (lead >= 0xE0 && lead <= 0xEF) n = 3, cp = lead & 0x0Fu;
+    else if (lead >= 0xF0 && lead <= 0xF4) n = 4, cp = lead & 0x07u;
+    else return 0;
+    if (i + n > t.size()) return 0;
+    for (std::size_t k = 1; k < n; ++k) {
+        if ((byte(i + k) & 0xC0u) != 0x80u) return 0;
+        cp = (cp << 6) | (byte(i + k) & 0x3Fu);
+    }
+    constexpr char32_t least[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < least[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+    return n;
+}
+
+inline void append_utf8(std::string& out, char32_t cp) {
+    const auto put = [&](unsigned v) { out.push_back(static_cast<char>(v)); };
+    const auto c = static_cast<unsigned>(cp);
+    if (c < 0x80) put(c);
+    else if (c < 0x800) put(0xC0 | (c >> 6)), put(0x80 | (c & 0x3F));
+    else if (c < 0x10000) put(0xE0 | (c >> 12)), put(0x80 | ((c >> 6) & 0x3F)), put(0x80 | (c & 0x3F));
+    else put(0xF0 | (c >> 18)), put(0x80 | ((c >> 12) & 0x3F)), put(0x80 | ((c >> 6) & 0x3F)), put(0x80 | (c & 0x3F));
+}
+
+/// The text toml++ reads: code points U+0080 to U+FFFF moved to plane 16 (a leading byte order mark stays, and
+/// toml++ skips it; code points beyond U+FFFF stay, toml++'s checks return at once for them); bytes that are not well-formed UTF-8 stay as they are, for toml++ to report. A code point of
+/// plane 16 in the text is a scene_error naming its line and column.
+inline std::string to_plane16(std::string_view t, const std::string& file) {
+    std::string out;
+    out.reserve(t.size() + t.size() / 2);
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < t.size();) {
+        char32_t cp = 0;
+        const std::size_t n = static_cast<unsigned char>(t[i]) < 0x80 ? 0 : utf8_at(t, i, cp);
+        if (n == 0) {
+            if (t[i] == '\n') ++line, column = 0;
+            out.push_back(t[i++]);
+        } else {
+            if (cp >= plane16)
+                throw scene_error(file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                                         ": a private-use character of plane 16, which scene files cannot hold");
+            if (cp > 0xFFFF || (i == 0 && cp == 0xFEFF)) out.append(t.substr(i, n));
+            else append_utf8(out, plane16 + cp);
+            i += n;
+        }
+        ++column;
+    }
+    return out;
+}
+
+/// `to_plane16` undone: code points U+100080 to U+10FFFF moved back to U+0080 to U+FFFF.
+inline std::string from_plane16(std::string_view t) {
+    std::string out;
+    out.reserve(t.size());
+    for (std::size_t i = 0; i < t.size();) {
+        char32_t cp = 0;
+        const std::size_t n = static_cast<unsigned char>(t[i]) < 0x80 ? 0 : utf8_at(t, i, cp);
+        if (n == 0) {
+            out.push_back(t[i++]);
+            continue;
+        }
+        if (cp >= plane16 + 0x80) append_utf8(out, cp - plane16);
+        else out.append(t.substr(i, n));
+        i += n;
+    }
+    return out;
+}
+
 
 /// Levenshtein distance (Levenshtein, 1966, Soviet Physics Doklady 10(8)), for "did you mean".
 inline std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -73,7 +153,7 @@ public:
         s << file_;
         if (where.begin.line != 0) s << ':' << where.begin.line << ':' << where.begin.column;
         s << ": " << key_path(key) << ": " << why;
-        throw scene_error(s.str());
+        throw scene_error(from_plane16(s.str()));
     }
     [[noreturn]] void fail(std::string_view key, const std::string& why) const {
         const toml::node* n = t_.get(key);
@@ -122,7 +202,7 @@ public:
     void string(std::string_view key, std::string& v) {
         if (const auto* n = node(key)) {
             if (!n->is_string()) fail(key, std::string("must be a string, not ") + type_name(*n));
-            v = n->value<std::string>().value();
+            v = from_plane16(n->value<std::string>().value());
         }
     }
     void choice(std::string_view key, std::string& v, std::initializer_list<std::string_view> allowed) {
@@ -221,64 +301,16 @@ private:
 } // namespace detail
 
 /// The scene in TOML text `text`, read as if from file `file` (its name is used in messages).
-namespace detail {
-/// Where the first byte outside ASCII stands outside a comment or a string, as "line:column", or "" if none.
-/// toml++ 3.3 reaches an unreachable branch (undefined behaviour) on some non-ASCII characters where it looks for
-/// whitespace (found by fuzzing), so scene files keep non-ASCII text (UTF-8) to comments and strings.
-inline std::string non_ascii_outside_text(std::string_view t) {
-    std::size_t line = 1, column = 1;
-    enum class in { code, comment, basic, literal, multi_basic, multi_literal } state = in::code;
-    const auto at = [&](std::size_t i, std::string_view s) { return t.substr(i, s.size()) == s; };
-    for (std::size_t i = 0; i < t.size(); ++i) {
-        const char c = t[i];
-        std::size_t skip = 0; // further bytes of a token read here
-        switch (state) {
-        case in::code:
-            if (static_cast<unsigned char>(c) >= 0x80) return std::to_string(line) + ":" + std::to_string(column);
-            if (c == '#') state = in::comment;
-            else if (at(i, "\"\"\"")) state = in::multi_basic, skip = 2;
-            else if (at(i, "'''")) state = in::multi_literal, skip = 2;
-            else if (c == '"') state = in::basic;
-            else if (c == '\'') state = in::literal;
-            break;
-        case in::comment:
-            if (c == '\n') state = in::code;
-            break;
-        case in::basic:
-            if (c == '\\') skip = 1; // an escaped character, whatever it is
-            else if (c == '"' || c == '\n') state = in::code;
-            break;
-        case in::multi_basic:
-            if (c == '\\') skip = 1;
-            else if (at(i, "\"\"\"")) state = in::code, skip = 2;
-            break;
-        case in::literal:
-            if (c == '\'' || c == '\n') state = in::code;
-            break;
-        case in::multi_literal:
-            if (at(i, "'''")) state = in::code, skip = 2;
-            break;
-        }
-        for (std::size_t k = 0; k <= skip && i < t.size(); ++k, ++i) {
-            if (t[i] == '\n') ++line, column = 1;
-            else ++column;
-        }
-        --i;
-    }
-    return {};
-}
-} // namespace detail
 
 [[nodiscard]] inline description parse(std::string_view text, const std::string& file) {
-    if (const std::string where = detail::non_ascii_outside_text(text); !where.empty())
-        throw scene_error(file + ":" + where + ": a character outside ASCII outside a comment or a string");
+    const std::string shifted = detail::to_plane16(text, file);
     toml::table root;
     try {
-        root = toml::parse(text, file);
+        root = toml::parse(shifted, file);
     } catch (const toml::parse_error& e) {
         std::ostringstream s;
         s << file << ':' << e.source().begin.line << ':' << e.source().begin.column << ": " << e.description();
-        throw scene_error(s.str());
+        throw scene_error(detail::from_plane16(s.str()));
     }
     description d;
     d.path = file;

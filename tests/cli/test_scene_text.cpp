@@ -1,0 +1,49 @@
+// Scene files are UTF-8 text: characters outside ASCII are kept in strings and comments, refused with the line
+// and column elsewhere, and never reach the undefined behaviour toml++ 3.3 has on most of them where it looks for
+// whitespace (the inputs below are fuzzing findings; under UndefinedBehaviorSanitizer they abort without the
+// guard in scene_file/read.hpp).
+
+#include <doctest/doctest.h>
+
+#include "scene_file/read.hpp"
+#include "scene_file/write.hpp"
+
+#include <string>
+
+namespace {
+
+std::string error_of(const std::string& text) {
+    try {
+        (void)sss::scene_file::parse(text, "t.toml");
+    } catch (const sss::scene_file::scene_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST_CASE("a character outside ASCII where toml++ looks for whitespace is an error with its line and column") {
+    // Fuzzing finding: a bare value running into a quote and a U+0159.
+    CHECK(error_of("s = 3t_pery_+_km\"\xc5\x99s") == "t.toml:1:5: Error while parsing value: could not determine value type");
+    // Bare keys are ASCII; a no-break space is not TOML whitespace.
+    CHECK(error_of("[seabed]\n\xc2\xa1" "cell_m = 0.1\n").starts_with("t.toml:2:1: "));
+    CHECK(error_of("[seabed]\n\xc2\xa0" "cell_m = 0.1\n").find("saw '\xc2\xa0'") != std::string::npos);
+    // After a line-ending backslash toml++ skips whitespace: the first character after it may be anything.
+    CHECK(error_of("a = \"\"\"foo \\\n   \xc5\x99\"\"\"\n") == "t.toml:1:1: a: unknown key");
+    // A quoted key outside ASCII is named as written.
+    CHECK(error_of("\"\xc5\x99\" = 1\n") == "t.toml:1:1: \xc5\x99: unknown key");
+    // Plane 16 (private use) carries the guard's shifted characters, so a scene file cannot hold it.
+    CHECK(error_of("x = 1 \xf4\x80\x80\x80\n") == "t.toml:1:7: a private-use character of plane 16, which scene files cannot hold");
+}
+
+TEST_CASE("text outside ASCII in strings and comments reads back unchanged") {
+    const std::string text = "\xef\xbb\xbf# D\xc3\xa9mo, Bj\xc3\xb8rnafjorden \xe2\x80\x94 50\xc2\xb0N\n"
+                             "[seabed]\nfile = \"Bj\xc3\xb8rnafjorden \xe6\xb5\xb7\xe5\xba\x95 \xf0\x9f\x8c\x8a.asc\"\n";
+    const auto d = sss::scene_file::parse(text, "t.toml");
+    CHECK(d.bed.file == "Bj\xc3\xb8rnafjorden \xe6\xb5\xb7\xe5\xba\x95 \xf0\x9f\x8c\x8a.asc");
+    const auto again = sss::scene_file::parse(sss::scene_file::to_toml(d), "resolved.toml");
+    CHECK(again.bed.file == d.bed.file);
+    // Bytes that are not UTF-8 are toml++'s to refuse, with a position.
+    CHECK(error_of("[seabed]\nfile = \"\xc3(\"\n").starts_with("t.toml:2:"));
+}
