@@ -18,6 +18,7 @@
 #include "sss/scene/concept.hpp"
 #include "sss/scene/cylinder.hpp"
 #include "sss/scene/flat_seabed.hpp"
+#include "sss/scene/grid_hit.hpp"
 #include "sss/scene/height_field.hpp"
 #include "sss/scene/height_field_fan.hpp"
 #include "sss/scene/height_field_pyramid.hpp"

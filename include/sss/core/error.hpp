@@ -81,6 +81,11 @@ template <class T> void require_non_negative(T x, std::string_view name) {
     require_finite(x, name);
     if (!(x >= T(0))) [[unlikely]] throw invalid_parameter(name, "must be >= 0, got " + std::to_string(x));
 }
+/// Throws unless x > 0 wherever `needed` (say a rim's width, needed when the rim has a height):
+/// "must be > 0 when <because>".
+template <class T> void require_positive_when(bool needed, T x, std::string_view name, std::string_view because) {
+    if (needed && !(x > T(0))) [[unlikely]] throw invalid_parameter(name, "must be > 0 when " + std::string(because));
+}
 /// Throws unless lo <= x <= hi (and x finite).
 template <class T> void require_in_range(T x, T lo, T hi, std::string_view name) {
     require_finite(x, name);

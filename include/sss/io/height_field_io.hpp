@@ -55,26 +55,6 @@
 
 namespace sss::io {
 
-namespace detail {
-// The shared text core and file access (io/detail/text.hpp, io/detail/atomic_file.hpp), under the names this
-// header has always used.
-using sss::detail::append_number;
-using sss::detail::atomic_file;
-using sss::detail::lower;
-using sss::detail::parse_double;
-using sss::detail::parse_size;
-using sss::detail::token;
-using sss::detail::tokenizer;
-inline std::string read_all(const std::string& path) { return sss::detail::read_file(path); }
-
-/// A height read from a file, converted to T; nullopt when not finite in T.
-template <Real T> inline std::optional<T> finite_height(double v) {
-    const T h = static_cast<T>(v);
-    if (!std::isfinite(h)) return std::nullopt;
-    return h;
-}
-
-} // namespace detail
 
 // ----------------------------------------------------------------------------------------------------
 // ESRI ASCII grid
@@ -88,8 +68,8 @@ template <Real T> struct esri_ascii_options {
 /// Reads an ESRI ASCII grid (.asc) as a height field; see the file comment for the conventions.
 template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std::string& path,
                                                                        const esri_ascii_options<T>& options = {}) {
-    const std::string text = detail::read_all(path);
-    detail::tokenizer tok(text, false);
+    const std::string text = sss::detail::read_file(path);
+    sss::detail::tokenizer tok(text, false);
     auto fail = [&](std::size_t line, const std::string& why) -> file_error { return file_error(path, line, why); };
 
     std::optional<std::size_t> ncols, nrows;
@@ -99,28 +79,28 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     // Header: keyword/value pairs until the first token that is not a keyword.
     for (;;) {
         const auto before = tok.save();
-        const detail::token key = tok.next();
+        const sss::detail::token key = tok.next();
         if (key.text.empty()) throw fail(key.line, "file ends in the header");
-        const std::string k = detail::lower(key.text);
+        const std::string k = sss::detail::lower(key.text);
         const bool known = k == "ncols" || k == "nrows" || k == "xllcorner" || k == "xllcenter" || k == "yllcorner" ||
                            k == "yllcenter" || k == "cellsize" || k == "nodata_value";
         if (!known) {
             if (k == "dx" || k == "dy")
                 throw fail(key.line, "'" + std::string(key.text) + "': only square cells (cellsize) are supported");
-            if (!detail::parse_double(key.text))
+            if (!sss::detail::parse_double(key.text))
                 throw fail(key.line, "unknown header keyword '" + std::string(key.text) + "'");
             tok.rewind(before);
             first_data_line = key.line;
             break;
         }
-        const detail::token val = tok.next();
+        const sss::detail::token val = tok.next();
         if (val.text.empty() || val.line != key.line)
             throw fail(key.line, "header keyword '" + std::string(key.text) + "' has no value");
         auto dup = [&](bool seen) {
             if (seen) throw fail(key.line, "header keyword '" + std::string(key.text) + "' given twice");
         };
         if (k == "ncols" || k == "nrows") {
-            const auto v = detail::parse_size(val.text);
+            const auto v = sss::detail::parse_size(val.text);
             if (!v || *v < 2)
                 throw fail(val.line, "'" + std::string(key.text) + "' must be an integer >= 2, got '" +
                                          std::string(val.text) + "'");
@@ -129,7 +109,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
             slot = v;
             continue;
         }
-        const auto v = detail::parse_double(val.text);
+        const auto v = sss::detail::parse_double(val.text);
         if (!v || !std::isfinite(*v))
             throw fail(val.line,
                        "'" + std::string(key.text) + "' must be a finite number, got '" + std::string(val.text) + "'");
@@ -169,11 +149,11 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     for (std::size_t row = 0; row < ny; ++row) {
         const std::size_t iy = ny - 1 - row; // rows run north to south
         for (std::size_t ix = 0; ix < nx; ++ix) {
-            const detail::token t = tok.next();
+            const sss::detail::token t = tok.next();
             if (t.text.empty())
                 throw fail(t.line, "file ends after " + std::to_string(row * nx + ix) + " of " +
                                        std::to_string(nx * ny) + " values");
-            const auto v = detail::parse_double(t.text);
+            const auto v = sss::detail::parse_double(t.text);
             if (!v)
                 throw fail(t.line, "'" + std::string(t.text) + "' is not a number (row " + std::to_string(row) +
                                        ", column " + std::to_string(ix) + ")");
@@ -184,7 +164,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
                                            " (a height field needs every vertex)");
                 h = *options.nodata_fill_m;
             } else {
-                h = detail::finite_height<T>(*v);
+                h = sss::detail::finite_as<T>(*v);
             }
             if (!h || !std::isfinite(*h))
                 throw fail(t.line, "height '" + std::string(t.text) + "' at row " + std::to_string(row) + ", column " +
@@ -193,7 +173,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
         }
     }
     if (!tok.at_end()) {
-        const detail::token extra = tok.next();
+        const sss::detail::token extra = tok.next();
         throw fail(extra.line, "more values than ncols x nrows = " + std::to_string(nx * ny) + " ('" +
                                    std::string(extra.text) + "')");
     }
@@ -209,20 +189,20 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
 
 /// Writes `hf` as an ESRI ASCII grid with xllcenter/yllcenter.
 template <Real T> void write_esri_ascii(const std::string& path, const scene::height_field<T>& hf) {
-    detail::atomic_file out(path);
+    sss::detail::atomic_file out(path);
     std::string buf;
     buf += "ncols " + std::to_string(hf.nx()) + "\nnrows " + std::to_string(hf.ny()) + "\nxllcenter ";
-    detail::append_number(buf, hf.origin_m().x);
+    sss::detail::append_number(buf, hf.origin_m().x);
     buf += "\nyllcenter ";
-    detail::append_number(buf, hf.origin_m().y);
+    sss::detail::append_number(buf, hf.origin_m().y);
     buf += "\ncellsize ";
-    detail::append_number(buf, hf.cell_m());
+    sss::detail::append_number(buf, hf.cell_m());
     buf += '\n';
     for (std::size_t row = 0; row < hf.ny(); ++row) {
         const std::size_t iy = hf.ny() - 1 - row;
         for (std::size_t ix = 0; ix < hf.nx(); ++ix) {
             if (ix) buf += ' ';
-            detail::append_number(buf, hf.height_m(ix, iy));
+            sss::detail::append_number(buf, hf.height_m(ix, iy));
         }
         buf += '\n';
         if (buf.size() > (std::size_t(1) << 20)) {
@@ -240,10 +220,21 @@ template <Real T> void write_esri_ascii(const std::string& path, const scene::he
 /// The sidecar's file name for a raw height file.
 [[nodiscard]] inline std::string raw_sidecar_path(const std::string& path) { return path + ".txt"; }
 
-/// Reads `path` (raw float32) and its sidecar `path + ".txt"`.
-template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::string& path) {
+/// The geometry a raw height file's sidecar gives.
+struct raw_grid {
+    std::size_t nx = 0;      ///< vertices along x (east)
+    std::size_t ny = 0;      ///< vertices along y (north)
+    double cell_m = 0;       ///< vertex spacing (m)
+    double origin_x_m = 0;   ///< world x of vertex (0, 0) (m)
+    double origin_y_m = 0;   ///< world y of vertex (0, 0) (m)
+};
+
+/// Reads the sidecar `path + ".txt"` of the raw height file `path`: one `key value` pair a line, `#` comments;
+/// every key once, none unknown; 2 <= nx, ny <= 2^30 (a mapped file may exceed sss::max_elements; a file read
+/// into memory may not). Errors name the line and column.
+[[nodiscard]] inline raw_grid read_raw_sidecar(const std::string& path) {
     const std::string side_path = raw_sidecar_path(path);
-    const std::string side = detail::read_all(side_path);
+    const std::string side = sss::detail::read_file(side_path);
     std::optional<std::size_t> nx, ny;
     std::optional<double> cell, ox, oy;
     bool format_seen = false;
@@ -268,7 +259,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
             dup(format_seen);
             format_seen = true;
         } else if (k == "nx" || k == "ny") {
-            const auto v = detail::parse_size(val);
+            const auto v = sss::detail::parse_size(val);
             if (!v || *v < 2)
                 throw sss::detail::error_at(side_path, line_no, col,
                                             "'" + k + "' must be an integer >= 2, got '" + std::string(val) + "'");
@@ -298,15 +289,40 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
                           : !oy        ? "origin_y_m"
                                        : nullptr;
     if (missing) throw file_error(side_path, 0, std::string("lacks the key '") + missing + "'");
-    if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30) || checked_mul(*nx, *ny, "nx * ny") > max_elements)
-        throw file_error(side_path, 0, "grid too large");
+    if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30))
+        throw file_error(side_path, 0, "grid too large: nx and ny must be <= 2^30");
+    return {.nx = *nx, .ny = *ny, .cell_m = *cell, .origin_x_m = *ox, .origin_y_m = *oy};
+}
 
-    const std::string data = detail::read_all(path);
-    const std::size_t n = *nx * *ny;
+/// Writes the sidecar of the raw height file `path` (atomically), each number in the shortest text that reads back
+/// to it in `Number` (float for a float height field: "0.1", not "0.10000000149011612").
+template <class Number = double> void write_raw_sidecar(const std::string& path, const raw_grid& g) {
+    sss::detail::atomic_file side(raw_sidecar_path(path));
+    std::string s = "# sss height field: float32 little-endian, row-major, row 0 = south (min y), heights in metres\n"
+                    "format sss-height-raw-f32le 1\nnx " +
+                    std::to_string(g.nx) + "\nny " + std::to_string(g.ny) + "\ncell_m ";
+    sss::detail::append_number(s, static_cast<Number>(g.cell_m));
+    s += "\norigin_x_m ";
+    sss::detail::append_number(s, static_cast<Number>(g.origin_x_m));
+    s += "\norigin_y_m ";
+    sss::detail::append_number(s, static_cast<Number>(g.origin_y_m));
+    s += '\n';
+    side.write(s);
+    side.commit();
+}
+
+/// Reads `path` (raw float32) and its sidecar `path + ".txt"`.
+template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::string& path) {
+    const std::string side_path = raw_sidecar_path(path);
+    const raw_grid g = read_raw_sidecar(path);
+    if (checked_mul(g.nx, g.ny, "nx * ny") > max_elements)
+        throw file_error(side_path, 0, "grid too large: nx * ny exceeds sss::max_elements");
+    const std::string data = sss::detail::read_file(path);
+    const std::size_t n = g.nx * g.ny;
     if (data.size() != 4 * n)
         throw file_error(path, 0,
-                         "holds " + std::to_string(data.size()) + " bytes, the sidecar's " + std::to_string(*nx) +
-                             " x " + std::to_string(*ny) + " grid needs " + std::to_string(4 * n),
+                         "holds " + std::to_string(data.size()) + " bytes, the sidecar's " + std::to_string(g.nx) +
+                             " x " + std::to_string(g.ny) + " grid needs " + std::to_string(4 * n),
                          std::min(data.size(), 4 * n));
     std::vector<T> heights(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -316,13 +332,17 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
         const float h = std::bit_cast<float>(bits);
         if (!std::isfinite(h))
             throw file_error(path, 0,
-                             "height of vertex " + std::to_string(i) + " (ix " + std::to_string(i % *nx) + ", iy " +
-                                 std::to_string(i / *nx) + ") is not finite",
+                             "height of vertex " + std::to_string(i) + " (ix " + std::to_string(i % g.nx) + ", iy " +
+                                 std::to_string(i / g.nx) + ") is not finite",
                              4 * i);
         heights[i] = static_cast<T>(h);
     }
     try {
-        return scene::height_field<T>({.nx = *nx, .ny = *ny, .cell_m = static_cast<T>(*cell), .origin_m = vec2<T>{static_cast<T>(*ox), static_cast<T>(*oy)}, .heights_m = std::move(heights)});
+        return scene::height_field<T>({.nx = g.nx,
+                                       .ny = g.ny,
+                                       .cell_m = static_cast<T>(g.cell_m),
+                                       .origin_m = vec2<T>{static_cast<T>(g.origin_x_m), static_cast<T>(g.origin_y_m)},
+                                       .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
         throw file_error(side_path, 0, e.what());
     }
@@ -335,7 +355,7 @@ template <Real T> void write_raw_f32(const std::string& path, const scene::heigh
         if (!std::isfinite(static_cast<float>(h[i])))
             throw file_error(path, 0, "height of vertex " + std::to_string(i) + " does not fit float32");
     {
-        detail::atomic_file out(path);
+        sss::detail::atomic_file out(path);
         std::string buf;
         buf.reserve(std::min<std::size_t>(4 * h.size(), std::size_t(1) << 20));
         for (std::size_t i = 0; i < h.size(); ++i) {
@@ -349,18 +369,11 @@ template <Real T> void write_raw_f32(const std::string& path, const scene::heigh
         out.write(buf);
         out.commit();
     }
-    detail::atomic_file side(raw_sidecar_path(path));
-    std::string s = "# sss height field: float32 little-endian, row-major, row 0 = south (min y), heights in metres\n"
-                    "format sss-height-raw-f32le 1\nnx " +
-                    std::to_string(hf.nx()) + "\nny " + std::to_string(hf.ny()) + "\ncell_m ";
-    detail::append_number(s, hf.cell_m());
-    s += "\norigin_x_m ";
-    detail::append_number(s, hf.origin_m().x);
-    s += "\norigin_y_m ";
-    detail::append_number(s, hf.origin_m().y);
-    s += '\n';
-    side.write(s);
-    side.commit();
+    write_raw_sidecar<T>(path, {.nx = hf.nx(),
+                                .ny = hf.ny(),
+                                .cell_m = double(hf.cell_m()),
+                                .origin_x_m = double(hf.origin_m().x),
+                                .origin_y_m = double(hf.origin_m().y)});
 }
 
 // ----------------------------------------------------------------------------------------------------
@@ -388,7 +401,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::str
     sss::require_finite(vertical.scale_m, "read_pgm16.vertical.scale_m");
     sss::require(vertical.scale_m != T(0), "read_pgm16.vertical.scale_m", "must not be 0");
     sss::require_finite(vertical.offset_m, "read_pgm16.vertical.offset_m");
-    const std::string data = detail::read_all(path);
+    const std::string data = sss::detail::read_file(path);
     std::size_t pos = 0;
     auto fail = [&](std::size_t offset, const std::string& why) { return file_error(path, 0, why, offset); };
     if (data.size() < 2 || data[0] != 'P' || data[1] != '5') throw fail(0, "not a binary PGM (no 'P5' magic number)");
@@ -407,7 +420,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_pgm16(const std::str
         if (pos == before) throw fail(pos, std::string("expected whitespace before the ") + what);
         const std::size_t start = pos;
         while (pos < data.size() && data[pos] >= '0' && data[pos] <= '9') ++pos;
-        const auto v = detail::parse_size(std::string_view(data).substr(start, pos - start));
+        const auto v = sss::detail::parse_size(std::string_view(data).substr(start, pos - start));
         if (!v) throw fail(start, std::string("expected the ") + what + " as a decimal number");
         return *v;
     };
@@ -453,15 +466,15 @@ void write_pgm16(const std::string& path, const scene::height_field<T>& hf, pgm_
     sss::require_finite(vertical.offset_m, "write_pgm16.vertical.offset_m");
     const std::size_t nx = hf.nx(), ny = hf.ny();
     std::string buf = "P5\n# sss height field: h_m = offset_m + scale_m * sample; scale_m ";
-    detail::append_number(buf, vertical.scale_m);
+    sss::detail::append_number(buf, vertical.scale_m);
     buf += " offset_m ";
-    detail::append_number(buf, vertical.offset_m);
+    sss::detail::append_number(buf, vertical.offset_m);
     buf += " cell_m ";
-    detail::append_number(buf, hf.cell_m());
+    sss::detail::append_number(buf, hf.cell_m());
     buf += " origin_m ";
-    detail::append_number(buf, hf.origin_m().x);
+    sss::detail::append_number(buf, hf.origin_m().x);
     buf += ' ';
-    detail::append_number(buf, hf.origin_m().y);
+    sss::detail::append_number(buf, hf.origin_m().y);
     buf += "\n" + std::to_string(nx) + " " + std::to_string(ny) + "\n65535\n";
     const std::size_t header = buf.size();
     buf.resize(header + 2 * nx * ny);
@@ -480,7 +493,7 @@ void write_pgm16(const std::string& path, const scene::height_field<T>& hf, pgm_
             buf[header + 2 * (row * nx + ix) + 1] = static_cast<char>(v & 0xffu);
         }
     }
-    detail::atomic_file out(path);
+    sss::detail::atomic_file out(path);
     out.write(buf);
     out.commit();
 }

@@ -38,15 +38,6 @@
 
 namespace sss::io {
 
-/// The geometry a raw height file's sidecar gives.
-struct raw_grid {
-    std::size_t nx = 0;      ///< vertices along x (east)
-    std::size_t ny = 0;      ///< vertices along y (north)
-    double cell_m = 0;       ///< vertex spacing (m)
-    double origin_x_m = 0;   ///< world x of vertex (0, 0) (m)
-    double origin_y_m = 0;   ///< world y of vertex (0, 0) (m)
-};
-
 /// A read-only memory map of a whole file; unmapped when destroyed.
 class mapped_file {
 public:
@@ -90,49 +81,6 @@ private:
     std::size_t size_ = 0;
 };
 
-/// Reads the sidecar `path + ".txt"` of a raw height file (the keys of height_field_io.hpp's raw format).
-[[nodiscard]] inline raw_grid read_raw_sidecar(const std::string& path) {
-    const std::string side_path = raw_sidecar_path(path);
-    const std::string side = detail::read_all(side_path);
-    raw_grid g;
-    bool format = false, nx = false, ny = false, cell = false, ox = false, oy = false;
-    std::size_t line_no = 0;
-    for (std::size_t pos = 0; pos <= side.size();) {
-        std::size_t end = side.find('\n', pos);
-        if (end == std::string::npos) end = side.size();
-        std::string_view line(side.data() + pos, end - pos);
-        pos = end + 1;
-        ++line_no;
-        if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-        detail::tokenizer tok(line, false);
-        const detail::token key = tok.next();
-        if (key.text.empty()) continue;
-        const detail::token val = tok.next();
-        const std::string k(key.text);
-        if (k == "format") {
-            format = val.text == "sss-height-raw-f32le" && tok.next().text == "1";
-            if (!format) throw file_error(side_path, line_no, "unknown format (expected 'sss-height-raw-f32le 1')");
-        } else if (k == "nx" || k == "ny") {
-            const auto v = detail::parse_size(val.text);
-            if (!v || *v < 2 || *v > (std::size_t(1) << 30))
-                throw file_error(side_path, line_no, "'" + k + "' must be an integer in [2, 2^30]");
-            (k == "nx" ? g.nx : g.ny) = *v;
-            (k == "nx" ? nx : ny) = true;
-        } else if (k == "cell_m" || k == "origin_x_m" || k == "origin_y_m") {
-            const auto v = detail::parse_double(val.text);
-            if (!v || !std::isfinite(*v) || (k == "cell_m" && !(*v > 0)))
-                throw file_error(side_path, line_no, "'" + k + "' must be a finite number (cell_m > 0)");
-            (k == "cell_m" ? g.cell_m : (k == "origin_x_m" ? g.origin_x_m : g.origin_y_m)) = *v;
-            (k == "cell_m" ? cell : (k == "origin_x_m" ? ox : oy)) = true;
-        } else {
-            throw file_error(side_path, line_no, "unknown key '" + k + "'");
-        }
-    }
-    if (!(format && nx && ny && cell && ox && oy))
-        throw file_error(side_path, 0, "lacks one of format, nx, ny, cell_m, origin_x_m, origin_y_m");
-    return g;
-}
-
 /// A height field over the memory-mapped raw float32 file `path` (see the file comment); the same heights, hits
 /// and renders as read_raw_f32<float>(path), without holding the heights in memory.
 [[nodiscard]] inline scene::height_field<float> map_raw_f32(const std::string& path) {
@@ -167,7 +115,7 @@ void write_raw_f32_by_rows(const std::string& path, const raw_grid& g, std::size
     sss::require(g.cell_m > 0 && std::isfinite(g.cell_m), "write_raw_f32_by_rows.grid.cell_m", "must be > 0");
     sss::require(band_rows >= 1, "write_raw_f32_by_rows.band_rows", "must be >= 1");
     {
-        detail::atomic_file out(path);
+        sss::detail::atomic_file out(path);
         std::vector<float> band(g.nx * std::min(band_rows, g.ny));
         std::string bytes;
         for (std::size_t iy0 = 0; iy0 < g.ny; iy0 += band_rows) {
@@ -185,18 +133,7 @@ void write_raw_f32_by_rows(const std::string& path, const raw_grid& g, std::size
         }
         out.commit();
     }
-    detail::atomic_file side(raw_sidecar_path(path));
-    std::string s = "# sss height field: float32 little-endian, row-major, row 0 = south (min y), heights in metres\n"
-                    "format sss-height-raw-f32le 1\nnx " +
-                    std::to_string(g.nx) + "\nny " + std::to_string(g.ny) + "\ncell_m ";
-    detail::append_number(s, g.cell_m);
-    s += "\norigin_x_m ";
-    detail::append_number(s, g.origin_x_m);
-    s += "\norigin_y_m ";
-    detail::append_number(s, g.origin_y_m);
-    s += '\n';
-    side.write(s);
-    side.commit();
+    write_raw_sidecar(path, g);
 }
 
 } // namespace sss::io

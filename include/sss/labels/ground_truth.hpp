@@ -38,6 +38,7 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/pose.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/labels/detail/label_accumulator.hpp"
 #include "sss/receiver/image.hpp"
 #include "sss/scene/scene.hpp"
 #include "sss/simulator.hpp"
@@ -77,59 +78,6 @@ struct label_params {
 
 } // namespace sss
 
-namespace sss::detail {
-
-/// Energy per sample, kept apart by source.
-struct label_accumulator {
-    std::size_t n = 0;
-    double dt = 1.0;
-    std::vector<double> seabed, bare;           ///< seabed echo in the scene; the bare seabed's echo
-    std::vector<double> seabed_best;            ///< largest single seabed contribution, with its ids:
-    std::vector<std::uint32_t> seabed_region, seabed_material;
-    std::vector<double> bare_best;
-    std::vector<std::uint32_t> bare_region, bare_material;
-    std::vector<std::uint32_t> ids;             ///< objects met on this line
-    std::vector<std::uint32_t> classes;         ///< their class ids
-    std::vector<std::vector<double>> echo, blocked, best_echo;
-    std::vector<std::vector<std::uint32_t>> echo_material;
-    double first_bare_s = std::numeric_limits<double>::infinity();
-
-    explicit label_accumulator(std::size_t samples, double dt_s)
-        : n(samples), dt(dt_s), seabed(samples), bare(samples), seabed_best(samples), seabed_region(samples),
-          seabed_material(samples), bare_best(samples), bare_region(samples), bare_material(samples) {}
-
-    std::size_t slot(std::uint32_t id, std::uint32_t cls) {
-        for (std::size_t i = 0; i < ids.size(); ++i)
-            if (ids[i] == id) return i;
-        ids.push_back(id);
-        classes.push_back(cls);
-        echo.emplace_back(n, 0.0);
-        blocked.emplace_back(n, 0.0);
-        best_echo.emplace_back(n, 0.0);
-        echo_material.emplace_back(n, 0u);
-        return ids.size() - 1;
-    }
-
-    /// Calls f(k, share) for every sample k that [t0, t1] covers, share: the fraction of the span in it.
-    template <class F> void spread(double t0, double t1, F&& f) const {
-        if (t1 < t0) std::swap(t0, t1);
-        const double a = t0 / dt, b = t1 / dt;
-        if (!(a < double(n)) || !(b >= 0.0)) return;
-        if (b - a <= 0.0) {
-            f(static_cast<std::size_t>(a), 1.0);
-            return;
-        }
-        const auto k0 = static_cast<std::size_t>(std::max(0.0, a));
-        const std::size_t k1 = std::min(n - 1, static_cast<std::size_t>(b));
-        for (std::size_t k = k0; k <= k1; ++k) {
-            const double lo = std::max(a, double(k)), hi = std::min(b, double(k + 1));
-            if (hi > lo) f(k, (hi - lo) / (b - a));
-        }
-    }
-};
-
-} // namespace sss::detail
-
 namespace sss {
 
 /// The labels of one side of one ping (see the file comment): `samples_per_line()` labels, near range first.
@@ -146,10 +94,7 @@ template <class Sim, class Seabed>
         const hit<T>& h = e.surface;
         if (h.object == no_object) {
             acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
-                const double w = share * e.power;
-                acc.seabed[k] += w;
-                if (w > acc.seabed_best[k]) {
-                    acc.seabed_best[k] = w;
+                if (acc.add(acc.seabed, acc.seabed_best, k, share * e.power)) {
                     acc.seabed_region[k] = h.label;
                     acc.seabed_material[k] = h.material;
                 }
@@ -157,12 +102,7 @@ template <class Sim, class Seabed>
         } else {
             const std::size_t s = acc.slot(h.object, h.label);
             acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
-                const double w = share * e.power;
-                acc.echo[s][k] += w;
-                if (w > acc.best_echo[s][k]) {
-                    acc.best_echo[s][k] = w;
-                    acc.echo_material[s][k] = h.material;
-                }
+                if (acc.add(acc.echo[s], acc.best_echo[s], k, share * e.power)) acc.echo_material[s][k] = h.material;
             });
         }
     });
@@ -181,9 +121,7 @@ template <class Sim, class Seabed>
         }
         acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
             const double w = share * e.power;
-            acc.bare[k] += w;
-            if (w > acc.bare_best[k]) {
-                acc.bare_best[k] = w;
+            if (acc.add(acc.bare, acc.bare_best, k, w)) {
                 acc.bare_region[k] = h.label;
                 acc.bare_material[k] = h.material;
             }

@@ -131,6 +131,15 @@ template <Real T>
     return francois_garrison_contributions(f_hz, temperature_c, salinity_ppt, depth_m, ph).total_db_per_km();
 }
 
+/// (f_hz / 1000)^2, the squared frequency in kHz^2 that the absorption formulas take, once f_hz (> 0) and the
+/// water (check_water_properties) are checked; throws sss::invalid_parameter otherwise.
+template <Real T> [[nodiscard]] inline T checked_khz_squared(T f_hz, const water_properties<T>& water) {
+    sss::require_positive(f_hz, "f_hz");
+    check_water_properties(water);
+    const T f = f_hz / T(1000);
+    return f * f;
+}
+
 /// Francois-Garrison absorption for one frequency and water mass, as a function of depth only. Every
 /// transcendental is evaluated once at construction; db_per_km(depth) then costs a few flops:
 /// alpha(D) = (b + m P2(D))/c(D) + w P3(D), with c(D) = c_s + 0.0167 D.
@@ -140,10 +149,7 @@ public:
 
     /// Throws sss::invalid_parameter for f_hz not finite and > 0, or water outside check_water_properties.
     francois_garrison(T f_hz, const water_properties<T>& water) : f_hz_(f_hz) {
-        sss::require_positive(f_hz, "f_hz");
-        check_water_properties(water);
-        const T f = f_hz / T(1000);
-        const T f_sq = f * f;
+        const T f_sq = checked_khz_squared(f_hz, water);
         const T t = water.temperature_c;
         const T s = water.salinity_ppt;
         const T f1 = francois_garrison_boric_acid_relaxation_hz(t, s) / T(1000);
@@ -197,10 +203,7 @@ public:
 
     /// Throws sss::invalid_parameter for f_hz not finite and > 0, or water outside check_water_properties.
     ainslie_mccolm(T f_hz, const water_properties<T>& water) : f_hz_(f_hz) {
-        sss::require_positive(f_hz, "f_hz");
-        check_water_properties(water);
-        const T f = f_hz / T(1000);
-        const T f_sq = f * f;
+        const T f_sq = checked_khz_squared(f_hz, water);
         const T t = water.temperature_c;
         const T s = water.salinity_ppt;
         const T f1 = T(0.78) * std::sqrt(s / T(35)) * std::exp(t / T(26));

@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 
+#include "sss/core/detail/gauss_legendre.hpp"
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 
@@ -87,12 +88,8 @@ struct pulse {
             return 3.0 * t / 8.0 - std::sin(2.0 * a * t) / (4.0 * a) + std::sin(4.0 * a * t) / (32.0 * a);
         }
         // The compressed chirp: 8-point Gauss-Legendre over pieces a quarter of a sidelobe (1/(4B)) long.
-        static constexpr std::array<double, 8> gx{0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
-                                                   0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
-                                                   0.8983332387068134, 0.9801449282487681};
-        static constexpr std::array<double, 8> gw{0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
-                                                   0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
-                                                   0.1111905172266872, 0.0506142681451881};
+        const auto& gx = sss::detail::gauss_legendre8_x;
+        const auto& gw = sss::detail::gauss_legendre8_w;
         const double piece = 0.25 / bandwidth_hz;
         double sum = 0.0;
         for (double lo = 0.0; lo < t; lo += piece) {

@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "sss/core/detail/gauss_legendre.hpp"
 #include "sss/core/error.hpp"
 #include "sss/receiver/pulse.hpp"
 
@@ -142,12 +143,8 @@ private:
         k0_.assign(taps * sub_bins, 0.0);
         k1_.assign(taps * sub_bins, 0.0);
         // 8-point Gauss-Legendre on [0, 1].
-        static constexpr std::array<double, 8> gx{0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
-                                                   0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
-                                                   0.8983332387068134, 0.9801449282487681};
-        static constexpr std::array<double, 8> gw{0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
-                                                   0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
-                                                   0.1111905172266872, 0.0506142681451881};
+        const auto& gx = sss::detail::gauss_legendre8_x;
+        const auto& gw = sss::detail::gauss_legendre8_w;
         const double q = double(sub_bins);
         for (std::size_t d = 0; d < taps; ++d) {
             for (std::size_t r = 0; r < sub_bins; ++r) {

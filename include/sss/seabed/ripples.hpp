@@ -68,8 +68,8 @@ template <Real T> void validate(const ripple_params<T>& p, T cell_m, const std::
     sss::require_finite(p.phase_rad, who + ".phase_rad");
     sss::require_non_negative(p.sinuosity_m, who + ".sinuosity_m");
     sss::require_non_negative(p.sinuosity_wavelength_m, who + ".sinuosity_wavelength_m");
-    sss::require(p.sinuosity_m == T(0) || p.sinuosity_wavelength_m > T(0), who + ".sinuosity_wavelength_m",
-                    "must be > 0 when sinuosity_m > 0");
+    sss::require_positive_when(p.sinuosity_m != T(0), p.sinuosity_wavelength_m, who + ".sinuosity_wavelength_m",
+                               "sinuosity_m > 0");
     sss::require_non_negative(p.perturbation_m, who + ".perturbation_m");
     sss::require_in_range(p.height_variation, T(0), T(1), who + ".height_variation");
     sss::require_non_negative(p.perturbation_scale_m, who + ".perturbation_scale_m");

@@ -83,12 +83,17 @@ template <Real T> struct scour {
     T rim_width_m = T(0);                   ///< rim width at the mean radius (m), > 0 when rim_height_m > 0
 };
 
-template <Real T> void validate(const plate<T>& s, const std::string& who) {
+/// The placement of a stamp centred on a point: centre and heading finite.
+template <class Stamp> void validate_placement(const Stamp& s, const std::string& who) {
     sss::require_finite(s.center_x_m, who + ".center_x_m");
     sss::require_finite(s.center_y_m, who + ".center_y_m");
+    sss::require_finite(s.heading_deg, who + ".heading_deg");
+}
+
+template <Real T> void validate(const plate<T>& s, const std::string& who) {
+    validate_placement(s, who);
     sss::require_positive(s.length_m, who + ".length_m");
     sss::require_positive(s.width_m, who + ".width_m");
-    sss::require_finite(s.heading_deg, who + ".heading_deg");
     sss::require_finite(s.top_m, who + ".top_m");
 }
 
@@ -103,30 +108,24 @@ template <Real T> void validate(const trench<T>& s, const std::string& who) {
     sss::require_non_negative(s.depth_m, who + ".depth_m");
     sss::require_non_negative(s.berm_height_m, who + ".berm_height_m");
     sss::require_non_negative(s.berm_width_m, who + ".berm_width_m");
-    sss::require(s.berm_height_m == T(0) || s.berm_width_m > T(0), who + ".berm_width_m",
-                    "must be > 0 when berm_height_m > 0");
+    sss::require_positive_when(s.berm_height_m != T(0), s.berm_width_m, who + ".berm_width_m", "berm_height_m > 0");
 }
 
 template <Real T> void validate(const mound<T>& s, const std::string& who) {
-    sss::require_finite(s.center_x_m, who + ".center_x_m");
-    sss::require_finite(s.center_y_m, who + ".center_y_m");
+    validate_placement(s, who);
     sss::require_positive(s.radius_u_m, who + ".radius_u_m");
     sss::require_positive(s.radius_v_m, who + ".radius_v_m");
-    sss::require_finite(s.heading_deg, who + ".heading_deg");
     sss::require_non_negative(s.height_m, who + ".height_m");
 }
 
 template <Real T> void validate(const scour<T>& s, const std::string& who) {
-    sss::require_finite(s.center_x_m, who + ".center_x_m");
-    sss::require_finite(s.center_y_m, who + ".center_y_m");
+    validate_placement(s, who);
     sss::require_positive(s.radius_u_m, who + ".radius_u_m");
     sss::require_positive(s.radius_v_m, who + ".radius_v_m");
-    sss::require_finite(s.heading_deg, who + ".heading_deg");
     sss::require_non_negative(s.depth_m, who + ".depth_m");
     sss::require_non_negative(s.rim_height_m, who + ".rim_height_m");
     sss::require_non_negative(s.rim_width_m, who + ".rim_width_m");
-    sss::require(s.rim_height_m == T(0) || s.rim_width_m > T(0), who + ".rim_width_m",
-                    "must be > 0 when rim_height_m > 0");
+    sss::require_positive_when(s.rim_height_m != T(0), s.rim_width_m, who + ".rim_width_m", "rim_height_m > 0");
 }
 
 /// Lays a plate on the seabed: covered samples take the plate's top, mean seabed under it + top_m.

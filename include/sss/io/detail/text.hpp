@@ -104,6 +104,13 @@ template <class V> inline void append_number(std::string& out, V x) {
     out.append(buf.data(), res.ptr);
 }
 
+/// x converted to T; nullopt when it is not finite in T (a double beyond float's range, say).
+template <class T> [[nodiscard]] inline std::optional<T> finite_as(double x) {
+    const T v = static_cast<T>(x);
+    if (!std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
 /// The shortest decimal form of x that reads back to x.
 template <class V> [[nodiscard]] inline std::string shortest(V x) {
     std::string s;
