@@ -55,15 +55,17 @@ int main(int argc, char** argv) try {
     const T track_x = T(51.2);
     const T base = seabed.seabed_height_m(track_x + T(30), T(25));
     std::vector<scene::object<T>> objects{scene::object<T>(
-        {}, {scene::cylinder<T>({track_x + T(30), T(24), base + T(0.3)}, {track_x + T(30), T(26), base + T(0.3)}, T(0.3),
-                                {.material = 2, .object = 1, .label = 1})})};
+        {}, {scene::cylinder<T>({.end0_m = vec3<T>(track_x + T(30), T(24), base + T(0.3)),
+                                 .end1_m = vec3<T>(track_x + T(30), T(26), base + T(0.3)),
+                                 .radius_m = T(0.3),
+                                 .ids = {.material = 2, .object = 1, .label = 1}})})};
     const scene::scene world(seabed, scene::object_set<T>(std::move(objects)));
 
     // Sonar: sediments under Jackson, the cylinder under the hard-target facet model, at 100 kHz.
     using scatter = scattering::by_material<scattering::jackson<T>, scattering::hard_target<T>>;
     const scatter scattering(sb::jackson_for(regions, {.frequency_hz = T(100000), .sound_speed_mps = T(1500)}), scattering::hard_target<T>{});
-    const propagation::straight<T> water({T(1500), T(30)});
-    const beam::ideal_fan<T> fan({T(1), T(50), T(20)});
+    const propagation::straight<T> water({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)});
+    const beam::ideal_fan<T> fan({.along_width_deg = T(1), .vertical_width_deg = T(50), .depression_deg = T(20)});
     const motion::straight_line<T> tow(motion::straight_line_params<T>{
         .start_m = {track_x, T(5)}, .speed_mps = T(2), .altitude_m = T(10), .ping_interval_s = T(0.1)});
     const receiver_params rx{.sample_rate_hz = 20000, .max_range_m = 50, .pulse = {.length_s = 100e-6},

@@ -215,3 +215,21 @@ TEST_CASE("Degenerate or non-finite cylinders are rejected, naming the parameter
     CHECK(param([] { return cylinder<double>({0, 0, 0}, {0, 0, 1}, 1.0, {0, sss::no_object, 0}); }) ==
           "cylinder.ids.object");
 }
+
+TEST_CASE_TEMPLATE("A cylinder given by name is the cylinder given by position, and is checked the same way", T, float,
+                   double) {
+    const cylinder<T> named({.end0_m = vec3<T>(T(0), T(0), T(-1)),
+                             .end1_m = vec3<T>(T(0), T(0), T(2)),
+                             .radius_m = T(0.5),
+                             .ids = {.material = 2, .object = 5, .label = 3}});
+    const cylinder<T> positional(vec3<T>(T(0), T(0), T(-1)), vec3<T>(T(0), T(0), T(2)), T(0.5), surface_ids{2, 5, 3});
+    const auto r = make_ray<T>({T(-9), T(0.2), T(0.4)}, {T(1), T(0), T(0.01)});
+    const auto a = named.intersect(r, T(20));
+    const auto b = positional.intersect(r, T(20));
+    REQUIRE(a);
+    REQUIRE(b);
+    CHECK(a->distance_m == b->distance_m);
+    CHECK(a->object == 5);
+    CHECK_THROWS_AS(cylinder<T>({.end0_m = vec3<T>(T(0)), .end1_m = vec3<T>(T(0)), .radius_m = T(1), .ids = {.object = 1}}),
+                    sss::invalid_parameter);
+}

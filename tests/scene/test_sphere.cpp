@@ -148,3 +148,17 @@ TEST_CASE("Degenerate or non-finite spheres are rejected, naming the parameter")
     CHECK(param([] { return sphere<double>({0, NAN, 0}, 1.0); }) == "sphere.center_m.y");
     CHECK(param([] { return sphere<double>({0, 0, 0}, 1.0, {0, sss::no_object, 0}); }) == "sphere.ids.object");
 }
+
+TEST_CASE_TEMPLATE("A sphere given by name is the sphere given by position, and is checked the same way", T, float, double) {
+    const sphere<T> named({.center_m = vec3<T>(T(1), T(2), T(3)), .radius_m = T(2), .ids = {.material = 7, .object = 11, .label = 13}});
+    const sphere<T> positional(vec3<T>{T(1), T(2), T(3)}, T(2), surface_ids{7, 11, 13});
+    const auto r = make_ray<T>({T(1.5), T(2), T(13)}, {T(0), T(0.1), T(-1)});
+    const auto a = named.intersect(r, T(100));
+    const auto b = positional.intersect(r, T(100));
+    REQUIRE(a);
+    REQUIRE(b);
+    CHECK(a->distance_m == b->distance_m);
+    CHECK(a->object == 11);
+    CHECK(a->label == 13);
+    CHECK_THROWS_AS(sphere<T>({.center_m = vec3<T>(T(0)), .radius_m = T(0), .ids = {.object = 1}}), sss::invalid_parameter);
+}

@@ -32,9 +32,19 @@
 
 namespace sss::scene {
 
+/// A cylinder by name: `cylinder<T>({.end0_m = a, .end1_m = b, .radius_m = r, .ids = {.material = 2, .object = 1}})`.
+template <Real T> struct cylinder_params {
+    vec3<T> end0_m{};     ///< centre of one cap (m), finite
+    vec3<T> end1_m{};     ///< centre of the other cap (m), finite, distinct from end0_m
+    T radius_m = T(1);    ///< radius (m), finite and > 0
+    surface_ids ids{};    ///< material, object and class ids of its hits (object != no_object)
+};
+
 template <Real T> class cylinder {
 public:
     using value_type = T;
+
+    explicit cylinder(const cylinder_params<T>& p) : cylinder(p.end0_m, p.end1_m, p.radius_m, p.ids) {}
 
     /// \param end0_m   centre of one cap (m), finite
     /// \param end1_m   centre of the other cap (m), finite, distinct from end0_m (length > 0)

@@ -22,9 +22,18 @@
 
 namespace sss::scene {
 
+/// A sphere by name: `sphere<T>({.center_m = {x, y, z}, .radius_m = r, .ids = {.material = 2, .object = 1}})`.
+template <Real T> struct sphere_params {
+    vec3<T> center_m{};   ///< world (or object-local) centre (m), finite
+    T radius_m = T(1);    ///< radius (m), finite and > 0
+    surface_ids ids{};    ///< material, object and class ids of its hits (object != no_object)
+};
+
 template <Real T> class sphere {
 public:
     using value_type = T;
+
+    explicit sphere(const sphere_params<T>& p) : sphere(p.center_m, p.radius_m, p.ids) {}
 
     /// \param center_m world (or object-local) centre (m), finite
     /// \param radius_m radius (m), finite and > 0
