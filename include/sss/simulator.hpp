@@ -259,10 +259,11 @@ public:
         auto differ = [&](const std::vector<double>& x, const std::vector<double>& y) {
             return !covered(x, y) || !covered(y, x);
         };
-        // A column's echoes wait until the next column is traced (two buffers, used in turn); the buffers stay
-        // with the thread, so that a ping allocates (and faults in) nothing after the first.
-        thread_local std::vector<tube_echo<T>> waiting[2];
-        thread_local std::vector<double> edges[3]; // of columns j - 1, j, j + 1 (in turn)
+        // A column's echoes wait until the next column is traced (two buffers, used in turn). The buffers belong
+        // to this call (no state outlives it, so a visitor may trace again); they grow over the first columns and
+        // are reused for the rest.
+        std::vector<tube_echo<T>> waiting[2];
+        std::vector<double> edges[3]; // of columns j - 1, j, j + 1 (in turn)
         auto trace_into = [&](std::size_t j) {
             std::vector<tube_echo<T>>& w = waiting[j % 2];
             std::vector<double>& e = edges[j % 3];

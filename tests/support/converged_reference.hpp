@@ -107,10 +107,11 @@ struct reference_params {
     std::size_t max_doublings = 2;      // at most this many doublings (>= 1)
 };
 
-/// The converged reference of one side of one ping. `make(density)` returns the simulator (double precision) at
-/// a given density; `pose` is the towfish's pose.
-template <class Make, class Scene>
-reference_line converged_line(Make&& make, const Scene& scene, const sss::pose<double>& pose, sss::side sd,
+/// The converged reference of one side of one ping. `make(density)` returns the simulator at a given density
+/// (double precision for a reference of record; float to measure a float simulator's sampling error alone);
+/// `pose` is the towfish's pose, in the simulator's scalar type.
+template <class Make, class Scene, class P>
+reference_line converged_line(Make&& make, const Scene& scene, const sss::pose<P>& pose, sss::side sd,
                               const reference_params& rp = {}) {
     auto render = [&](const sss::ray_density& d) {
         const auto sim = make(d);

@@ -1,0 +1,142 @@
+// Survey-scale speed: pings per second on the survey scene (bench/support/survey_scene.hpp: 1024 m of fractal seabed
+// at 0.25 m, 4096^2 heights, with two sets of ripples and 20 targets including moored mines and a pipeline; Jackson
+// medium sand at 100 kHz, three-layer water, the 100 kHz planar array, a perturbed towfish, 100 m per side in 2048
+// samples), in float, for three simulators on 1 and 2 threads:
+//   full      Jackson, layered water, planar array, perturbed towfish
+//   straight  the same with straight rays (isovelocity water)
+//   minimal   Lambert, straight rays, ideal fan, straight-line towfish
+// It also prints the scene's build time and the process's peak resident memory after the build, and the error of
+// the full simulator's ping 0 (starboard) at the default ray density against a converged reference (the same
+// simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp).
+//   sss_bench_survey [--pings N] [--size M] [--quick]
+// --pings: pings per measurement (default 40, best of 2); --size: the seabed's side in metres (default 1024);
+// --quick (or a short --benchmark_min_time, as the perf smoke test passes): 128 m, 4 pings, no reference.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <sss/sss.hpp>
+
+#include "../tests/support/converged_reference.hpp"
+#include "support/survey_scene.hpp"
+
+namespace {
+
+using T = float;
+
+/// The peak resident set of this process (VmHWM, MiB), or -1 where /proc does not say.
+double peak_rss_mib() {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+    return -1.0;
+}
+
+/// Best pings per second of `reps` renders of pings [0, pings) on `threads` threads.
+template <class Sim, class Scene> double pings_per_s(const Sim& sim, const Scene& scene, std::size_t pings, unsigned threads,
+                                                     int reps) {
+    double best = 1e300;
+    for (int r = 0; r < reps; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const auto w = sim.render(scene, 0, pings, threads);
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        if (w.pings != pings) std::abort();
+    }
+    return double(pings) / best;
+}
+
+template <class Sim> std::vector<double> starboard(const Sim& sim, const auto& scene, const sss::pose<T>& p) {
+    sss::time_sampler s(sim.samples_per_line(), sim.dt_s(), sim.receiver().pulse);
+    sim.trace(scene, p, sss::side::starboard, [&](const sss::tube_echo<T>& e) { s.add_span(e.t0_s, e.t1_s, e.power); });
+    std::vector<double> out;
+    s.render(out);
+    return out;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false;
+    std::size_t pings = 40;
+    double size_m = 1024.0;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+        if (std::strncmp(argv[i], "--benchmark_min_time=", 21) == 0 && std::atof(argv[i] + 21) < 0.1) quick = true;
+        if (std::strcmp(argv[i], "--pings") == 0 && i + 1 < argc) pings = std::size_t(std::atol(argv[++i]));
+        if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc) size_m = std::atof(argv[++i]);
+    }
+    if (quick) size_m = 128.0, pings = 4;
+    pings = std::max<std::size_t>(pings, 1);
+
+    sss_bench::survey_params<T> sp;
+    sp.size_m = size_m;
+    sp.cell_m = 0.25;
+    sp.track_m = std::min(sp.track_m, 0.8 * size_m);
+    sp.target_band_m = std::min(sp.target_band_m, 0.4 * size_m);
+    const double rss0 = peak_rss_mib();
+    const auto t_build0 = std::chrono::steady_clock::now();
+    const auto sv = sss_bench::make_survey<T>(sp);
+    const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_build0).count();
+    const double rss1 = peak_rss_mib();
+    const std::size_t n = std::size_t(std::lround(size_m / sp.cell_m));
+    const double heights_mib = double(n) * double(n) * sizeof(T) / (1024.0 * 1024.0);
+
+    using namespace sss;
+    const auto full = [&](const ray_density& d) {
+        return simulator<scattering::jackson<T>, propagation::layered<T>, beam::planar_array<T>, motion::perturbed<T>>(
+            sv.scattering, sv.water, sv.array, sv.motion, sv.receiver, d);
+    };
+    const simulator<scattering::jackson<T>, propagation::straight<T>, beam::planar_array<T>, motion::perturbed<T>> straight_sim(
+        sv.scattering,
+        propagation::straight<T>({.sound_speed_mps = sv.water.reference_speed_mps(), .absorption_db_per_km = T(30)}),
+        sv.array, sv.motion, sv.receiver);
+    const motion::straight_line<T> line({.start_m = {T(0), T(-0.5 * sp.track_m)},
+                                         .speed_mps = T(2),
+                                         .altitude_m = T(sp.altitude_m),
+                                         .ping_interval_s = T(0.1)});
+    const simulator<scattering::lambertian<T>, propagation::straight<T>, beam::ideal_fan<T>, motion::straight_line<T>> minimal(
+        scattering::lambertian<T>({.mu_db = {T(-27), T(-10)}}),
+        propagation::straight<T>({.sound_speed_mps = sv.water.reference_speed_mps(), .absorption_db_per_km = T(30)}),
+        beam::ideal_fan<T>{}, line, sv.receiver);
+    const auto full_sim = full({});
+
+    std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
+                "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
+                "side, %zu pings per measurement, best of %d; %u hardware threads\n",
+                size_m, sp.cell_m, n, heights_mib, build_s, rss1, rss0, (rss1 - rss0) / heights_mib,
+                full_sim.samples_per_line(), pings, quick ? 1 : 2, std::thread::hardware_concurrency());
+    std::printf("| simulator | 1 thread | 2 threads | 2 / 1 |\n|---|---|---|---|\n");
+    const int reps = quick ? 1 : 2;
+    double layered_1 = 0, straight_1 = 0;
+    const auto row = [&](const char* name, const auto& sim) {
+        const double one = pings_per_s(sim, sv.scene, pings, 1, reps);
+        const double two = pings_per_s(sim, sv.scene, pings, 2, reps);
+        std::printf("| %s | %.1f pings/s | %.1f pings/s | %.2f |\n", name, one, two, two / one);
+        return one;
+    };
+    layered_1 = row("full (Jackson, layered, planar array, perturbed)", full_sim);
+    straight_1 = row("full with straight rays", straight_sim);
+    row("minimal (Lambert, straight, ideal fan, straight line)", minimal);
+    std::printf("layered / straight time per ping (1 thread): %.2f\n", straight_1 / layered_1);
+
+    if (!quick) {
+        const auto pose = sv.motion.pose_at(0);
+        const auto ref = sss_test::converged_line(full, sv.scene, pose, side::starboard,
+                                                  {.start = ray_density{.along = 32, .across = 0, .per_sample = 4.0},
+                                                   .max_doublings = 1});
+        const auto e = sss_test::compare_lines(starboard(full_sim, sv.scene, pose), ref.values);
+        std::printf("ping 0 starboard at the default density against the reference {%zu, 0, %g} (last doubling changed "
+                    "it by %.3f dB RMS): %.3f dB RMS, %.3f dB median, %.3f dB 99th percentile, %zu of %zu shadow "
+                    "samples missed\n",
+                    ref.density.along, ref.density.per_sample, ref.last_change_db, e.rms_db, e.median_db, e.p99_db,
+                    e.shadow_misses, e.shadow_samples);
+    }
+    return 0;
+}
