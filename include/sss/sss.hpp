@@ -70,6 +70,7 @@
 #include "sss/beam/directivity.hpp"
 #include "sss/beam/ideal_fan.hpp"
 #include "sss/beam/planar_array.hpp"
+#include "sss/beam/sinc.hpp"
 
 #include "sss/motion/concept.hpp"
 #include "sss/motion/perturbed.hpp"
