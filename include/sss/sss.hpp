@@ -100,6 +100,7 @@
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
 #include "sss/io/xtf.hpp"
+#include "sss/io/xtf_file.hpp"
 
 #include "sss/policies.hpp"
 #include "sss/simulator.hpp"
