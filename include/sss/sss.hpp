@@ -59,6 +59,7 @@
 #include "sss/propagation/arc_intersection.hpp"
 #include "sss/propagation/concept.hpp"
 #include "sss/propagation/launch_table.hpp"
+#include "sss/propagation/layer_step.hpp"
 #include "sss/propagation/layered.hpp"
 #include "sss/propagation/profile.hpp"
 #include "sss/propagation/ray_arc.hpp"
