@@ -33,6 +33,8 @@
 #include "sss/seabed/composite.hpp"
 #include "sss/seabed/fft.hpp"
 #include "sss/seabed/fractal.hpp"
+#include "sss/seabed/fractal_params.hpp"
+#include "sss/seabed/fractal_surface.hpp"
 #include "sss/seabed/power_law_spectrum.hpp"
 #include "sss/seabed/profile_hull.hpp"
 #include "sss/seabed/random.hpp"
