@@ -35,6 +35,8 @@
 #include "sss/seabed/fractal.hpp"
 #include "sss/seabed/fractal_params.hpp"
 #include "sss/seabed/fractal_surface.hpp"
+#include "sss/seabed/height_function.hpp"
+#include "sss/seabed/lying_cylinder_params.hpp"
 #include "sss/seabed/power_law_spectrum.hpp"
 #include "sss/seabed/profile_hull.hpp"
 #include "sss/seabed/random.hpp"
