@@ -15,6 +15,7 @@
 #include "sss/core/thread_pool.hpp"
 #include "sss/core/types.hpp"
 
+#include "sss/scene/box.hpp"
 #include "sss/scene/concept.hpp"
 #include "sss/scene/cylinder.hpp"
 #include "sss/scene/flat_seabed.hpp"
@@ -29,6 +30,7 @@
 #include "sss/scene/primitive.hpp"
 #include "sss/scene/scene.hpp"
 #include "sss/scene/sphere.hpp"
+#include "sss/scene/surface_ids.hpp"
 
 #include "sss/seabed/composite.hpp"
 #include "sss/seabed/fft.hpp"

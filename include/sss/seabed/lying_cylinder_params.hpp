@@ -3,7 +3,7 @@
 /// The parameters of a cylinder lying on the seabed (seabed/targets.hpp builds it, and includes this header).
 
 #include "sss/core/types.hpp"
-#include "sss/scene/primitive.hpp"
+#include "sss/scene/surface_ids.hpp"
 
 namespace sss::seabed {
 
