@@ -28,6 +28,7 @@
 #include "sss/scene/object.hpp"
 #include "sss/scene/object_set.hpp"
 #include "sss/scene/primitive.hpp"
+#include "sss/scene/rigid_transform.hpp"
 #include "sss/scene/scene.hpp"
 #include "sss/scene/sphere.hpp"
 #include "sss/scene/surface_ids.hpp"
