@@ -25,6 +25,7 @@
 #include "sss/scene/height_field_surface.hpp"
 #include "sss/scene/height_field_tracer.hpp"
 #include "sss/scene/height_field_wedge.hpp"
+#include "sss/scene/height_grid.hpp"
 #include "sss/scene/object.hpp"
 #include "sss/scene/object_set.hpp"
 #include "sss/scene/primitive.hpp"
