@@ -18,25 +18,13 @@
 #include <limits>
 #include <span>
 
+#include "sss/beam/detail/lobe_inverse.hpp"
+#include "sss/beam/sinc.hpp"
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/types.hpp"
 
 namespace sss::beam {
-
-/// First positive root of tan x = x: the argument of the first sidelobe of sin x / x.
-template <Real T> inline constexpr T sinc_first_sidelobe_x_v = T(4.493409457909064175307880927276L);
-
-/// sin(x)/x, exact 1 at x = 0 and accurate near it (Taylor series below |x| = 1e-2, where the series to x^6
-/// has a relative error under 1e-17).
-template <Real T> [[nodiscard]] inline T sinc(T x) noexcept {
-    const T ax = std::abs(x);
-    if (ax < T(1e-2)) {
-        const T x2 = x * x;
-        return T(1) - x2 / T(6) * (T(1) - x2 / T(20) * (T(1) - x2 / T(42)));
-    }
-    return std::sin(x) / x;
-}
 
 /// Uniform line aperture of length `length_m`: b = sin x / x, x = pi L (u - u0) / lambda (amplitude, 1 on
 /// the steered axis). `u` = sin(theta) from the aperture normal; `u0` the steering direction cosine.
@@ -97,32 +85,6 @@ template <Real T>
     if (sum == T(0)) return T(1);
     return std::sqrt(re * re + im * im) / std::abs(sum);
 }
-
-namespace detail {
-/// The x in (0, pi) where sinc(x) = level, for a level in (0, 1): Newton from a bisection bracket.
-template <Real T> [[nodiscard]] inline T sinc_inverse(T level) noexcept {
-    T lo = 0, hi = pi_v<T>;
-    for (int i = 0; i < 200 && hi - lo > T(4) * std::numeric_limits<T>::epsilon() * hi; ++i) {
-        const T mid = (lo + hi) / T(2);
-        (sinc(mid) > level ? lo : hi) = mid;
-    }
-    return (lo + hi) / T(2);
-}
-/// The delta in (0, pi/N) where sin(N delta)/(N sin delta) = level, level in (0, 1): bisection.
-template <Real T> [[nodiscard]] inline T array_factor_inverse(std::size_t count, T level) noexcept {
-    const T n = static_cast<T>(count);
-    T lo = 0, hi = pi_v<T> / n;
-    for (int i = 0; i < 200 && hi - lo > T(4) * std::numeric_limits<T>::epsilon() * hi; ++i) {
-        const T mid = (lo + hi) / T(2);
-        (sinc(n * mid) / sinc(mid) > level ? lo : hi) = mid;
-    }
-    return (lo + hi) / T(2);
-}
-/// 2 asin(s), or pi (the whole front half-space) when s >= 1.
-template <Real T> [[nodiscard]] inline T full_width_from_sine(T s) noexcept {
-    return s >= T(1) ? pi_v<T> : T(2) * std::asin(s);
-}
-} // namespace detail
 
 /// Full width (rad) of a uniform line aperture's main lobe at the one-way intensity level `power_ratio`
 /// (linear, in (0, 1); 0.5 is the half-power or "-3 dB" width): 2 asin(x lambda / (pi L)) with

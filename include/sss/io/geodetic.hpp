@@ -18,6 +18,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/io/detail/wgs84.hpp"
 
 namespace sss::io {
 
@@ -31,22 +32,6 @@ struct geodetic_position {
     double latitude_deg = 0.0;  ///< (deg), north positive
     double longitude_deg = 0.0; ///< (deg), east positive
 };
-
-} // namespace sss::io
-
-namespace sss::detail {
-inline constexpr double wgs84_a_m = 6378137.0;
-inline constexpr double wgs84_f = 1.0 / 298.257223563;
-/// Metres per radian of latitude (M) and of longitude (N cos lat) at latitude lat (rad).
-inline void geodetic_metres_per_radian(double lat_rad, double& m_lat, double& m_lon) noexcept {
-    const double e2 = wgs84_f * (2.0 - wgs84_f);
-    const double s = std::sin(lat_rad), w = 1.0 - e2 * s * s;
-    m_lat = wgs84_a_m * (1.0 - e2) / (w * std::sqrt(w));
-    m_lon = wgs84_a_m / std::sqrt(w) * std::cos(lat_rad);
-}
-} // namespace sss::detail
-
-namespace sss::io {
 
 /// Latitude and longitude of the world point (east_m, north_m) (see the file comment).
 [[nodiscard]] inline geodetic_position to_geodetic(const geodetic_origin& o, double east_m, double north_m) {

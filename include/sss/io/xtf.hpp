@@ -35,55 +35,13 @@
 #include "sss/core/error.hpp"
 #include "sss/core/pose.hpp"
 #include "sss/io/detail/bytes.hpp"
+#include "sss/io/detail/civil_date.hpp"
+#include "sss/io/detail/xtf_layout.hpp"
 #include "sss/io/geodetic.hpp"
+#include "sss/io/xtf_file.hpp"
 #include "sss/receiver/image.hpp"
 
 namespace sss::io {
-
-enum class xtf_sample_format : std::uint8_t { u8, u16, f32 };
-enum class xtf_nav_units : std::uint16_t { projected_m = 0, latitude_longitude = 3 };
-
-/// One sidescan channel's description (CHANINFO).
-struct xtf_channel_info {
-    double frequency_khz = 100.0;           ///< centre frequency (kHz)
-    double horizontal_beam_angle_deg = 1.0; ///< along-track beam width (deg)
-    double beam_width_deg = 50.0;           ///< vertical beam width (deg)
-    double tilt_deg = 20.0;                 ///< depression of the beam axis below horizontal (deg)
-};
-
-/// What the file header says.
-struct xtf_header {
-    std::string program_name = "sss";          ///< RecordingProgramName (8 characters kept)
-    std::string sonar_name = "sss simulator";  ///< SonarName (16 characters kept)
-    std::string note;                          ///< NoteString (64 characters kept)
-    xtf_nav_units nav_units = xtf_nav_units::latitude_longitude;
-    xtf_sample_format format = xtf_sample_format::f32;
-    xtf_channel_info port{}, starboard{};
-};
-
-/// One sonar packet: a ping's navigation, attitude and the two channels' samples.
-struct xtf_ping {
-    std::uint32_t ping_number = 0;
-    double time_unix_s = 0.0;      ///< UTC seconds since 1970-01-01 (kept to 1/100 s)
-    double x = 0.0, y = 0.0;       ///< SensorX/Ycoordinate: easting/northing (m) or longitude/latitude (deg)
-    double altitude_m = 0.0;       ///< above the seabed (m)
-    double speed_mps = 0.0;        ///< (m/s; knots in the file)
-    double heading_deg = 0.0;      ///< clockwise from north (deg)
-    double pitch_deg = 0.0;        ///< nose up positive (deg)
-    double roll_deg = 0.0;         ///< starboard down positive (deg)
-    double heave_m = 0.0;          ///< (m)
-    double sound_speed_mps = 1500.0; ///< full sound speed (m/s)
-    double slant_range_m = 0.0;    ///< range of the last sample (m)
-    double seconds_per_ping = 0.0; ///< ping interval (s)
-    int weight = 0;                ///< integer samples are count x 2^-weight (set by the writer)
-    std::vector<float> port;       ///< port samples, near range first
-    std::vector<float> starboard;  ///< starboard samples, near range first
-};
-
-struct xtf_file {
-    xtf_header header{};
-    std::vector<xtf_ping> pings;
-};
 
 /// How a render becomes an XTF file.
 struct xtf_render_params {
@@ -146,81 +104,6 @@ template <Real T>
     }
     return f;
 }
-
-} // namespace sss::io
-
-namespace sss::detail {
-
-inline constexpr double knots_per_mps = 3600.0 / 1852.0;
-
-/// Days since 1970-01-01 of a proleptic Gregorian date, and back (Hinnant, 2013, "chrono-Compatible Low-Level
-/// Date Algorithms", days_from_civil / civil_from_days).
-[[nodiscard]] constexpr long long days_from_civil(long long y, unsigned m, unsigned d) noexcept {
-    y -= m <= 2 ? 1 : 0;
-    const long long era = (y >= 0 ? y : y - 399) / 400;
-    const auto yoe = static_cast<unsigned>(y - era * 400);
-    const unsigned doy = (153 * (m > 2 ? m - 3 : m + 9) + 2) / 5 + d - 1;
-    const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    return era * 146097 + static_cast<long long>(doe) - 719468;
-}
-struct civil_date {
-    long long year;
-    unsigned month, day;
-};
-[[nodiscard]] constexpr civil_date civil_from_days(long long z) noexcept {
-    z += 719468;
-    const long long era = (z >= 0 ? z : z - 146096) / 146097;
-    const auto doe = static_cast<unsigned>(z - era * 146097);
-    const unsigned yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-    const unsigned doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    const unsigned mp = (5 * doy + 2) / 153;
-    const unsigned d = doy - (153 * mp + 2) / 5 + 1;
-    const unsigned m = mp < 10 ? mp + 3 : mp - 9;
-    return {static_cast<long long>(yoe) + era * 400 + (m <= 2 ? 1 : 0), m, d};
-}
-
-inline constexpr std::size_t xtf_file_header_bytes = 1024, xtf_ping_header_bytes = 256, xtf_chan_header_bytes = 64;
-
-/// Throws the file_error of a malformed XTF file at byte `offset`.
-[[noreturn]] inline void xtf_fail(const std::string& name, std::size_t offset, const std::string& why) {
-    throw file_error(name, 0, offset == 0 ? why + " (at byte 0)" : why, offset);
-}
-
-[[nodiscard]] inline std::size_t xtf_bytes_per_sample(io::xtf_sample_format f) noexcept {
-    return f == io::xtf_sample_format::u8 ? 1 : f == io::xtf_sample_format::u16 ? 2 : 4;
-}
-
-inline void xtf_put_chaninfo(std::uint8_t* c, std::uint8_t type, const io::xtf_channel_info& ch, io::xtf_sample_format f,
-                             std::string_view name) {
-    put_le<std::uint8_t>(c, 0, type);
-    put_le<std::uint16_t>(c, 2, 1); // slant range
-    put_le<std::uint16_t>(c, 4, f == io::xtf_sample_format::f32 ? 0 : 1);
-    put_le<std::uint16_t>(c, 6, static_cast<std::uint16_t>(xtf_bytes_per_sample(f)));
-    put_chars(c, 12, name, 16);
-    put_le<float>(c, 28, 5.0f);
-    put_le<float>(c, 32, static_cast<float>(ch.frequency_khz));
-    put_le<float>(c, 36, static_cast<float>(ch.horizontal_beam_angle_deg));
-    put_le<float>(c, 40, static_cast<float>(ch.tilt_deg));
-    put_le<float>(c, 44, static_cast<float>(ch.beam_width_deg));
-    put_le<std::uint8_t>(c, 74, f == io::xtf_sample_format::u8 ? 8 : f == io::xtf_sample_format::u16 ? 3 : 5);
-}
-
-/// The Weight N for integer samples: the largest with peak x 2^N <= the format's largest count.
-[[nodiscard]] inline int xtf_weight(const io::xtf_file& f) {
-    if (f.header.format == io::xtf_sample_format::f32) return 0;
-    double peak = 0.0;
-    for (const auto& p : f.pings) {
-        for (float v : p.port) peak = std::max(peak, double(v));
-        for (float v : p.starboard) peak = std::max(peak, double(v));
-    }
-    if (!(peak > 0.0)) return 0;
-    const double top = f.header.format == io::xtf_sample_format::u8 ? 255.0 : 65535.0;
-    return std::clamp(static_cast<int>(std::floor(std::log2(top / peak))), -32768, 32767);
-}
-
-} // namespace sss::detail
-
-namespace sss::io {
 
 /// The bytes of an XTF file (see the file comment). Throws invalid_parameter for samples that are not finite,
 /// negative samples in an integer format, or pings whose channels differ in length.

@@ -10,6 +10,7 @@
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 #include "sss/motion/concept.hpp"
+#include "sss/motion/detail/nominal_track.hpp"
 
 namespace sss::motion {
 
@@ -20,19 +21,6 @@ template <Real T> struct straight_line_params {
     T altitude_m = T(10);        ///< world z of the towfish (m): its altitude above a flat seabed at z = 0; > 0
     T ping_interval_s = T(0.1);  ///< time between pings (s), > 0
 };
-
-namespace detail {
-/// Validates the nominal track every motion policy shares (start_m, heading_deg, speed_mps, altitude_m,
-/// ping_interval_s), naming each field after `who`.
-template <class Params> void validate_nominal_track(const Params& p, const std::string& who) {
-    sss::require_finite(p.start_m.x, who + ".start_m.x");
-    sss::require_finite(p.start_m.y, who + ".start_m.y");
-    sss::require_finite(p.heading_deg, who + ".heading_deg");
-    sss::require_non_negative(p.speed_mps, who + ".speed_mps");
-    sss::require_positive(p.altitude_m, who + ".altitude_m");
-    sss::require_positive(p.ping_interval_s, who + ".ping_interval_s");
-}
-} // namespace detail
 
 template <Real T> class straight_line {
 public:

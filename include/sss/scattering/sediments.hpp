@@ -18,6 +18,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/scattering/detail/sediment_name.hpp"
 
 namespace sss::scattering {
 
@@ -118,23 +119,6 @@ template <Real T> [[nodiscard]] constexpr sediment_params<T> sediment_preset(sed
     }
     return all;
 }
-
-} // namespace sss::scattering
-
-namespace sss::detail {
-/// Lower case, with spaces, hyphens and slashes read as underscores ("Medium Sand" -> "medium_sand").
-inline std::string normalise_sediment_name(std::string_view name) {
-    std::string out;
-    out.reserve(name.size());
-    for (char ch : name) {
-        const auto u = static_cast<unsigned char>(ch);
-        out += (ch == ' ' || ch == '-' || ch == '/') ? '_' : static_cast<char>(std::tolower(u));
-    }
-    return out;
-}
-} // namespace sss::detail
-
-namespace sss::scattering {
 
 /// The Table 2 type with that name (canonical or alias; case, spaces and hyphens ignored).
 /// Throws invalid_parameter (parameter "sediment") naming the unknown name and listing the valid ones.

@@ -31,38 +31,12 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/cylinder.hpp"
+#include "sss/scene/detail/placement.hpp"
 #include "sss/scene/primitive.hpp"
+#include "sss/scene/rigid_transform.hpp"
 #include "sss/scene/sphere.hpp"
 
 namespace sss::scene {
-
-/// A rotation followed by a translation: world = rotation * local + translation_m.
-template <Real T> struct rigid_transform {
-    mat3<T> rotation{T(1)};  ///< proper rotation (orthonormal, determinant +1)
-    vec3<T> translation_m{}; ///< world position of the object frame's origin (m)
-
-    [[nodiscard]] vec3<T> point(const vec3<T>& local) const noexcept { return rotation * local + translation_m; }
-    [[nodiscard]] vec3<T> vector(const vec3<T>& local) const noexcept { return rotation * local; }
-};
-
-namespace detail {
-/// The placement R = Rz(theta) Ry(-pitch) Rx(roll) at `position_m`, theta counter-clockwise from east (all rad).
-template <Real T>
-[[nodiscard]] rigid_transform<T> placement_ccw_rad(const vec3<T>& position_m, T theta_rad = T(0), T pitch_rad = T(0),
-                                                   T roll_rad = T(0)) noexcept {
-    const T ch = std::cos(theta_rad), sh = std::sin(theta_rad);
-    const T cp = std::cos(pitch_rad), sp = std::sin(pitch_rad);
-    const T cr = std::cos(roll_rad), sr = std::sin(roll_rad);
-    // Columns are the images of the local axes (GLM: m[col][row]).
-    const vec3<T> ex{ch * cp, sh * cp, sp};                                  // local +x
-    const vec3<T> ey{-sh * cr - ch * sp * sr, ch * cr - sh * sp * sr, cp * sr}; // local +y
-    const vec3<T> ez = glm::cross(ex, ey);                                   // local +z
-    rigid_transform<T> x;
-    x.rotation = mat3<T>(ex, ey, ez);
-    x.translation_m = position_m;
-    return x;
-}
-} // namespace detail
 
 /// Where an object stands: its frame's origin and attitude (see the file comment).
 template <Real T> struct placement_params {

@@ -31,25 +31,10 @@
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/scene/detail/bvh_node.hpp"
 #include "sss/scene/object.hpp"
 
 namespace sss::scene {
-
-namespace detail {
-
-/// One node of the flattened hierarchy: an inner node's left child follows it, its right child is at
-/// `offset`; a leaf's primitives are items [offset, offset + count).
-template <Real T> struct bvh_node {
-    box<T> bounds;
-    std::uint32_t offset = 0;
-    std::uint32_t count = 0; ///< 0 for an inner node
-    std::uint32_t axis = 0;  ///< split axis of an inner node
-};
-
-/// Item tags: which primitive array, and the index in it.
-inline constexpr std::uint32_t cylinder_tag = 0x80000000u;
-
-} // namespace detail
 
 template <Real T> class object_set {
 public:

@@ -22,18 +22,12 @@
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/thread_pool.hpp"
+#include "sss/seabed/detail/complex_multiply.hpp"
 
 namespace sss::seabed {
 
 /// Sign of the exponent: forward exp(-i...), backward exp(+i...).
 enum class fft_direction : signed char { forward = -1, backward = +1 };
-
-namespace detail {
-/// Complex product written out: std::complex's operator* checks for NaN and infinity (C99 Annex G) and is slow.
-[[nodiscard]] inline std::complex<double> cmul(std::complex<double> a, std::complex<double> b) noexcept {
-    return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
-}
-} // namespace detail
 
 /// True for 1, 2, 4, 8, ...
 [[nodiscard]] constexpr bool is_power_of_two(std::size_t n) noexcept { return n != 0 && (n & (n - 1)) == 0; }
