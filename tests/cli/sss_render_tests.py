@@ -9,7 +9,7 @@ interrupt      SIGINT during the render: exit status 130, one line, no file left
 progress_tty   on a pseudo-terminal the progress is a redrawn bar with pings done, pings/s and ETA
 progress_plain without a terminal the progress is plain lines, the last one with every ping done
 """
-import os, pty, re, signal, subprocess, sys, tempfile, time
+import os, pty, re, signal, struct, subprocess, sys, tempfile, time
 
 exe, src, case = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
 cli = os.path.join(src, "tests", "cli")
@@ -75,6 +75,16 @@ elif case == "outputs":
         want = ["classes.txt", "small.json", "small.npy", "small.png", "small.txt", "small.xtf", "small_coco.json",
                 "small_labels_class.png", "small_labels_instance.png", "small_labels_legend.json"]
         check(r.returncode == 0 and files_in(os.path.join(d, "e")) == want, f"every product asked, and nothing else ({files_in(os.path.join(d, 'e'))}, {r.stderr})")
+        # With ground range, the label images come on the ground-range grid too, pixel for pixel with its PNG.
+        open(scene3, "w").write(everything.replace("label_images = true", "label_images = true\nground_range = true"))
+        r = run([scene3, "-o", os.path.join(d, "g")])
+        grounded = sorted(want + ["small_ground.png", "small_ground_labels_class.png", "small_ground_labels_instance.png",
+                                  "small_ground_labels_legend.json"])
+        check(r.returncode == 0 and files_in(os.path.join(d, "g")) == grounded, f"ground-range labels beside the ground-range image ({files_in(os.path.join(d, 'g'))}, {r.stderr})")
+        if r.returncode == 0:
+            size = lambda name: struct.unpack(">II", open(os.path.join(d, "g", name), "rb").read()[16:24])
+            check(size("small_ground.png") == size("small_ground_labels_class.png") == size("small_ground_labels_instance.png"),
+                  f"the ground-range labels have the ground-range image's size ({size('small_ground.png')}, {size('small_ground_labels_class.png')})")
         # A loaded seabed (ESRI ASCII, 0.5 m cells, a gentle slope), quantised counts and a ground-range image.
         with open(os.path.join(d, "bed.asc"), "w") as f:
             f.write("ncols 80\nnrows 80\nxllcorner 0\nyllcorner 0\ncellsize 0.5\n")

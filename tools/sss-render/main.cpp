@@ -11,6 +11,7 @@
 #include "scene_file/read.hpp"
 #include "scene_file/write.hpp"
 
+#include <sss/core/render_control.hpp>
 #include <sss/io/labels.hpp>
 #include <sss/io/npy.hpp>
 #include <sss/io/xtf.hpp>
@@ -74,27 +75,20 @@ private:
     std::size_t last_tenth_ = std::size_t(-1);
 };
 
-/// Pings [first, first + count) in chunks, so that progress shows and Ctrl-C stops between chunks.
+/// Pings [first, first + count) in one render; its progress callback draws the bar and stops the render at Ctrl-C
+/// (pings under way finish, nothing is kept).
 template <class Sim>
 sss::waterfall<sf::real> render(const Sim& sim, const sf::world& w, std::size_t first, std::size_t count, unsigned threads) {
-    sss::waterfall<sf::real> out;
     progress bar(count);
-    const std::size_t chunk = std::max<std::size_t>(4, 2 * std::size_t(threads));
-    for (std::size_t done = 0; done < count;) {
-        if (interrupted.load()) throw interrupted_error{};
-        const std::size_t n = std::min(chunk, count - done);
-        const auto part = sim.render(w, first + done, n, threads);
-        if (done == 0) {
-            out = part;
-            out.pings = count;
-            out.values.resize(count * part.width());
-        } else
-            std::copy(part.values.begin(), part.values.end(), out.values.begin() + std::ptrdiff_t(done * out.width()));
-        done += n;
-        bar.update(done);
+    try {
+        return sim.render(w, first, count,
+                          sss::render_control{.threads = threads, .progress = [&bar](const sss::render_progress& p) {
+                                                  bar.update(p.done);
+                                                  return !interrupted.load();
+                                              }});
+    } catch (const sss::render_cancelled&) {
+        throw interrupted_error{};
     }
-    if (interrupted.load()) throw interrupted_error{};
-    return out;
 }
 
 /// The files being written: each under a temporary name until `commit` renames them all.
@@ -237,6 +231,14 @@ int main(int argc, char** argv) {
         std::filesystem::create_directories(out_dir);
         output_set files(out_dir);
         const std::string& stem = d.out.stem;
+        // Each ping's altitude above the seabed under the towfish (XTF, ground range), and the ground-range cells per
+        // side that cover the slant range (the flat-bottom mapping of the waterfall and of the label images).
+        const auto tow_altitudes = [&] {
+            std::vector<double> altitude;
+            for (const auto& p : poses) altitude.push_back(double(p.position.z - w.seabed().seabed_height_m(p.position.x, p.position.y)));
+            return altitude;
+        };
+        const auto ground_cells = [&] { return std::size_t(std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m)); };
         if (d.out.png || d.out.ground_range) {
             // With the receiver's TVG the record is already compensated; without it the display compensates.
             sss::waterfall<double> shown{.pings = image.pings, .samples = image.samples, .dt_s = image.dt_s,
@@ -255,10 +257,8 @@ int main(int argc, char** argv) {
             };
             if (d.out.png) sss::io::write_png_grey8(files.add(stem + ".png"), image.width(), image.pings, grey(shown.values));
             if (d.out.ground_range) {
-                std::vector<double> altitude;
-                for (const auto& p : poses) altitude.push_back(double(p.position.z - w.seabed().seabed_height_m(p.position.x, p.position.y)));
-                const auto cells = std::size_t(std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m));
-                const auto ground = sss::to_ground_range(shown, altitude, d.sea.sound_speed_mps, d.out.ground_range_cell_m, cells);
+                const auto ground = sss::to_ground_range(shown, tow_altitudes(), d.sea.sound_speed_mps, d.out.ground_range_cell_m,
+                                                         ground_cells());
                 sss::io::write_png_grey8(files.add(stem + "_ground.png"), ground.width(), ground.pings, grey(ground.values));
             }
         }
@@ -268,8 +268,7 @@ int main(int argc, char** argv) {
                                                     {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps});
         }
         if (d.out.xtf) {
-            std::vector<double> altitude;
-            for (const auto& p : poses) altitude.push_back(double(p.position.z - w.seabed().seabed_height_m(p.position.x, p.position.y)));
+            const std::vector<double> altitude = tow_altitudes();
             sss::io::xtf_render_params xp{.start_unix_s = d.out.xtf_start_unix_s + double(first) * d.tow.ping_interval_s,
                                           .ping_interval_s = d.tow.ping_interval_s, .first_ping_number = std::uint32_t(first + 1),
                                           .sound_speed_mps = d.sea.sound_speed_mps,
@@ -294,8 +293,15 @@ int main(int argc, char** argv) {
                 sss::io::write_text(files.add(stem + ".txt"), sss::io::yolo_txt(labels, classes, box));
                 sss::io::write_text(files.add("classes.txt"), sss::io::yolo_classes_txt(classes));
             }
-            if (d.out.label_images)
+            if (d.out.label_images) {
                 sss::io::write_label_images(files.add_stem(stem + "_labels", {"_class.png", "_instance.png", "_legend.json"}), labels, classes);
+                if (d.out.ground_range) // pixel for pixel with stem_ground.png: the same altitudes, cell and width
+                    sss::io::write_label_images(files.add_stem(stem + "_ground_labels", {"_class.png", "_instance.png", "_legend.json"}),
+                                                sss::ground_range_labels(labels, tow_altitudes(), {.cell_m = d.out.ground_range_cell_m,
+                                                                                                      .cells = ground_cells(),
+                                                                                                      .sound_speed_mps = d.sea.sound_speed_mps}),
+                                                classes);
+            }
         }
         const auto written = files.commit();
         auto s = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
