@@ -48,12 +48,14 @@ if case == "broken":
 
 elif case == "roundtrip":
     with tempfile.TemporaryDirectory() as d:
-        for scene in [small, os.path.join(cli, "scenes", "primitives.toml"), os.path.join(cli, "scenes", "layered.toml"), os.path.join(src, "examples", "scenes", "demo.toml")]:
-            first = run([scene, "--dry-run"])
+        scenes = [small] + [os.path.join(cli, "scenes", n) for n in ["primitives.toml", "layered.toml", "planar.toml", "trajectory.toml"]]
+        for scene in scenes + [os.path.join(src, "examples", "scenes", "demo.toml")]:
+            # From the scene's directory: a relative file key (trajectory.toml's turn.csv) is read from there.
+            first = run([scene, "--dry-run"], cwd=os.path.dirname(scene))
             check(first.returncode == 0, f"{scene}: --dry-run succeeds ({first.stderr})")
             resolved = os.path.join(d, "resolved.toml")
             open(resolved, "w").write(first.stdout)
-            second = run([resolved, "--dry-run"])
+            second = run([resolved, "--dry-run"], cwd=os.path.dirname(scene))
             check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
             for key in ["threads =", "blend_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db ="]:
                 check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
