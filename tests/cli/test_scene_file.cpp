@@ -264,3 +264,21 @@ TEST_CASE("a trajectory file that cannot be read is a scene error naming the key
         CHECK(std::string(e.what()) == "s.toml: motion.trajectory_file: no_such_track.csv: cannot open for reading");
     }
 }
+
+TEST_CASE("the XTF beam angles of a uniform array are its two-way half-power widths: sinc^4 = 1/2 at pi L u / lambda = 1.0019") {
+    // Eight 5 cm elements edge to edge are one 0.4 m aperture, and one 2 cm element vertically: the two-way
+    // pattern is sinc^4(pi L u / lambda) (Kinsler et al., 2000, "Fundamentals of Acoustics", ch. 8), half power
+    // where sinc = 2^(-1/4), at pi L u / lambda = 1.0019; lambda = 1500 / 100000 m.
+    auto d = sss::scene_file::parse("[sonar]\nbeam = \"planar_array\"\n[sonar.transmit]\nalong_count = 8\nalong_element_m = 0.05\n"
+                                    "vertical_element_m = 0.02\n",
+                                    "s.toml");
+    const auto widths = sss::scene_file::widths_of(sss::scene_file::beam_of(d), d.sensor.depression_deg);
+    const double lambda = 0.015, y = 1.0019064, deg = 180.0 / 3.14159265358979323846;
+    CHECK(widths.along_deg == doctest::Approx(2.0 * std::asin(y * lambda / (3.14159265358979323846 * 0.4)) * deg).epsilon(1e-3));
+    CHECK(widths.vertical_deg == doctest::Approx(2.0 * std::asin(y * lambda / (3.14159265358979323846 * 0.02)) * deg).epsilon(1e-3));
+    // The ideal fan's widths are its own.
+    d.sensor.beam = "ideal_fan";
+    const auto fan = sss::scene_file::widths_of(sss::scene_file::beam_of(d), d.sensor.depression_deg);
+    CHECK(fan.along_deg == doctest::Approx(1.0));
+    CHECK(fan.vertical_deg == doctest::Approx(50.0));
+}

@@ -282,8 +282,9 @@ int main(int argc, char** argv) {
                                           .sound_speed_mps = d.sea.sound_speed_mps,
                                           .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
                                                      .longitude_deg = d.out.xtf_origin_longitude_deg}};
-            xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = d.sensor.along_width_deg,
-                              .beam_width_deg = d.sensor.vertical_width_deg, .tilt_deg = d.sensor.depression_deg};
+            const auto widths = sf::widths_of(sf::beam_of(d), d.sensor.depression_deg);
+            xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
+                              .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};
             xp.header.starboard = xp.header.port;
             sss::io::write_xtf(files.add(stem + ".xtf"), sss::io::make_xtf<sf::real>(image, poses, xp, altitude));
         }

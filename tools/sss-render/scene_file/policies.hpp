@@ -48,10 +48,40 @@ public:
     }
     /// The planar array held, or nullptr.
     [[nodiscard]] const array* planar() const noexcept { return std::get_if<array>(&b_); }
+    [[nodiscard]] const std::variant<fan, array>& held() const noexcept { return b_; }
 
 private:
     std::variant<fan, array> b_;
 };
+
+/// Full widths of a beam's two-way pattern at half power (-3 dB), for the XTF header's beam angles (deg).
+struct half_power_widths {
+    double along_deg = 0;    ///< along track, in the plane of the axis
+    double vertical_deg = 0; ///< in the tilted across-track plane, along = 0
+};
+
+/// The ideal fan's widths as given; the planar array's found from its weight: from the axis (along 0, depression
+/// `depression_deg`) outward in steps small against the main lobe, the first step below half power bisected.
+[[nodiscard]] inline half_power_widths widths_of(const scene_beam& b, double depression_deg) {
+    const auto* a = b.planar();
+    if (!a) {
+        const auto& p = std::get_if<scene_beam::fan>(&b.held())->params();
+        return {double(p.along_width_deg), double(p.vertical_width_deg)};
+    }
+    const double tilt = depression_deg * 3.14159265358979323846 / 180.0;
+    // The angle from the axis where the weight first falls below 1/2 along direction (da, de) (rad).
+    const auto half = [&](double da, double de, double step) {
+        const auto w = [&](double x) { return double(a->weight(side::starboard, float(x * da), float(tilt + x * de))); };
+        double lo = 0;
+        while (lo < 1.5707963267948966 && w(lo + step) >= 0.5) lo += step;
+        double hi = lo + step;
+        for (int k = 0; k < 60; ++k) (w(0.5 * (lo + hi)) >= 0.5 ? lo : hi) = 0.5 * (lo + hi);
+        return 0.5 * (lo + hi);
+    };
+    const double along_step = double(a->along_resolution_rad(side::starboard)) / 16.0;
+    const double to_deg = 180.0 / 3.14159265358979323846;
+    return {2.0 * half(1, 0, along_step) * to_deg, (half(0, 1, 1e-3) + half(0, -1, 1e-3)) * to_deg};
+}
 
 /// The towfish's motion a scene asks for: a perturbed track (straight line, turn, oscillations) or a trajectory
 /// sampled in a file.
