@@ -8,8 +8,8 @@
 #include "scene.hpp"
 
 #include <sss/io/height_field_io.hpp>
-#include <sss/io/trajectory_csv.hpp>
 #include <sss/io/sound_speed_profile.hpp>
+#include <sss/io/trajectory_csv.hpp>
 #include <sss/policies.hpp>
 #include <sss/receiver/echo_statistics.hpp>
 #include <sss/receiver/tvg.hpp>
@@ -333,20 +333,20 @@ template <class F> decltype(auto) with_simulator(const description& d, const wor
 
 /// with_simulator's second step: the scattering, for the water already chosen.
 template <class Water, class F> decltype(auto) with_water(const description& d, const scene_motion& tow, const Water& water, F&& f) {
-    const scene_beam fan = beam_of(d);
+    const scene_beam beam = beam_of(d);
     const auto rx = receiver_of(d);
     const auto regions = sediment_regions(d);
     if (d.sensor.scattering == "jackson") {
         const jackson_scattering scatter(
             sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
             sss::scattering::hard_target<real>{});
-        return f(simulator_of<jackson_scattering, Water>(scatter, water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
+        return f(simulator_of<jackson_scattering, Water>(scatter, water, beam, tow, rx, sss::ray_density{}, receiver_stages(d)));
     }
     std::vector<real> mu;
     if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
     for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
     mu.push_back(real(d.sensor.target_mu_db));
-    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, fan, tow, rx, sss::ray_density{},
+    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, beam, tow, rx, sss::ray_density{},
                                                      receiver_stages(d)));
 }
 

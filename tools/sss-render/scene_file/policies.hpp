@@ -11,6 +11,7 @@
 #include <sss/beam/concept.hpp>
 #include <sss/beam/ideal_fan.hpp>
 #include <sss/beam/planar_array.hpp>
+#include <sss/core/constants.hpp>
 #include <sss/motion/concept.hpp>
 #include <sss/motion/perturbed.hpp>
 #include <sss/motion/trajectory.hpp>
@@ -68,18 +69,18 @@ struct half_power_widths {
         const auto& p = std::get_if<scene_beam::fan>(&b.held())->params();
         return {double(p.along_width_deg), double(p.vertical_width_deg)};
     }
-    const double tilt = depression_deg * 3.14159265358979323846 / 180.0;
+    const double tilt = depression_deg * sss::pi_v<double> / 180.0;
     // The angle from the axis where the weight first falls below 1/2 along direction (da, de) (rad).
     const auto half = [&](double da, double de, double step) {
         const auto w = [&](double x) { return double(a->weight(side::starboard, float(x * da), float(tilt + x * de))); };
         double lo = 0;
-        while (lo < 1.5707963267948966 && w(lo + step) >= 0.5) lo += step;
+        while (lo < sss::half_pi_v<double> && w(lo + step) >= 0.5) lo += step;
         double hi = lo + step;
         for (int k = 0; k < 60; ++k) (w(0.5 * (lo + hi)) >= 0.5 ? lo : hi) = 0.5 * (lo + hi);
         return 0.5 * (lo + hi);
     };
     const double along_step = double(a->along_resolution_rad(side::starboard)) / 16.0;
-    const double to_deg = 180.0 / 3.14159265358979323846;
+    const double to_deg = 180.0 / sss::pi_v<double>;
     return {2.0 * half(1, 0, along_step) * to_deg, (half(0, 1, 1e-3) + half(0, -1, 1e-3)) * to_deg};
 }
 
