@@ -4,7 +4,8 @@
 broken         every scene in tests/cli/broken/ fails with exit status 1, one error line holding its expected
                fragment (file, line:column or key path, what is wrong), and writes no file
 roundtrip      --dry-run output, read again, prints the same resolved scene
-outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them)
+outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them);
+               a planar-array scene and a trajectory scene render, --pings beyond the trajectory is an error
 interrupt      SIGINT during the render: exit status 130, one line, no file left (not even a temporary one)
 progress_tty   on a pseudo-terminal the progress is a redrawn bar with pings done, pings/s and ETA
 progress_plain without a terminal the progress is plain lines, the last one with every ping done
@@ -48,12 +49,14 @@ if case == "broken":
 
 elif case == "roundtrip":
     with tempfile.TemporaryDirectory() as d:
-        for scene in [small, os.path.join(cli, "scenes", "primitives.toml"), os.path.join(cli, "scenes", "layered.toml"), os.path.join(src, "examples", "scenes", "demo.toml")]:
-            first = run([scene, "--dry-run"])
+        scenes = [small] + [os.path.join(cli, "scenes", n) for n in ["primitives.toml", "layered.toml", "planar.toml", "trajectory.toml"]]
+        for scene in scenes + [os.path.join(src, "examples", "scenes", "demo.toml")]:
+            # From the scene's directory: a relative file key (trajectory.toml's turn.csv) is read from there.
+            first = run([scene, "--dry-run"], cwd=os.path.dirname(scene))
             check(first.returncode == 0, f"{scene}: --dry-run succeeds ({first.stderr})")
             resolved = os.path.join(d, "resolved.toml")
             open(resolved, "w").write(first.stdout)
-            second = run([resolved, "--dry-run"])
+            second = run([resolved, "--dry-run"], cwd=os.path.dirname(scene))
             check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
             for key in ["threads =", "blend_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db ="]:
                 check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
@@ -99,6 +102,16 @@ elif case == "outputs":
         r = run([os.path.join(cli, "scenes", "primitives.toml"), "-o", os.path.join(d, "p")])
         boxes = open(os.path.join(d, "p", "prim.txt")).read().splitlines() if r.returncode == 0 else []
         check(len(boxes) == 2, f"the sphere and the cylinder each get a YOLO box ({boxes}, {r.stderr})")
+        # A planar array and a trajectory (its turn.csv relative to the scene's directory, the working directory).
+        scenes = os.path.join(cli, "scenes")
+        r = run(["planar.toml", "-o", os.path.join(d, "pa"), "--pings", "0:6"], cwd=scenes)
+        check(r.returncode == 0 and files_in(os.path.join(d, "pa")) == ["planar.png"], f"a planar-array scene renders ({r.stderr})")
+        r = run(["trajectory.toml", "-o", os.path.join(d, "tr"), "--pings", "95:101"], cwd=scenes)
+        check(r.returncode == 0 and files_in(os.path.join(d, "tr")) == ["turn.json", "turn.npy", "turn.png"],
+              f"a trajectory scene renders up to its last ping ({r.stderr})")
+        r = run(["trajectory.toml", "-o", os.path.join(d, "tx"), "--pings", "95:102"], cwd=scenes)
+        check(r.returncode == 1 and "--pings 95:102 reaches ping 101" in r.stderr and "covers 101 pings (0 to 100)" in r.stderr
+              and files_in(os.path.join(d, "tx")) == [], f"--pings beyond the trajectory is one error naming the count ({r.stderr})")
         text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
         scene2 = os.path.join(d, "other.toml")
         open(scene2, "w").write(text)

@@ -1,6 +1,7 @@
 // A scene file and the equivalent C++ program render bit-identical waterfalls: the scene file is a front door
 // to the library, not a second model. tests/cli/scenes/small.toml is written out here by hand, with the
-// library's parameter structs, and both are rendered for a few pings.
+// library's parameter structs, and both are rendered for a few pings; so are planar.toml (a planar array) and
+// trajectory.toml (a sampled track), whose beam and motion sss-render holds in run-time policies.
 
 #include <doctest/doctest.h>
 
@@ -16,8 +17,10 @@
 #include <sss/seabed/targets.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -50,6 +53,16 @@ auto hand_written_world() {
 }
 
 std::string small_scene_path() { return std::string(SSS_SOURCE_DIR) + "/tests/cli/scenes/small.toml"; }
+std::string scene_path(const char* name) { return std::string(SSS_SOURCE_DIR) + "/tests/cli/scenes/" + name; }
+
+bool bit_identical(const sss::waterfall<T>& a, const sss::waterfall<T>& b) {
+    return a.values.size() == b.values.size() && std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(T)) == 0;
+}
+double energy_of(const sss::waterfall<T>& w) {
+    double e = 0;
+    for (T v : w.values) e += double(v);
+    return e;
+}
 
 } // namespace
 
@@ -132,4 +145,140 @@ TEST_CASE("receiver.speckle keeps the mean power of the seabed within 10 % over 
     }
     CHECK(differ > mean.values.size() / 4); // speckle touches every sample that has an echo
     CHECK(b / a == doctest::Approx(1.0).epsilon(0.1));
+}
+
+TEST_CASE("a planar-array scene file renders what sss::beam::planar_array renders, bit for bit") {
+    const auto d = sss::scene_file::parse_file(scene_path("planar.toml"));
+    const auto w = sss::scene_file::make_world(d);
+    const T z = w.seabed().seabed_height_m(T(25.5), T(8)) + T(6);
+    namespace bm = sss::beam;
+    const bm::planar_array<T> array({.frequency_hz = T(100000), .sound_speed_mps = T(1500), .depression_deg = T(20),
+                                     .transmit = {.along = {.count = 4, .element_m = T(0.05), .pitch_m = T(0.05)},
+                                                  .vertical = {.count = 1, .element_m = T(0.02)}},
+                                     .receive = bm::array_layout<T>{.along = {.count = 4, .element_m = T(0.05), .pitch_m = T(0.05),
+                                                                              .shading = {T(0.5), T(1), T(1), T(0.5)}},
+                                                                    .vertical = {.count = 1, .element_m = T(0.03)}},
+                                     .threshold_db = T(-40)});
+    const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, bm::planar_array<T>, sss::motion::perturbed<T>>
+        sim(sss::scattering::lambertian<T>({.mu_db = {T(-27), T(-8)}}),
+            sss::propagation::straight<T>({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)}), array,
+            sss::motion::perturbed<T>({.start_m = {T(25.5), T(8)}, .heading_deg = T(0), .speed_mps = T(1), .altitude_m = z,
+                                       .ping_interval_s = T(0.1)}),
+            sss::receiver_params{.sample_rate_hz = 20000, .max_range_m = 25});
+    const auto expected = sim.render(w, 0, 4, 1);
+    const auto got = sss::scene_file::with_simulator(d, w, [&](const auto& s) {
+        // The scene's beam states the array's along-track step (a third of lambda / L), so it launches as many columns.
+        const auto sd = sss::side::starboard;
+        CHECK(s.beam().along_resolution_rad(sd) == doctest::Approx(1500.0 / 100000.0 / 0.2 / 3.0).epsilon(1e-5));
+        CHECK(s.along_columns(s.beam().extent(sd), sd) == sim.along_columns(array.extent(sd), sd));
+        return s.render(w, 0, 4, 1);
+    });
+    CHECK(bit_identical(got, expected));
+    CHECK(energy_of(got) > 0.0);
+}
+
+TEST_CASE("a trajectory scene file renders what sss::motion::trajectory renders, bit for bit, and turns with it") {
+    // A starboard turn, a sixth of a 20 m circle in 10 s, sampled once a second, written to the scratch directory.
+    sss::motion::trajectory_samples<T> samples;
+    std::string csv = "time_s,x_m,y_m,z_m\n";
+    const auto text = [](double v) {
+        char buf[32];
+        return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+    };
+    for (int i = 0; i <= 10; ++i) {
+        const double phi = 3.14159265358979323846 / 3.0 * double(i) / 10.0;
+        const double x = 45.0 - 20.0 * std::cos(phi), y = 5.0 + 20.0 * std::sin(phi);
+        samples.time_s.push_back(double(i));
+        samples.position_m.push_back({T(x), T(y), T(6)});
+        csv += text(double(i)) + "," + text(x) + "," + text(y) + ",6\n";
+    }
+    std::ofstream("turn_scratch.csv") << csv;
+    auto d = sss::scene_file::parse_file(scene_path("trajectory.toml"));
+    d.tow.trajectory_file = "turn_scratch.csv";
+    const auto w = sss::scene_file::make_world(d);
+    const sss::motion::trajectory<T> track(samples, {.ping_interval_s = T(0.1), .method = sss::motion::interpolation::cubic});
+    REQUIRE(track.ping_count() == 101);
+    const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>, sss::motion::trajectory<T>>
+        sim(sss::scattering::lambertian<T>({.mu_db = {T(-27), T(-20), T(-8)}}),
+            sss::propagation::straight<T>({.sound_speed_mps = T(1500), .absorption_db_per_km = T(30)}),
+            sss::beam::ideal_fan<T>({.along_width_deg = T(1), .vertical_width_deg = T(50), .depression_deg = T(20)}), track,
+            sss::receiver_params{.sample_rate_hz = 20000, .max_range_m = 25});
+    const auto expected = sim.render(w, 60, 4, 1);
+    double end_heading_deg = 0;
+    const auto got = sss::scene_file::with_simulator(d, w, [&](const auto& s) {
+        end_heading_deg = double(s.motion().pose_at(100).yaw_rad) * 180.0 / 3.14159265358979323846;
+        return s.render(w, 60, 4, 1);
+    });
+    CHECK(bit_identical(got, expected));
+    CHECK(energy_of(got) > 0.0);
+    // The heading follows the track's tangent: 60 deg of starboard turn after 10 s (the samples are exact).
+    CHECK(end_heading_deg == doctest::Approx(60.0).epsilon(1e-3));
+}
+
+TEST_CASE("the planar array's and the trajectory's keys read back from the resolved scene unchanged") {
+    for (const char* name : {"planar.toml", "trajectory.toml"}) {
+        auto d = sss::scene_file::parse_file(scene_path(name));
+        d.tow.ping_zero_at = 0.5;
+        const std::string text = sss::scene_file::to_toml(d);
+        const auto again = sss::scene_file::parse(text, "resolved.toml");
+        CHECK(sss::scene_file::to_toml(again) == text);
+        if (d.sensor.beam == "planar_array") {
+            REQUIRE(again.sensor.receive);
+            CHECK(again.sensor.receive->along.shading == std::vector<double>{0.5, 1, 1, 0.5});
+            CHECK(again.sensor.transmit.along.pitch_m == 0.05); // defaults to the element length
+        } else {
+            CHECK(again.tow.model == "trajectory");
+            CHECK(again.tow.ping_zero_at == 0.5);
+        }
+    }
+}
+
+TEST_CASE("the planar array's elements and the trajectory's keys are rejected where they cannot apply, naming the key") {
+    const auto error_of = [](const std::string& text) {
+        try {
+            (void)sss::scene_file::parse(text, "s.toml");
+        } catch (const sss::scene_file::scene_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK(error_of("[sonar.transmit]\nalong_count = 2\n") ==
+          "s.toml:1:1: sonar.transmit: needs beam = \"planar_array\" (the ideal fan has no elements; its keys are along_width_deg, "
+          "vertical_width_deg and depression_deg)");
+    CHECK(error_of("[sonar]\nbeam = \"planar_array\"\n[sonar.transmit]\nalong_count = 3\nalong_element_m = 0.1\nalong_pitch_m = 0.05\n")
+              .find("sonar.transmit.along_pitch_m: must be at least along_element_m (0.1 m)") != std::string::npos);
+    CHECK(error_of("[sonar]\nbeam = \"planar_array\"\n[sonar.receive]\nalong_count = 3\nalong_shading = [1, 1]\n")
+              .find("sonar.receive.along_shading: must hold one weight per element (along_count = 3), got 2") != std::string::npos);
+    CHECK(error_of("[motion]\ntrajectory_file = \"t.csv\"\n").find("motion.trajectory_file: needs model = \"trajectory\"") !=
+          std::string::npos);
+    CHECK(error_of("[motion]\nmodel = \"trajectory\"\n").find("motion.model: a trajectory needs motion.trajectory_file") !=
+          std::string::npos);
+}
+
+TEST_CASE("a trajectory file that cannot be read is a scene error naming the key and the file") {
+    auto d = sss::scene_file::parse("[motion]\nmodel = \"trajectory\"\ntrajectory_file = \"no_such_track.csv\"\n", "s.toml");
+    try {
+        (void)sss::scene_file::motion_of(d, T(10));
+        FAIL("no error");
+    } catch (const sss::scene_file::scene_error& e) {
+        CHECK(std::string(e.what()) == "s.toml: motion.trajectory_file: no_such_track.csv: cannot open for reading");
+    }
+}
+
+TEST_CASE("the XTF beam angles of a uniform array are its two-way half-power widths: sinc^4 = 1/2 at pi L u / lambda = 1.0019") {
+    // Eight 5 cm elements edge to edge are one 0.4 m aperture, and one 2 cm element vertically: the two-way
+    // pattern is sinc^4(pi L u / lambda) (Kinsler et al., 2000, "Fundamentals of Acoustics", ch. 8), half power
+    // where sinc = 2^(-1/4), at pi L u / lambda = 1.0019; lambda = 1500 / 100000 m.
+    auto d = sss::scene_file::parse("[sonar]\nbeam = \"planar_array\"\n[sonar.transmit]\nalong_count = 8\nalong_element_m = 0.05\n"
+                                    "vertical_element_m = 0.02\n",
+                                    "s.toml");
+    const auto widths = sss::scene_file::widths_of(sss::scene_file::beam_of(d), d.sensor.depression_deg);
+    const double lambda = 0.015, y = 1.0019064, deg = 180.0 / 3.14159265358979323846;
+    CHECK(widths.along_deg == doctest::Approx(2.0 * std::asin(y * lambda / (3.14159265358979323846 * 0.4)) * deg).epsilon(1e-3));
+    CHECK(widths.vertical_deg == doctest::Approx(2.0 * std::asin(y * lambda / (3.14159265358979323846 * 0.02)) * deg).epsilon(1e-3));
+    // The ideal fan's widths are its own.
+    d.sensor.beam = "ideal_fan";
+    const auto fan = sss::scene_file::widths_of(sss::scene_file::beam_of(d), d.sensor.depression_deg);
+    CHECK(fan.along_deg == doctest::Approx(1.0));
+    CHECK(fan.vertical_deg == doctest::Approx(50.0));
 }

@@ -198,7 +198,13 @@ int main(int argc, char** argv) {
                                                      : ping_range(pings_arg, std::size_t(d.run.pings));
         const std::size_t count = last - first;
         const sf::extent e = d.bed.file.empty() ? sf::extent_of(d) : sf::extent_of(sf::load_seabed(d));
-        const auto problems = sf::swath_problems(d, e, first, count);
+        // The track at the scene's altitude (a trajectory: its own z), for the ping count and the coverage.
+        const sf::scene_motion track = sf::motion_of(d, sf::real(d.tow.altitude_m));
+        if (const auto beyond = sf::pings_beyond(d, track, last, pings_arg.empty() ? "render.pings = " + std::to_string(d.run.pings)
+                                                                                   : "--pings " + pings_arg);
+            !beyond.empty())
+            throw sss::scene_file::scene_error(scene_path + ": " + beyond);
+        const auto problems = sf::swath_problems(d, e, track, first, count);
         if (dry_run) {
             std::fputs(sf::to_toml(d).c_str(), stdout);
             for (const auto& p : problems) std::fprintf(stderr, "sss-render: %s: coverage: %s\n", scene_path.c_str(), p.c_str());
@@ -209,13 +215,14 @@ int main(int argc, char** argv) {
 
         const auto t0 = std::chrono::steady_clock::now();
         const sf::world w = sf::make_world(d);
-        if (const sf::real z = sf::tow_z(d, w); !(z > 0))
+        const bool sampled = d.tow.model == "trajectory";
+        if (const sf::real z = sf::tow_z(d, w); !sampled && !(z > 0))
             throw sss::scene_file::scene_error(scene_path + ": motion.altitude_m: the towfish's world z (" +
                                                sf::detail::table_reader::fmt(z) +
                                                " m) must be > 0: the motion policies keep the towfish above z = 0; "
                                                "raise the seabed (mean_height_m) so that it lies above -altitude_m");
-        if (const auto below = sf::below_seabed(d, w, first, count); !below.empty())
-            throw sss::scene_file::scene_error(scene_path + ": motion.altitude_m: " + below);
+        if (const auto below = sf::below_seabed(w, sampled ? track : sf::motion_of(d, sf::tow_z(d, w)), first, count); !below.empty())
+            throw sss::scene_file::scene_error(scene_path + (sampled ? ": motion.trajectory_file: " : ": motion.altitude_m: ") + below);
         const auto t1 = std::chrono::steady_clock::now();
         std::vector<sss::pose<sf::real>> poses;
         const bool want_labels = d.out.coco || d.out.yolo || d.out.label_images;
@@ -274,8 +281,9 @@ int main(int argc, char** argv) {
                                           .sound_speed_mps = d.sea.sound_speed_mps,
                                           .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
                                                      .longitude_deg = d.out.xtf_origin_longitude_deg}};
-            xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = d.sensor.along_width_deg,
-                              .beam_width_deg = d.sensor.vertical_width_deg, .tilt_deg = d.sensor.depression_deg};
+            const auto widths = sf::widths_of(sf::beam_of(d), d.sensor.depression_deg);
+            xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
+                              .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};
             xp.header.starboard = xp.header.port;
             sss::io::write_xtf(files.add(stem + ".xtf"), sss::io::make_xtf<sf::real>(image, poses, xp, altitude));
         }

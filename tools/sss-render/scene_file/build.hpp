@@ -3,11 +3,13 @@
 /// From a resolved `description` to the library's objects: the seabed (generated or loaded), the objects laid
 /// on it, and the simulator, chosen among the compiled instantiations listed once in `with_simulator`.
 
+#include "policies.hpp"
 #include "read.hpp"
 #include "scene.hpp"
 
 #include <sss/io/height_field_io.hpp>
 #include <sss/io/sound_speed_profile.hpp>
+#include <sss/io/trajectory_csv.hpp>
 #include <sss/policies.hpp>
 #include <sss/receiver/echo_statistics.hpp>
 #include <sss/receiver/tvg.hpp>
@@ -176,14 +178,57 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
             .source_level_db = s.source_level_db};
 }
 
-/// World z of the towfish: altitude_m above the seabed under start_m.
+/// World z of the perturbed motion's towfish: altitude_m above the seabed under start_m.
 [[nodiscard]] inline real tow_z(const description& d, const world& w) {
     return w.seabed().seabed_height_m(real(d.tow.start_m[0]), real(d.tow.start_m[1])) + real(d.tow.altitude_m);
 }
 
-/// The towfish's motion at world z `z_m`: a straight line, turns and oscillations all in `perturbed`.
-[[nodiscard]] inline sss::motion::perturbed<real> motion_of(const description& d, real z_m) {
+/// The beam: the ideal fan, or the planar array of `[sonar.transmit]` (and `[sonar.receive]`) at the sonar's
+/// frequency, the water's sound speed and the sonar's depression.
+[[nodiscard]] inline scene_beam beam_of(const description& d) {
+    const auto& s = d.sensor;
+    if (s.beam == "planar_array") {
+        const auto axis = [](const array_axis& a) {
+            return sss::beam::array_axis<real>{.count = std::size_t(a.count), .element_m = real(a.element_m), .pitch_m = real(a.pitch_m),
+                                               .shading = std::vector<real>(a.shading.begin(), a.shading.end())};
+        };
+        const auto layout = [&](const array_layout& a) {
+            return sss::beam::array_layout<real>{.along = axis(a.along), .vertical = axis(a.vertical)};
+        };
+        sss::beam::planar_array_params<real> p{.frequency_hz = real(s.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps),
+                                               .depression_deg = real(s.depression_deg), .transmit = layout(s.transmit),
+                                               .receive = std::nullopt, .threshold_db = real(s.beam_threshold_db)};
+        if (s.receive) p.receive = layout(*s.receive);
+        return scene_beam(sss::beam::planar_array<real>(p));
+    }
+    return scene_beam(sss::beam::ideal_fan<real>({.along_width_deg = real(s.along_width_deg),
+                                                  .vertical_width_deg = real(s.vertical_width_deg),
+                                                  .depression_deg = real(s.depression_deg)}));
+}
+
+/// The trajectory of `motion.trajectory_file` (a relative path: from the working directory). A file that cannot
+/// be read is a scene_error naming the scene, the key and the file's own message (with its line).
+[[nodiscard]] inline sss::motion::trajectory<real> load_trajectory(const description& d) {
     const auto& m = d.tow;
+    sss::motion::trajectory_params<real> p{.ping_interval_s = real(m.ping_interval_s),
+                                           .ping_zero_at = m.ping_zero_at.value_or(std::numeric_limits<double>::quiet_NaN()),
+                                           .method = m.interpolation == "linear" ? sss::motion::interpolation::linear
+                                                                                 : sss::motion::interpolation::cubic,
+                                           .roll_from_turn = m.roll_from_turn};
+    try {
+        return sss::motion::trajectory<real>(sss::io::read_trajectory_csv<real>(m.trajectory_file), p);
+    } catch (const sss::error& e) {
+        std::string what = e.what();
+        if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
+        throw scene_error(d.path + ": motion.trajectory_file: " + what);
+    }
+}
+
+/// The towfish's motion: with model "trajectory" the file's (world z from the file; `z_m` unused), else
+/// `perturbed` at world z `z_m` (a straight line, turns and oscillations all in one policy).
+[[nodiscard]] inline scene_motion motion_of(const description& d, real z_m) {
+    const auto& m = d.tow;
+    if (m.model == "trajectory") return scene_motion(load_trajectory(d));
     const auto wobble = [](const oscillation& o) {
         return sss::motion::oscillation<real>{.amplitude = real(o.amplitude), .period_s = real(o.period_s), .phase_deg = real(o.phase_deg)};
     };
@@ -194,7 +239,25 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
     if (m.turn != "none")
         p.turn = sss::motion::constant_turn<real>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
                                                   .radius_m = real(m.turn_radius_m), .rate_deg_s = real(m.turn_rate_deg_s)};
-    return sss::motion::perturbed<real>(p);
+    return scene_motion(sss::motion::perturbed<real>(p));
+}
+
+/// World z of the towfish at ping 0, where the layered water's surface is placed from: tow_z, or with a
+/// trajectory the z of its ping 0.
+[[nodiscard]] inline real ping0_z(const description& d, const world& w, const scene_motion& tow) {
+    if (d.tow.model == "trajectory") return tow.pose_at(0).position.z;
+    return tow_z(d, w);
+}
+
+/// The pings [first, last) checked against the trajectory's pings; "" when they all have a pose, else the
+/// sentence of the scene_error: `asked` names the setting that asked for them (render.pings or --pings A:B).
+[[nodiscard]] inline std::string pings_beyond(const description& d, const scene_motion& tow, std::size_t last, const std::string& asked) {
+    const std::size_t n = tow.ping_count();
+    if (last <= n) return "";
+    const bool by_time = tow.sampled() && !tow.sampled()->keyed_by_ping();
+    return asked + " reaches ping " + std::to_string(last - 1) + ", but motion.trajectory_file '" + d.tow.trajectory_file + "' covers " +
+           std::to_string(n) + " pings (0 to " + std::to_string(n - 1) + ")" +
+           (by_time ? " at motion.ping_interval_s = " + detail::table_reader::fmt(d.tow.ping_interval_s) + " s" : std::string());
 }
 
 /// The receiver's stages chosen at run time: echo statistics (speckle, noise, volume reverberation), then TVG,
@@ -234,18 +297,21 @@ private:
 
 // ---------------------------------------------------------------------------------------------
 // The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
-// float x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water x ideal fan x perturbed motion
-// (a straight line, a turn, oscillations: one policy, so one instantiation, for all three).
+// float x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water x scene_beam x scene_motion.
+// The beam and the motion are run-time choices (policies.hpp): scene_beam holds the ideal fan or the planar
+// array, scene_motion the perturbed track (a straight line, a turn, oscillations) or a sampled trajectory, so
+// they add no instantiation: four simulator types serve every beam and motion.
 using policy = sss::policies<real>;
 template <class Scattering, class Propagation>
-using simulator_of = sss::simulator<Scattering, Propagation, policy::ideal_fan, policy::perturbed, receiver_stages>;
+using simulator_of = sss::simulator<Scattering, Propagation, scene_beam, scene_motion, receiver_stages>;
 using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
 
 
-template <class Water, class F> decltype(auto) with_water(const description& d, const world& w, const Water& water, F&& f);
+template <class Water, class F> decltype(auto) with_water(const description& d, const scene_motion& tow, const Water& water, F&& f);
 
 /// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
 template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
+    const scene_motion tow = motion_of(d, tow_z(d, w));
     if (d.sea.model == "layered") {
         auto profile = d.sea.svp_file.empty()
                            ? sss::propagation::sound_speed_profile<real>(std::vector<real>(d.sea.depth_m.begin(), d.sea.depth_m.end()),
@@ -253,37 +319,34 @@ template <class F> decltype(auto) with_simulator(const description& d, const wor
                            : sss::io::read_sound_speed_csv<real>(d.sea.svp_file);
         const sss::propagation::layered<real> water(
             std::move(profile),
-            {.surface_z_m = tow_z(d, w) + real(d.sea.towfish_depth_m), .frequency_hz = real(d.sensor.frequency_hz),
+            {.surface_z_m = ping0_z(d, w, tow) + real(d.sea.towfish_depth_m), .frequency_hz = real(d.sensor.frequency_hz),
              .water = {.temperature_c = real(d.sea.temperature_c), .salinity_ppt = real(d.sea.salinity_ppt), .ph = real(d.sea.ph)},
              .absorption = d.sea.absorption_model == "ainslie_mccolm" ? sss::propagation::absorption_formula::ainslie_mccolm
                                                                       : sss::propagation::absorption_formula::francois_garrison,
              .reference_speed_mps = real(d.sea.sound_speed_mps)});
-        return with_water(d, w, water, std::forward<F>(f));
+        return with_water(d, tow, water, std::forward<F>(f));
     }
     const sss::propagation::straight<real> water(
         {.sound_speed_mps = real(d.sea.sound_speed_mps), .absorption_db_per_km = real(d.sea.absorption_db_per_km)});
-    return with_water(d, w, water, std::forward<F>(f));
+    return with_water(d, tow, water, std::forward<F>(f));
 }
 
 /// with_simulator's second step: the scattering, for the water already chosen.
-template <class Water, class F> decltype(auto) with_water(const description& d, const world& w, const Water& water, F&& f) {
-    const sss::beam::ideal_fan<real> fan({.along_width_deg = real(d.sensor.along_width_deg),
-                                     .vertical_width_deg = real(d.sensor.vertical_width_deg),
-                                     .depression_deg = real(d.sensor.depression_deg)});
-    const auto tow = motion_of(d, tow_z(d, w));
+template <class Water, class F> decltype(auto) with_water(const description& d, const scene_motion& tow, const Water& water, F&& f) {
+    const scene_beam beam = beam_of(d);
     const auto rx = receiver_of(d);
     const auto regions = sediment_regions(d);
     if (d.sensor.scattering == "jackson") {
         const jackson_scattering scatter(
             sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
             sss::scattering::hard_target<real>{});
-        return f(simulator_of<jackson_scattering, Water>(scatter, water, fan, tow, rx, sss::ray_density{}, receiver_stages(d)));
+        return f(simulator_of<jackson_scattering, Water>(scatter, water, beam, tow, rx, sss::ray_density{}, receiver_stages(d)));
     }
     std::vector<real> mu;
     if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
     for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
     mu.push_back(real(d.sensor.target_mu_db));
-    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, fan, tow, rx, sss::ray_density{},
+    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, beam, tow, rx, sss::ray_density{},
                                                      receiver_stages(d)));
 }
 

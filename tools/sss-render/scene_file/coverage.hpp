@@ -27,13 +27,15 @@ struct extent {
     return {x0, y0, x0 + double(h.nx() - 1) * c, y0 + double(h.ny() - 1) * c};
 }
 
-/// The problems of pings [first, first + count): each a sentence naming the ping and the edge. Planar
-/// geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side of the track.
-[[nodiscard]] inline std::vector<std::string> swath_problems(const description& d, const extent& e, std::size_t first, std::size_t count) {
+/// The problems of pings [first, first + count) of motion `tow` (motion_of(d, altitude_m)): each a sentence
+/// naming the ping and the edge. Planar geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side
+/// of the track; the altitude is altitude_m, or with a trajectory each checked ping's z (a seabed near z = 0).
+[[nodiscard]] inline std::vector<std::string> swath_problems(const description& d, const extent& e, const scene_motion& tow,
+                                                             std::size_t first, std::size_t count) {
     std::vector<std::string> out;
-    const auto tow = motion_of(d, real(d.tow.altitude_m));
-    const double alt = d.tow.altitude_m, r = d.sensor.max_range_m;
-    const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
+    const bool sampled = d.tow.model == "trajectory";
+    const double r = d.sensor.max_range_m;
+    double alt = d.tow.altitude_m;
     auto check = [&](std::size_t ping, const char* what, double x, double y) {
         std::string edges;
         if (x < e.west_m - 1e-9) edges += " west by " + detail::table_reader::fmt(e.west_m - x) + " m";
@@ -44,6 +46,8 @@ struct extent {
     };
     for (std::size_t ping : {first, first + count / 2, first + count - 1}) {
         const auto pose = tow.nominal_pose_at(ping);
+        if (sampled) alt = pose.position.z;
+        const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
         const double x = pose.position.x, y = pose.position.y;
         const auto f = pose.to_world({real(1), real(0), real(0)});
         const double fl = std::hypot(double(f.x), double(f.y));
@@ -58,8 +62,7 @@ struct extent {
 }
 
 /// The pings among [first, first + count) where the towfish is at or below the seabed (the first one), or "".
-[[nodiscard]] inline std::string below_seabed(const description& d, const world& w, std::size_t first, std::size_t count) {
-    const auto tow = motion_of(d, tow_z(d, w));
+[[nodiscard]] inline std::string below_seabed(const world& w, const scene_motion& tow, std::size_t first, std::size_t count) {
     for (std::size_t ping = first; ping < first + count; ++ping) {
         const auto pose = tow.pose_at(ping);
         const real z = pose.position.z;

@@ -298,6 +298,42 @@ private:
     std::set<std::string> seen_;
 };
 
+/// One axis of a planar array: `<axis>_count`, `<axis>_element_m`, `<axis>_pitch_m` (default the element
+/// length: elements edge to edge) and `<axis>_shading` (one weight per element, or empty: uniform).
+inline void read_array_axis(table_reader& t, const std::string& axis, array_axis& a) {
+    const std::string count = axis + "_count", element = axis + "_element_m", pitch = axis + "_pitch_m", shading = axis + "_shading";
+    t.integer(count, a.count, 1);
+    if (a.count > 65536) t.fail(count, "must be at most 65536, got " + std::to_string(a.count));
+    t.positive(element, a.element_m);
+    a.pitch_m = a.element_m;
+    t.positive(pitch, a.pitch_m);
+    if (a.count > 1 && !(a.pitch_m >= a.element_m))
+        t.fail(pitch, "must be at least " + element + " (" + table_reader::fmt(a.element_m) + " m): elements cannot overlap");
+    if (const auto* n = t.node(shading)) {
+        const auto* list = n->as_array();
+        if (!list) t.fail(shading, "must be an array of numbers (one weight per element), or [] for uniform");
+        a.shading.clear();
+        double sum = 0;
+        for (const auto& e : *list) {
+            const auto v = e.value<double>();
+            if (!e.is_number() || !v || !std::isfinite(*v) || *v < 0) t.fail(shading, "each weight must be a finite number >= 0");
+            a.shading.push_back(*v);
+            sum += *v;
+        }
+        if (!a.shading.empty() && a.shading.size() != std::size_t(a.count))
+            t.fail(shading, "must hold one weight per element (" + count + " = " + std::to_string(a.count) + "), got " +
+                                std::to_string(a.shading.size()));
+        if (!a.shading.empty() && !(sum > 0)) t.fail(shading, "the weights must not all be 0");
+    }
+}
+
+/// A transmit or receive array table (`[sonar.transmit]`, `[sonar.receive]`): an along and a vertical axis.
+inline void read_array_layout(table_reader t, array_layout& a) {
+    read_array_axis(t, "along", a.along);
+    read_array_axis(t, "vertical", a.vertical);
+    t.finish();
+}
+
 } // namespace detail
 
 /// The scene in TOML text `text`, read as if from file `file` (its name is used in messages).
@@ -513,7 +549,7 @@ private:
         auto s = top.sub("sonar");
         auto& o = d.sensor;
         s.choice("scattering", o.scattering, {"lambertian", "jackson"});
-        s.choice("beam", o.beam, {"ideal_fan"});
+        s.choice("beam", o.beam, {"ideal_fan", "planar_array"});
         s.positive("frequency_hz", o.frequency_hz);
         s.number("target_mu_db", o.target_mu_db);
         s.in_range("along_width_deg", o.along_width_deg, 1e-6, 179.999);
@@ -527,11 +563,37 @@ private:
         s.non_negative("pulse_bandwidth_hz", o.pulse_bandwidth_hz);
         if (o.pulse_shape == "lfm" && o.pulse_bandwidth_hz * o.pulse_length_s < 1)
             s.fail("pulse_bandwidth_hz", "an lfm pulse needs pulse_bandwidth_hz x pulse_length_s >= 1");
+        if (o.beam == "planar_array") {
+            s.number("beam_threshold_db", o.beam_threshold_db);
+            if (!(o.beam_threshold_db < 0))
+                s.fail("beam_threshold_db", "must be < 0 dB, got " + detail::table_reader::fmt(o.beam_threshold_db));
+            detail::read_array_layout(s.sub("transmit"), o.transmit);
+            if (s.table().get("receive")) detail::read_array_layout(s.sub("receive"), o.receive.emplace());
+        } else {
+            for (const char* key : {"transmit", "receive", "beam_threshold_db"})
+                if (s.table().get(key))
+                    s.fail(key, "needs beam = \"planar_array\" (the ideal fan has no elements; its keys are along_width_deg, "
+                                "vertical_width_deg and depression_deg)");
+        }
         s.finish();
     }
     {
         auto m = top.sub("motion");
         auto& o = d.tow;
+        m.choice("model", o.model, {"perturbed", "trajectory"});
+        if (o.model == "trajectory") {
+            m.string("trajectory_file", o.trajectory_file);
+            if (o.trajectory_file.empty())
+                m.fail(m.table().get("trajectory_file") ? "trajectory_file" : "model",
+                       "a trajectory needs motion.trajectory_file (a CSV with time or ping, x, y, z columns)");
+            m.choice("interpolation", o.interpolation, {"cubic", "linear"});
+            if (m.table().get("ping_zero_at")) m.number("ping_zero_at", o.ping_zero_at.emplace());
+            m.boolean("roll_from_turn", o.roll_from_turn);
+        } else {
+            for (const char* key : {"trajectory_file", "interpolation", "ping_zero_at", "roll_from_turn"})
+                if (m.table().get(key)) m.fail(key, "needs model = \"trajectory\" (the perturbed motion takes start_m, heading_deg, ...)");
+        }
+        // The perturbed motion's keys: read (and checked) under both models, used only by perturbed.
         m.point("start_m", o.start_m);
         m.number("heading_deg", o.heading_deg);
         m.non_negative("speed_mps", o.speed_mps);

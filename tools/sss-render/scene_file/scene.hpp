@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,9 +92,23 @@ struct water {
     double temperature_c = 10, salinity_ppt = 35, ph = 8;
 };
 
+/// One axis of a planar array's elements (beam/planar_array.hpp, array_axis).
+struct array_axis {
+    std::int64_t count = 1;      ///< elements along this axis, >= 1
+    double element_m = 0.5;      ///< element length along this axis (m), > 0
+    double pitch_m = 0.5;        ///< centre-to-centre spacing (m), >= element_m when count > 1 (default element_m)
+    std::vector<double> shading; ///< amplitude weight per element (count of them); empty: uniform
+};
+
+/// The elements of a transmit or receive array: along track and in the tilted vertical plane.
+struct array_layout {
+    array_axis along{};
+    array_axis vertical{.count = 1, .element_m = 0.02, .pitch_m = 0.02, .shading = {}};
+};
+
 struct sonar {
     std::string scattering = "lambertian"; ///< lambertian or jackson (seabed Jackson + targets hard_target)
-    std::string beam = "ideal_fan";
+    std::string beam = "ideal_fan";        ///< ideal_fan or planar_array
     double frequency_hz = 100000;
     double target_mu_db = -8; ///< Lambert strength of the objects under lambertian
     double along_width_deg = 1, vertical_width_deg = 50, depression_deg = 20;
@@ -101,6 +116,10 @@ struct sonar {
     double pulse_length_s = 100e-6;
     std::string pulse_shape = "rectangular"; ///< rectangular, hann, lfm
     double pulse_bandwidth_hz = 0;
+    // planar_array (frequency_hz, water.sound_speed_mps and depression_deg shared with the rest)
+    double beam_threshold_db = -30;       ///< two-way level bounding the beam's extent (dB), < 0
+    array_layout transmit{};              ///< the transmitting array
+    std::optional<array_layout> receive;  ///< the receiving array; empty: the transmitting array receives
 };
 
 /// A periodic perturbation of the towfish: amplitude x sin(2 pi t / period + phase).
@@ -109,6 +128,13 @@ struct oscillation {
 };
 
 struct motion {
+    std::string model = "perturbed"; ///< perturbed (the keys below) or trajectory (a sampled track from a CSV file)
+    // trajectory
+    std::string trajectory_file;        ///< the CSV (io/trajectory_csv.hpp); relative: to the working directory
+    std::string interpolation = "cubic"; ///< cubic or linear
+    std::optional<double> ping_zero_at;  ///< key (time in s, or ping number) of ping 0; empty: the first sample's
+    bool roll_from_turn = false;         ///< without a roll column: the coordinated-turn bank angle instead of 0
+    // perturbed (ping_interval_s: both)
     xy start_m{0, 0};
     double heading_deg = 0, speed_mps = 2;
     double altitude_m = 10; ///< above the seabed under start_m (m)

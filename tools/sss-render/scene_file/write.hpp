@@ -187,23 +187,48 @@ struct toml_out {
     o.kv("pulse_length_s", s.pulse_length_s);
     o.kv("pulse_shape", s.pulse_shape);
     o.kv("pulse_bandwidth_hz", s.pulse_bandwidth_hz);
+    if (s.beam == "planar_array") {
+        o.kv("beam_threshold_db", s.beam_threshold_db);
+        const auto layout = [&](const char* header, const array_layout& a) {
+            o.header(header);
+            for (const auto& [name, x] : {std::pair<std::string, const array_axis*>{"along", &a.along}, {"vertical", &a.vertical}}) {
+                o.kv((name + "_count").c_str(), x->count);
+                o.kv((name + "_element_m").c_str(), x->element_m);
+                o.kv((name + "_pitch_m").c_str(), x->pitch_m);
+                std::string list = name + "_shading = [";
+                for (std::size_t i = 0; i < x->shading.size(); ++i) list += (i ? ", " : "") + detail::num(x->shading[i]);
+                o.text += list + "]\n";
+            }
+        };
+        layout("[sonar.transmit]", s.transmit);
+        if (s.receive) layout("[sonar.receive]", *s.receive);
+    }
 
     o.header("[motion]");
-    o.kv("start_m", d.tow.start_m);
-    o.kv("heading_deg", d.tow.heading_deg);
-    o.kv("speed_mps", d.tow.speed_mps);
-    o.kv("altitude_m", d.tow.altitude_m);
+    o.kv("model", d.tow.model);
     o.kv("ping_interval_s", d.tow.ping_interval_s);
-    o.kv("turn", d.tow.turn);
-    o.kv("turn_radius_m", d.tow.turn_radius_m);
-    o.kv("turn_rate_deg_s", d.tow.turn_rate_deg_s);
-    const std::pair<const char*, const oscillation*> wobbles[] = {{"yaw_deg", &d.tow.yaw_deg}, {"sway_m", &d.tow.sway_m},
-        {"pitch_deg", &d.tow.pitch_deg}, {"heave_m", &d.tow.heave_m}, {"roll_deg", &d.tow.roll_deg}};
-    for (const auto& [name, w] : wobbles) {
-        o.header(std::string("[motion.") + name + "]");
-        o.kv("amplitude", w->amplitude);
-        o.kv("period_s", w->period_s);
-        o.kv("phase_deg", w->phase_deg);
+    if (d.tow.model == "trajectory") {
+        // The perturbed motion's keys are not used by a trajectory: not written.
+        o.kv("trajectory_file", d.tow.trajectory_file);
+        o.kv("interpolation", d.tow.interpolation);
+        if (d.tow.ping_zero_at) o.kv("ping_zero_at", *d.tow.ping_zero_at);
+        o.kv("roll_from_turn", d.tow.roll_from_turn);
+    } else {
+        o.kv("start_m", d.tow.start_m);
+        o.kv("heading_deg", d.tow.heading_deg);
+        o.kv("speed_mps", d.tow.speed_mps);
+        o.kv("altitude_m", d.tow.altitude_m);
+        o.kv("turn", d.tow.turn);
+        o.kv("turn_radius_m", d.tow.turn_radius_m);
+        o.kv("turn_rate_deg_s", d.tow.turn_rate_deg_s);
+        const std::pair<const char*, const oscillation*> wobbles[] = {{"yaw_deg", &d.tow.yaw_deg}, {"sway_m", &d.tow.sway_m},
+            {"pitch_deg", &d.tow.pitch_deg}, {"heave_m", &d.tow.heave_m}, {"roll_deg", &d.tow.roll_deg}};
+        for (const auto& [name, w] : wobbles) {
+            o.header(std::string("[motion.") + name + "]");
+            o.kv("amplitude", w->amplitude);
+            o.kv("period_s", w->period_s);
+            o.kv("phase_deg", w->phase_deg);
+        }
     }
 
     const auto& r = d.rx;
