@@ -52,14 +52,6 @@ template <class Sim, class Scene> double pings_per_s(const Sim& sim, const Scene
     return double(pings) / best;
 }
 
-template <class Sim> std::vector<double> starboard(const Sim& sim, const auto& scene, const sss::pose<T>& p) {
-    sss::time_sampler s(sim.samples_per_line(), sim.dt_s(), sim.receiver().pulse);
-    sim.trace(scene, p, sss::side::starboard, [&](const sss::tube_echo<T>& e) { s.add_span(e.t0_s, e.t1_s, e.power); });
-    std::vector<double> out;
-    s.render(out);
-    return out;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -131,7 +123,7 @@ int main(int argc, char** argv) {
         const auto ref = sss_test::converged_line(full, sv.scene, pose, side::starboard,
                                                   {.start = ray_density{.along = 32, .across = 0, .per_sample = 4.0},
                                                    .max_doublings = 1});
-        const auto e = sss_test::compare_lines(starboard(full_sim, sv.scene, pose), ref.values);
+        const auto e = sss_test::compare_lines(sss_bench::side_line(full_sim, sv.scene, pose, sss::side::starboard), ref.values);
         std::printf("ping 0 starboard at the default density against the reference {%zu, 0, %g} (last doubling changed "
                     "it by %.3f dB RMS): %.3f dB RMS, %.3f dB median, %.3f dB 99th percentile, %zu of %zu shadow "
                     "samples missed\n",

@@ -25,14 +25,6 @@ namespace {
 
 using T = double;
 
-template <class Sim> std::vector<double> starboard(const Sim& sim, const auto& scene, const sss::pose<T>& p) {
-    sss::time_sampler s(sim.samples_per_line(), sim.dt_s(), sim.receiver().pulse);
-    sim.trace(scene, p, sss::side::starboard, [&](const sss::tube_echo<T>& e) { s.add_span(e.t0_s, e.t1_s, e.power); });
-    std::vector<double> out;
-    s.render(out);
-    return out;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -74,7 +66,7 @@ int main(int argc, char** argv) {
         for (int i = 0; i < 2; ++i) {
             const auto sim = make(dens[i]);
             const auto t0 = std::chrono::steady_clock::now();
-            lines[i] = starboard(sim, sv.scene, pose);
+            lines[i] = sss_bench::side_line(sim, sv.scene, pose, sss::side::starboard);
             ms[i] = std::min(ms[i], 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
             if (rep == 0) {
                 std::size_t n = 0;

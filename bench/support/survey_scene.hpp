@@ -20,6 +20,7 @@
 #include <sss/motion/perturbed.hpp>
 #include <sss/propagation/layered.hpp>
 #include <sss/receiver/receiver.hpp>
+#include <sss/receiver/time_sampler.hpp>
 #include <sss/scattering/jackson.hpp>
 #include <sss/scattering/sediments.hpp>
 #include <sss/scene/height_field.hpp>
@@ -145,6 +146,16 @@ template <class T> survey<T> make_survey(const survey_params<T>& p = {}) {
     rx.sample_rate_hz = double(p.samples) * double(water.reference_speed_mps()) / (2.0 * p.range_m);
     return survey<T>{std::move(sc), sss::scattering::jackson<T>({.frequency_hz = T(p.frequency_hz), .sound_speed_mps = T(1500), .materials = {sand, rock}}), std::move(water),
                      sss::beam::planar_array<T>(ap), sss::motion::perturbed<T>(mp), rx};
+}
+
+/// One side of one ping, traced and sampled without the other side (what the accuracy tables compare).
+template <class Sim, class Scene, class T>
+std::vector<double> side_line(const Sim& sim, const Scene& scene, const sss::pose<T>& p, sss::side sd) {
+    sss::time_sampler s(sim.samples_per_line(), sim.dt_s(), sim.receiver().pulse);
+    sim.trace(scene, p, sd, [&](const sss::tube_echo<T>& e) { s.add_span(e.t0_s, e.t1_s, e.power); });
+    std::vector<double> out;
+    s.render(out);
+    return out;
 }
 
 } // namespace sss_bench
