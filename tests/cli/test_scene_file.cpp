@@ -213,6 +213,19 @@ TEST_CASE("a trajectory scene file renders what sss::motion::trajectory renders,
     CHECK(energy_of(got) > 0.0);
     // The heading follows the track's tangent: 60 deg of starboard turn after 10 s (the samples are exact).
     CHECK(end_heading_deg == doctest::Approx(60.0).epsilon(1e-3));
+    // XTF times follow the trajectory's clock: its ping 0 is at time_s = 0 here, so ping 60 is 6 s after the offset.
+    d.out.xtf_start_unix_s = 1.7e9;
+    const auto tow = sss::scene_file::motion_of(d, T(0));
+    CHECK(sss::scene_file::xtf_start_unix_s(d, tow, 60) == doctest::Approx(1.7e9 + 6.0));
+}
+
+TEST_CASE("a trajectory timed in Unix seconds stamps its pings with those times in the XTF file") {
+    std::ofstream("unix_scratch.csv") << "time_s,x_m,y_m,z_m\n1700000000,40,5,6\n1700000010,40,25,6\n1700000020,40,45,6\n"
+                                     "1700000030,40,65,6\n";
+    auto d = sss::scene_file::parse("[motion]\nmodel = \"trajectory\"\ntrajectory_file = \"unix_scratch.csv\"\n", "s.toml");
+    const auto tow = sss::scene_file::motion_of(d, T(0));
+    CHECK(sss::scene_file::xtf_start_unix_s(d, tow, 0) == 1700000000.0);
+    CHECK(sss::scene_file::xtf_start_unix_s(d, tow, 25) == doctest::Approx(1700000002.5));
 }
 
 TEST_CASE("the planar array's and the trajectory's keys read back from the resolved scene unchanged") {
@@ -253,6 +266,9 @@ TEST_CASE("the planar array's elements and the trajectory's keys are rejected wh
           std::string::npos);
     CHECK(error_of("[motion]\nmodel = \"trajectory\"\n").find("motion.model: a trajectory needs motion.trajectory_file") !=
           std::string::npos);
+    // The perturbed motion's cross-checks apply only to it: a turn without a radius is ignored under a trajectory.
+    CHECK(error_of("[motion]\nturn = \"port\"\n").find("motion.turn: a turn needs turn_radius_m > 0") != std::string::npos);
+    CHECK(error_of("[motion]\nmodel = \"trajectory\"\ntrajectory_file = \"t.csv\"\nturn = \"port\"\n") == "no error");
 }
 
 TEST_CASE("a trajectory file that cannot be read is a scene error naming the key and the file") {

@@ -276,7 +276,7 @@ int main(int argc, char** argv) {
         }
         if (d.out.xtf) {
             const std::vector<double> altitude = tow_altitudes();
-            sss::io::xtf_render_params xp{.start_unix_s = d.out.xtf_start_unix_s + double(first) * d.tow.ping_interval_s,
+            sss::io::xtf_render_params xp{.start_unix_s = sf::xtf_start_unix_s(d, track, first),
                                           .ping_interval_s = d.tow.ping_interval_s, .first_ping_number = std::uint32_t(first + 1),
                                           .sound_speed_mps = d.sea.sound_speed_mps,
                                           .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,

@@ -260,6 +260,14 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
            (by_time ? " at motion.ping_interval_s = " + detail::table_reader::fmt(d.tow.ping_interval_s) + " s" : std::string());
 }
 
+/// UTC time (s since 1970) of ping `first` in the XTF file: output.xtf_start_unix_s, plus the trajectory's own
+/// time of ping 0 when the motion is a trajectory (a CSV timed in Unix seconds then needs no offset), plus
+/// `first` ping intervals.
+[[nodiscard]] inline double xtf_start_unix_s(const description& d, const scene_motion& tow, std::size_t first) {
+    const double ping0_s = tow.sampled() ? tow.sampled()->start_time_s() : 0.0;
+    return d.out.xtf_start_unix_s + ping0_s + double(first) * d.tow.ping_interval_s;
+}
+
 /// The receiver's stages chosen at run time: echo statistics (speckle, noise, volume reverberation), then TVG,
 /// each only when the scene asks. With neither, the lines pass through untouched (bit for bit), so one type
 /// serves scenes with and without a receiver chain.

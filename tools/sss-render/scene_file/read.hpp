@@ -593,7 +593,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             for (const char* key : {"trajectory_file", "interpolation", "ping_zero_at", "roll_from_turn"})
                 if (m.table().get(key)) m.fail(key, "needs model = \"trajectory\" (the perturbed motion takes start_m, heading_deg, ...)");
         }
-        // The perturbed motion's keys: read (and checked) under both models, used only by perturbed.
+        // The perturbed motion's keys: read (and checked one by one) under both models, used only by perturbed; the
+        // checks across keys (a turn needs a radius or a rate) apply only where they are used.
         m.point("start_m", o.start_m);
         m.number("heading_deg", o.heading_deg);
         m.non_negative("speed_mps", o.speed_mps);
@@ -602,7 +603,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         m.choice("turn", o.turn, {"none", "port", "starboard"});
         m.non_negative("turn_radius_m", o.turn_radius_m);
         m.non_negative("turn_rate_deg_s", o.turn_rate_deg_s);
-        if (o.turn != "none" && !(o.turn_radius_m > 0) && !(o.turn_rate_deg_s > 0))
+        if (o.model == "perturbed" && o.turn != "none" && !(o.turn_radius_m > 0) && !(o.turn_rate_deg_s > 0))
             m.fail("turn", "a turn needs turn_radius_m > 0 or turn_rate_deg_s > 0");
         const auto wobble = [&](std::string_view key, oscillation& w, double limit) {
             auto t = m.sub(key);
