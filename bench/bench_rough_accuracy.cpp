@@ -14,7 +14,8 @@
 // reference (the same simulator doubled from {16, 0, 4} until a doubling changes the line by < 0.05 dB RMS):
 // RMS, median and 99th percentile of |dB| over the samples within 40 dB of the reference's peak, and how many of
 // the reference's shadow samples (>= 40 dB below their lit surroundings) the line fails to keep as dark.
-// Options: --quick (or a short --benchmark_min_time, as the perf smoke test passes) keeps to the default density.
+// Options: --quick (or a short --benchmark_min_time, as the perf smoke test passes) keeps to the default density;
+// --density=ALONG,PER_SAMPLE (repeatable) measures those densities instead of the usual five.
 
 #include <algorithm>
 #include <chrono>
@@ -135,12 +136,18 @@ void run_scene(const char* name, const Scene& scene, bool with_reference, const 
 
 int main(int argc, char** argv) {
     bool quick = false;
+    std::vector<sss::ray_density> asked;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0) quick = true;
         if (std::strncmp(argv[i], "--benchmark_min_time=", 21) == 0 && std::atof(argv[i] + 21) < 0.1) quick = true;
+        std::size_t along = 0;
+        double per_sample = 0.0;
+        if (std::sscanf(argv[i], "--density=%zu,%lf", &along, &per_sample) == 2 && along > 0 && per_sample > 0.0)
+            asked.push_back({.along = along, .across = 0, .per_sample = per_sample});
     }
     std::vector<sss::ray_density> densities{sss::ray_density{}};
-    if (!quick) {
+    if (!asked.empty()) densities = asked;
+    else if (!quick) {
         densities.push_back({.along = 8, .across = 0, .per_sample = 2.0});
         densities.push_back({.along = 16, .across = 0, .per_sample = 1.0});
         densities.push_back({.along = 8, .across = 0, .per_sample = 4.0});
