@@ -18,9 +18,10 @@
 /// (receiver/time_sampler.hpp). Where two adjacent rays are not neighbours on one surface (an occlusion, an
 /// object's silhouette) or the surface's echo changes too fast between them (rough facets), the launch angle
 /// between them is bisected until the edge is located to 1/16 of a sample (sampling/detail/tube_refinement.hpp):
-/// each side of an edge then keeps its energy up to it, and shadows stay empty. Columns whose objects' edges
-/// disagree with a neighbour's are traced again as narrower columns (ray_density.along_split). On an open flat
-/// seabed nothing is refined and the line is unchanged.
+/// each side of an edge then keeps its energy up to it, and shadows stay empty. Where a column's objects' edges
+/// disagree with a neighbour's (an edge crossing the beam obliquely), the launch angles between the disagreeing
+/// edges are traced again as narrower columns (ray_density.along_split; the seabed's own shadow edges too with
+/// ray_density.along_split_seabed). On an open flat seabed nothing is refined and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
 /// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
@@ -75,9 +76,16 @@ struct ray_density {
     /// (sampling/tube_refinement.hpp).
     std::size_t refine_depth = 12;
     std::size_t refine_rays = 64;  ///< extra rays per column at most, on top of half the column's own rays
-    /// A column whose located edges differ from a neighbour's (an edge crossing the beam obliquely) is traced
-    /// again as this many narrower columns (1: never).
+    /// Where a column's located edges between surfaces (objects' silhouettes and the far ends of their shadows)
+    /// differ from a neighbour's (an edge crossing the beam obliquely), the stretch of the column between them is
+    /// traced again as this many narrower columns (1: never).
     std::size_t along_split = 4;
+    /// The seabed's own shadow edges (behind crests, ridges, ripples) take part in the along-track check too:
+    /// true, false, or (unset) where the columns are more than two range samples apart at the end of the line.
+    /// There, an edge crossing the beam obliquely moves by more than a sample from one column to the next, and
+    /// each column alone would put it where its centre sees it; where the columns are closer, the check costs
+    /// rays and changes little (bench/bench_survey_accuracy.cpp and bench/bench_rough_accuracy.cpp measure both).
+    std::optional<bool> along_split_seabed{};
 };
 
 /// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
@@ -217,9 +225,11 @@ public:
     }
 
     /// Traces every ray of one side of one ping and calls `visit(const tube_echo<T>&)` for each piece of echo.
-    /// With refinement on, a column whose located edges (sampling/detail/tube_refinement.hpp) between surfaces
-    /// (an object's silhouette) are not all within a sample of a neighbour's (an edge or crest crossing the beam obliquely) is traced again as
-    /// `along_split` narrower columns that share its solid angle exactly, and their echoes replace its own.
+    /// With refinement on, where a column's located edges between surfaces (an object's silhouette, its shadow's
+    /// far end: sampling/detail/tube_refinement.hpp) are not all within a sample of a neighbour's (an edge or crest
+    /// crossing the beam obliquely), the stretch of the column between the disagreeing edges is traced again as
+    /// `along_split` narrower columns over the same launch angles, which share its solid angle exactly; their
+    /// echoes replace its own there, and the rest of the column stands.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
@@ -247,47 +257,70 @@ public:
             }
             return;
         }
-        // Two columns agree when every edge of each lies within a sample of an edge of the other.
-        const double tolerance_s = dt_;
-        auto covered = [&](const std::vector<double>& x, const std::vector<double>& y) {
-            for (const double t : x) {
-                const auto it = std::lower_bound(y.begin(), y.end(), t - tolerance_s);
-                if (it == y.end() || *it > t + tolerance_s) return false;
-            }
-            return true;
-        };
-        auto differ = [&](const std::vector<double>& x, const std::vector<double>& y) {
-            return !covered(x, y) || !covered(y, x);
-        };
-        // A column's echoes wait until the next column is traced (two buffers, used in turn). The buffers belong
-        // to this call (no state outlives it, so a visitor may trace again); they grow over the first columns and
-        // are reused for the rest.
-        std::vector<tube_echo<T>> waiting[2];
-        std::vector<double> edges[3]; // of columns j - 1, j, j + 1 (in turn)
+        // Columns j - 1, j and j + 1, in turn. Column j's echoes wait until column j + 1 is traced. The records
+        // belong to this call (no state outlives it, so a visitor may trace again); they grow over the first
+        // columns and are reused for the rest.
+        column_record records[3];
+        // The columns' spacing at the end of the line against the range sample.
+        const bool coarse = double(f.max_range_m) * (a1 - a0) / double(n_along) > 2.0 * 0.5 * c_ref_ * dt_;
+        for (column_record& r : records) r.seabed_edges = density_.along_split_seabed.value_or(coarse);
         auto trace_into = [&](std::size_t j) {
-            std::vector<tube_echo<T>>& w = waiting[j % 2];
-            std::vector<double>& e = edges[j % 3];
-            w.clear();
-            e.clear();
+            column_record& r = records[j % 3];
+            r.echoes.clear();
+            r.edges.clear();
             const auto [lo, hi] = bounds(j);
-            auto keep = [&w](const tube_echo<T>& t) { w.push_back(t); };
-            trace_column(scene, f, lo, hi, scratch, &e, keep);
-            std::sort(e.begin(), e.end());
+            auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
+            trace_column(scene, f, lo, hi, scratch, &r, keep);
+            std::swap(r.angles, scratch.angles);
+            if (j == 0) // the other records are sized from the first column, which is about as long as any
+                for (column_record& other : records) other.echoes.reserve(r.echoes.size() + r.echoes.size() / 2);
+            std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& a, const column_edge& b) { return a.t < b.t; });
         };
+        std::vector<redo_range> windows;
+        std::vector<std::pair<double, double>> spans;
+        std::vector<std::pair<std::size_t, std::size_t>> runs;
+        std::vector<char> redone;
         trace_into(0);
         for (std::size_t j = 0; j < n_along; ++j) {
             if (j + 1 < n_along) trace_into(j + 1);
-            const std::vector<double>& here = edges[j % 3];
-            const bool split = (j > 0 && differ(here, edges[(j + 2) % 3])) ||
-                               (j + 1 < n_along && differ(here, edges[(j + 1) % 3]));
-            if (!split) {
-                for (const tube_echo<T>& t : waiting[j % 2]) visit(t);
+            const column_record& here = records[j % 3];
+            windows.clear();
+            if (j > 0) disagreements(here.edges, records[(j + 2) % 3].edges, windows);
+            if (j + 1 < n_along) disagreements(here.edges, records[(j + 1) % 3].edges, windows);
+            if (windows.empty()) {
+                for (const tube_echo<T>& t : here.echoes) visit(t);
                 continue;
             }
+            // The launch intervals whose echoes reach into a window are traced again; the others stand.
+            spans.assign(here.angles.size(), {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()});
+            for (std::size_t k = 0; k + 1 < here.first.size(); ++k)
+                for (std::size_t i = here.first[k]; i < here.first[k + 1]; ++i) {
+                    const tube_echo<T>& t = here.echoes[i];
+                    spans[k].first = std::min({spans[k].first, t.t0_s, t.t1_s});
+                    spans[k].second = std::max({spans[k].second, t.t0_s, t.t1_s});
+                }
+            runs.clear();
+            redone.assign(spans.size(), 0);
+            for (std::size_t k = 0; k < spans.size(); ++k) {
+                const auto [t0, t1] = spans[k];
+                const bool redo = t0 <= t1 && std::any_of(windows.begin(), windows.end(), [&](const redo_range& w) {
+                                      return (k >= w.k0 && k <= w.k1) || (t0 <= w.t1 && t1 >= w.t0);
+                                  });
+                if (!redo) continue;
+                if (!runs.empty() && runs.back().second + 1 == k) runs.back().second = k;
+                else runs.emplace_back(k, k);
+                redone[k] = 1;
+            }
+            for (std::size_t k = 0; k + 1 < here.first.size(); ++k)
+                if (!redone[k])
+                    for (std::size_t i = here.first[k]; i < here.first[k + 1]; ++i) visit(here.echoes[i]);
+            for (std::size_t i = here.first.empty() ? 0 : here.first.back(); i < here.echoes.size(); ++i)
+                visit(here.echoes[i]);
             const auto [lo, hi] = bounds(j);
             for (std::size_t i = 0; i < density_.along_split; ++i)
-                trace_column(scene, f, lo + (hi - lo) * double(i) / double(density_.along_split),
-                             lo + (hi - lo) * double(i + 1) / double(density_.along_split), scratch, nullptr, visit);
+                trace_runs(scene, f, lo + (hi - lo) * double(i) / double(density_.along_split),
+                           lo + (hi - lo) * double(i + 1) / double(density_.along_split), here.angles, runs, scratch,
+                           visit);
         }
     }
 
@@ -345,11 +378,75 @@ private:
         std::vector<std::optional<path<T>>> paths;
     };
 
-    /// Traces the column between along-track angles lo and hi (rad) and visits its echoes; the two-way times of
-    /// the edges its refinement located go to `edges` when given.
+    /// One end of a located edge between surfaces: its two-way time (s) and the launch interval it lies in.
+    struct column_edge {
+        double t;
+        std::size_t k;
+    };
+
+    /// One column, traced and waiting: its launch angles, its echoes in the order of their launch intervals
+    /// (interval k: the rays at angles[k] and angles[k + 1] and what refinement traced between them), where each
+    /// interval's echoes begin (`first`, one entry per angle: the last is where the continuation beyond the last
+    /// angle begins), and the ends of its located edges between surfaces (by time). `interval` is the launch
+    /// interval being refined while tracing.
+    struct column_record {
+        std::vector<T> angles;
+        std::vector<tube_echo<T>> echoes;
+        std::vector<std::size_t> first;
+        std::vector<column_edge> edges;
+        std::size_t interval = 0;
+        bool seabed_edges = false; ///< the seabed's own edges are recorded too
+    };
+
+    /// What a divided column traces again: the launch intervals k0 to k1, and those whose echoes reach into
+    /// two-way times t0 to t1 (s).
+    struct redo_range {
+        double t0, t1;
+        std::size_t k0, k1;
+    };
+
+    /// Where two neighbouring columns' edges disagree, added to `out`. An edge of either with no edge of the
+    /// other within a sample moved between them: from itself to the other's nearest edge, in time and in launch
+    /// interval (the columns' launch angles nearly coincide), one interval more on each side. If the other column
+    /// has no edge at all (an object ending between them), every edge of the column that has them is spanned.
+    void disagreements(const std::vector<column_edge>& x, const std::vector<column_edge>& y,
+                       std::vector<redo_range>& out) const {
+        const double tol = dt_;
+        // The edge moves by about |a - b| from one column's centre to the next, so within the column it lies within
+        // that distance of its centre's position, either way.
+        auto span = [&](const column_edge& a, const column_edge& b) {
+            const double dt = std::abs(a.t - b.t) + tol;
+            const std::size_t dk = (a.k > b.k ? a.k - b.k : b.k - a.k) + 1;
+            out.push_back({a.t - dt, a.t + dt, a.k - std::min(a.k, dk), a.k + dk});
+        };
+        auto one_way = [&](const std::vector<column_edge>& a, const std::vector<column_edge>& b) {
+            for (const column_edge& t : a) {
+                const auto it = std::lower_bound(b.begin(), b.end(), t.t - tol,
+                                                 [](const column_edge& e, double v) { return e.t < v; });
+                if (it != b.end() && it->t <= t.t + tol) continue; // matched
+                if (b.empty()) {
+                    for (const column_edge& u : a) {
+                        span(u, a.front());
+                        span(u, a.back());
+                    }
+                    return;
+                }
+                auto u = it == b.end() ? b.end() - 1 : it;
+                if (it != b.begin() && std::abs((it - 1)->t - t.t) < std::abs(u->t - t.t)) u = it - 1;
+                span(t, *u);
+                span(*u, t);
+            }
+        };
+        one_way(x, y);
+        one_way(y, x);
+    }
+
+    /// Traces the column between along-track angles lo and hi (rad) and visits its echoes; with a record given, the
+    /// two-way times of the edges its refinement located go to its `edges`, and its `interval` follows the launch
+    /// interval being refined.
     template <Scene Sc, class Visitor>
     void trace_column(const Sc& scene, const trace_frame& f, double lo, double hi, column_scratch& s,
-                      std::vector<double>* edges, Visitor& visit) const {
+                      column_record* record, Visitor& visit) const {
         const pose<T>& p = f.p;
         const side sd = f.sd;
         const T along = static_cast<T>(0.5 * (lo + hi));
@@ -360,9 +457,11 @@ private:
                              f.altitude, f.clearance, f.max_range_m, f.cd);
         // The column's rays, traced together (sss::trace_all: a propagation and scene that share work among
         // the rays of a column do so; others go ray by ray).
-        s.rays.clear();
+        s.rays.resize(angles.size());
+        std::size_t n_rays = 0;
         for (const T e : angles)
-            if (!std::isnan(e)) s.rays.push_back(ray<T>{p.position, p.to_world(beam_direction(sd, along, e))});
+            if (!std::isnan(e)) s.rays[n_rays++] = ray<T>{p.position, p.to_world(beam_direction(sd, along, e))};
+        s.rays.resize(n_rays);
         s.paths.resize(s.rays.size());
         trace_all(propagation_, std::span<const ray<T>>(s.rays), scene, f.t_max_one_way,
                   std::span<std::optional<path<T>>>(s.paths));
@@ -370,13 +469,24 @@ private:
         bool in_run = false;
         std::size_t k = 0;
         const column_context col{p, sd, along, f.t_max_one_way, column_sr,
-                                 density_.refine_depth == 0 ? 0 : s.rays.size() / 2 + density_.refine_rays, edges};
+                                 density_.refine_depth == 0 ? 0 : s.rays.size() / 2 + density_.refine_rays,
+                                 record};
         std::size_t budget = col.max_extra;
-        for (const T e : angles) {
-            if (std::isnan(e)) { in_run = false; continue; }
+        if (record) record->first.resize(angles.size());
+        for (std::size_t i = 0; i < angles.size(); ++i) {
+            const T e = angles[i];
+            if (std::isnan(e)) {
+                if (record) record->first[i] = record->echoes.size();
+                in_run = false;
+                continue;
+            }
             ray_end bounce;
             const ray_end cur = echo(scene, sd, along, e, s.paths[k++], f.t_max_one_way, column_sr, bounce);
-            if (in_run) refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+            if (in_run) {
+                if (record) record->interval = i - 1;
+                refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+            }
+            if (record) record->first[i] = record->echoes.size(); // interval i begins (if it is one)
             prev = cur;
             prev_bounce = bounce;
             in_run = true;
@@ -399,6 +509,41 @@ private:
         }
     }
 
+    /// Traces the launch intervals `runs` (each [k0, k1]: the rays at angles[k0] to angles[k1 + 1]) of a column
+    /// between along-track angles lo and hi (rad), over the launch angles of the column it divides, and visits
+    /// their echoes.
+    template <Scene Sc, class Visitor>
+    void trace_runs(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
+                    const std::vector<std::pair<std::size_t, std::size_t>>& runs, column_scratch& s,
+                    Visitor& visit) const {
+        const T along = static_cast<T>(0.5 * (lo + hi));
+        const double column_sr = std::sin(hi) - std::sin(lo);
+        std::size_t n_rays = 0;
+        for (const auto& [k0, k1] : runs) n_rays += k1 - k0 + 2;
+        s.rays.resize(n_rays);
+        std::size_t r = 0;
+        for (const auto& [k0, k1] : runs)
+            for (std::size_t k = k0; k <= k1 + 1; ++k)
+                s.rays[r++] = ray<T>{f.p.position, f.p.to_world(beam_direction(f.sd, along, angles[k]))};
+        s.paths.resize(s.rays.size());
+        trace_all(propagation_, std::span<const ray<T>>(s.rays), scene, f.t_max_one_way,
+                  std::span<std::optional<path<T>>>(s.paths));
+        const column_context col{f.p, f.sd, along, f.t_max_one_way, column_sr, angles.size() / 2 + density_.refine_rays,
+                                 nullptr};
+        std::size_t budget = col.max_extra;
+        std::size_t q = 0;
+        for (const auto& [k0, k1] : runs) {
+            ray_end prev, prev_bounce;
+            for (std::size_t k = k0; k <= k1 + 1; ++k) {
+                ray_end bounce;
+                const ray_end cur = echo(scene, f.sd, along, angles[k], s.paths[q++], f.t_max_one_way, column_sr, bounce);
+                if (k > k0) refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+                prev = cur;
+                prev_bounce = bounce;
+            }
+        }
+    }
+
     /// What refining one column needs to trace a ray between two others.
     struct column_context {
         const pose<T>& p;
@@ -407,7 +552,7 @@ private:
         T t_max_one_way;
         double column_sr;
         std::size_t max_extra;       ///< extra rays this column may trace
-        std::vector<double>* edges;  ///< where located edges' times go (none: not recorded)
+        column_record* record;       ///< where located edges go (none: not recorded)
     };
 
     /// The energy between adjacent rays a and b (and their bounced paths): one tube where they are neighbours on
@@ -434,10 +579,12 @@ private:
                 emit_tube(a, b, de, visit); // not refined: as before
             else {                                                                            // a located edge
                 emit_ends(a, b, de, visit);
-                // Recorded for the along-track check: the edges between surfaces (objects' silhouettes).
-                if (col.edges && a.valid && b.valid && !same_surface(a.surface, b.surface)) {
-                    if (a.valid) col.edges->push_back(a.t);
-                    if (b.valid) col.edges->push_back(b.t);
+                // Recorded for the along-track check: the edges between surfaces (objects' silhouettes), and with
+                // along_split_seabed the seabed's own (the far ends of its shadows).
+                if (col.record && a.valid && b.valid &&
+                    (col.record->seabed_edges || !same_surface(a.surface, b.surface))) {
+                    col.record->edges.push_back({a.t, col.record->interval});
+                    col.record->edges.push_back({b.t, col.record->interval});
                 }
             }
             if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);

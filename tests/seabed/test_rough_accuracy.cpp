@@ -111,3 +111,32 @@ TEST_CASE("an oblique trench renders at the default density as the converged ref
     SUBCASE("straight") { check_against_reference(sss::propagation::straight<double>{}, trench, false); }
     SUBCASE("layered, rolled and pitched") { check_against_reference(sss_test::three_layer_water<double>(), trench, true); }
 }
+
+TEST_CASE("under a beam 4 deg wide along track, rippled relief renders as the converged reference once the seabed's "
+          "shadow edges take part in the along-track check, as they do by default with columns this coarse") {
+    // The columns of a wide beam are 0.26 m apart at 30 m, 7 range samples; ripple crests 30 deg off the track move
+    // about 2 samples across track from one column to the next, and each column alone puts their shadows' far edges
+    // where its centre sees them. Narrower columns over the stretch between disagreeing edges place them.
+    const auto relief = sss_test::ripple_field<double>();
+    const auto pose = sss_test::rough_pose<double>(false);
+    auto make = [](const sss::ray_density& d) {
+        return sss::simulator<>({}, {}, sss::beam::ideal_fan<double>({.along_width_deg = 4.0}), {},
+                                sss_test::rough_receiver(), d);
+    };
+    const auto ref = sss_test::converged_line(
+        make, relief, pose, sss::side::starboard,
+        {.start = {.along = 32, .across = 0, .per_sample = 4.0, .along_split_seabed = true}, .max_doublings = 2});
+    REQUIRE(ref.converged);
+    const auto objects_only =
+        sss_test::compare_lines(make({.along_split_seabed = false}).ping_at(relief, pose).starboard, ref.values);
+    const auto by_default = sss_test::compare_lines(make({}).ping_at(relief, pose).starboard, ref.values);
+    INFO("objects' edges only: rms " << objects_only.rms_db << " dB, 99th percentile " << objects_only.p99_db << " dB");
+    INFO("by default: rms " << by_default.rms_db << " dB, 99th percentile " << by_default.p99_db << " dB over "
+                            << by_default.compared << " samples; shadow samples " << by_default.shadow_samples
+                            << ", missed " << by_default.shadow_misses);
+    CHECK(objects_only.p99_db > 2.0); // the columns alone misplace the crests' shadows
+    CHECK(by_default.compared > 300);
+    CHECK(by_default.rms_db <= 0.3);
+    CHECK(by_default.p99_db <= 1.0);
+    CHECK(by_default.shadow_misses == 0);
+}
