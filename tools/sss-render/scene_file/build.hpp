@@ -179,6 +179,13 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
 }
 
 /// World z of the perturbed motion's towfish: altitude_m above the seabed under start_m.
+/// The rays of [render] (sss::ray_density).
+[[nodiscard]] inline sss::ray_density rays_of(const description& d) {
+    sss::ray_density r{.along = static_cast<std::size_t>(d.run.rays_along), .across = 0, .per_sample = d.run.rays_per_sample};
+    if (d.run.seabed_edges_along != "auto") r.along_split_seabed = d.run.seabed_edges_along == "on";
+    return r;
+}
+
 [[nodiscard]] inline real tow_z(const description& d, const world& w) {
     return w.seabed().seabed_height_m(real(d.tow.start_m[0]), real(d.tow.start_m[1])) + real(d.tow.altitude_m);
 }
@@ -348,13 +355,13 @@ template <class Water, class F> decltype(auto) with_water(const description& d, 
         const jackson_scattering scatter(
             sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
             sss::scattering::hard_target<real>{});
-        return f(simulator_of<jackson_scattering, Water>(scatter, water, beam, tow, rx, sss::ray_density{}, receiver_stages(d)));
+        return f(simulator_of<jackson_scattering, Water>(scatter, water, beam, tow, rx, rays_of(d), receiver_stages(d)));
     }
     std::vector<real> mu;
     if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
     for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
     mu.push_back(real(d.sensor.target_mu_db));
-    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, beam, tow, rx, sss::ray_density{},
+    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, beam, tow, rx, rays_of(d),
                                                      receiver_stages(d)));
 }
 

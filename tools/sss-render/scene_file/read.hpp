@@ -356,6 +356,11 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         auto r = top.sub("render");
         r.integer("pings", d.run.pings, 1);
         r.integer("threads", d.run.threads, 0);
+        r.integer("rays_along", d.run.rays_along, 1);
+        if (d.run.rays_along > 4096) r.fail("rays_along", "must be <= 4096, got " + std::to_string(d.run.rays_along));
+        r.positive("rays_per_sample", d.run.rays_per_sample);
+        if (d.run.rays_per_sample > 1024) r.fail("rays_per_sample", "must be <= 1024");
+        r.choice("seabed_edges_along", d.run.seabed_edges_along, {"auto", "on", "off"});
         r.finish();
     }
     {

@@ -175,6 +175,10 @@ struct output {
 struct render {
     std::int64_t pings = 100;
     std::int64_t threads = 0; ///< 0: every core
+    // The rays (sss::ray_density)
+    std::int64_t rays_along = 8;             ///< along-track columns per side, at least (the beam may ask for more)
+    double rays_per_sample = 1;              ///< rays per range sample in each column
+    std::string seabed_edges_along = "auto"; ///< auto, on or off: the seabed's shadow edges in the along-track check
 };
 
 struct description {

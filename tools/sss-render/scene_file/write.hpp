@@ -48,6 +48,9 @@ struct toml_out {
     o.header("[render]");
     o.kv("pings", d.run.pings);
     o.kv("threads", d.run.threads);
+    o.kv("rays_along", d.run.rays_along);
+    o.kv("rays_per_sample", d.run.rays_per_sample);
+    o.kv("seabed_edges_along", d.run.seabed_edges_along);
 
     const auto& b = d.bed;
     o.header("[seabed]");
