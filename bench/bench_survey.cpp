@@ -5,9 +5,11 @@
 //   full      Jackson, layered water, planar array, perturbed towfish
 //   straight  the same with straight rays (isovelocity water)
 //   minimal   Lambert, straight rays, ideal fan, straight-line towfish
-// It also prints the scene's build time and the process's peak resident memory after the build, and the error of
-// the full simulator's ping 0 (starboard) at the default ray density against a converged reference (the same
-// simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp).
+// The full simulator again with the seabed's shadow edges out of the along-track check (ray_density::
+// along_split_seabed = false; by default they take part here, the columns being coarse at 100 m) gives what that
+// check costs. It also prints the scene's build time and the process's peak resident memory after the build, and
+// the error of the full simulator's ping 0 (starboard), both ways, against a converged reference (the same simulator
+// at 16 and 32 times the rays: tests/support/converged_reference.hpp).
 //   sss_bench_survey [--pings N] [--size M] [--quick]
 // --pings: pings per measurement (default 40, best of 2); --size: the seabed's side in metres (default 1024);
 // --quick (or a short --benchmark_min_time, as the perf smoke test passes): 128 m, 4 pings, no reference.
@@ -98,6 +100,7 @@ int main(int argc, char** argv) {
         propagation::straight<T>({.sound_speed_mps = sv.water.reference_speed_mps(), .absorption_db_per_km = T(30)}),
         beam::ideal_fan<T>{}, line, sv.receiver);
     const auto full_sim = full({});
+    const auto full_objects_only = full({.along_split_seabed = false});
 
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
@@ -117,18 +120,24 @@ int main(int argc, char** argv) {
     straight_1 = row("full with straight rays", straight_sim);
     row("minimal (Lambert, straight, ideal fan, straight line)", minimal);
     std::printf("layered / straight time per ping (1 thread): %.2f\n", straight_1 / layered_1);
+    const double objects_only_1 = row("full, the seabed's edges out of the along-track check", full_objects_only);
+    std::printf("full: the seabed's edges in the along-track check (the default here) cost %.2f times the time per ping\n",
+                objects_only_1 / layered_1);
 
     if (!quick) {
         const auto pose = sv.motion.pose_at(0);
-        const auto ref = sss_test::converged_line(full, sv.scene, pose, side::starboard,
-                                                  {.start = ray_density{.along = 32, .across = 0, .per_sample = 4.0},
-                                                   .max_doublings = 1});
-        const auto e = sss_test::compare_lines(sss_bench::side_line(full_sim, sv.scene, pose, sss::side::starboard), ref.values);
-        std::printf("ping 0 starboard at the default density against the reference {%zu, 0, %g} (last doubling changed "
-                    "it by %.3f dB RMS): %.3f dB RMS, %.3f dB median, %.3f dB 99th percentile, %zu of %zu shadow "
-                    "samples missed\n",
-                    ref.density.along, ref.density.per_sample, ref.last_change_db, e.rms_db, e.median_db, e.p99_db,
-                    e.shadow_misses, e.shadow_samples);
+        const auto ref = sss_test::converged_line(
+            full, sv.scene, pose, side::starboard,
+            {.start = ray_density{.along = 32, .across = 0, .per_sample = 4.0, .along_split_seabed = true},
+             .max_doublings = 1});
+        std::printf("ping 0 starboard against the reference {%zu, 0, %g} (last doubling changed it by %.3f dB RMS):\n",
+                    ref.density.along, ref.density.per_sample, ref.last_change_db);
+        for (const auto* sim : {&full_sim, &full_objects_only}) {
+            const auto e = sss_test::compare_lines(sss_bench::side_line(*sim, sv.scene, pose, sss::side::starboard), ref.values);
+            std::printf("  %s: %.3f dB RMS, %.3f dB median, %.3f dB 99th percentile, %zu of %zu shadow samples missed\n",
+                        sim == &full_sim ? "default density" : "default, the seabed's edges out of the along-track check",
+                        e.rms_db, e.median_db, e.p99_db, e.shadow_misses, e.shadow_samples);
+        }
     }
     return 0;
 }

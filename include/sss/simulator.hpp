@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <optional>
@@ -249,7 +250,9 @@ public:
             return std::pair<double, double>{a0 + (a1 - a0) * double(j) / double(n_along),
                                              a0 + (a1 - a0) * double(j + 1) / double(n_along)};
         };
-        column_scratch scratch;
+        const buffer_lease lease(*buffers_);
+        trace_buffers& b = *lease.buffers;
+        column_scratch& scratch = b.scratch;
         if (density_.refine_depth == 0 || density_.along_split <= 1 || n_along < 2) {
             for (std::size_t j = 0; j < n_along; ++j) {
                 const auto [lo, hi] = bounds(j);
@@ -257,13 +260,11 @@ public:
             }
             return;
         }
-        // Columns j - 1, j and j + 1, in turn. Column j's echoes wait until column j + 1 is traced. The records
-        // belong to this call (no state outlives it, so a visitor may trace again); they grow over the first
-        // columns and are reused for the rest.
-        column_record records[3];
+        // Columns j - 1, j and j + 1, in turn. Column j's echoes wait until column j + 1 is traced.
+        column_record* records = b.records;
         // The columns' spacing at the end of the line against the range sample.
         const bool coarse = double(f.max_range_m) * (a1 - a0) / double(n_along) > 2.0 * 0.5 * c_ref_ * dt_;
-        for (column_record& r : records) r.seabed_edges = density_.along_split_seabed.value_or(coarse);
+        for (std::size_t i = 0; i < 3; ++i) records[i].seabed_edges = density_.along_split_seabed.value_or(coarse);
         auto trace_into = [&](std::size_t j) {
             column_record& r = records[j % 3];
             r.echoes.clear();
@@ -272,14 +273,12 @@ public:
             auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
             trace_column(scene, f, lo, hi, scratch, &r, keep);
             std::swap(r.angles, scratch.angles);
-            if (j == 0) // the other records are sized from the first column, which is about as long as any
-                for (column_record& other : records) other.echoes.reserve(r.echoes.size() + r.echoes.size() / 2);
             std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& a, const column_edge& b) { return a.t < b.t; });
         };
-        std::vector<redo_range> windows;
-        std::vector<std::pair<double, double>> spans;
-        std::vector<std::pair<std::size_t, std::size_t>> runs;
-        std::vector<char> redone;
+        std::vector<redo_range>& windows = b.windows;
+        std::vector<std::pair<double, double>>& spans = b.spans;
+        std::vector<std::pair<std::size_t, std::size_t>>& runs = b.runs;
+        std::vector<char>& redone = b.redone;
         trace_into(0);
         for (std::size_t j = 0; j < n_along; ++j) {
             if (j + 1 < n_along) trace_into(j + 1);
@@ -403,6 +402,52 @@ private:
     struct redo_range {
         double t0, t1;
         std::size_t k0, k1;
+    };
+
+    /// The buffers of one trace call.
+    struct trace_buffers {
+        column_scratch scratch;
+        column_record records[3];
+        std::vector<redo_range> windows;
+        std::vector<std::pair<double, double>> spans;
+        std::vector<std::pair<std::size_t, std::size_t>> runs;
+        std::vector<char> redone;
+    };
+
+    /// Buffers kept between trace calls, so that a ping reuses the memory of the pings before it instead of
+    /// allocating (and, for large buffers, mapping and unmapping pages, which threads pay for together). A trace
+    /// call takes one set for its duration: concurrent calls, and a visitor that traces again, each get their own.
+    /// Copies of a simulator share the pool.
+    class buffer_pool {
+    public:
+        [[nodiscard]] std::unique_ptr<trace_buffers> take() {
+            const std::lock_guard<std::mutex> hold(lock_);
+            if (free_.empty()) return std::make_unique<trace_buffers>();
+            std::unique_ptr<trace_buffers> b = std::move(free_.back());
+            free_.pop_back();
+            return b;
+        }
+        void give(std::unique_ptr<trace_buffers> b) noexcept {
+            const std::lock_guard<std::mutex> hold(lock_);
+            try {
+                free_.push_back(std::move(b));
+            } catch (...) { // out of memory: the buffers are freed instead of kept
+            }
+        }
+
+    private:
+        std::mutex lock_;
+        std::vector<std::unique_ptr<trace_buffers>> free_;
+    };
+
+    /// One set of buffers, taken from the pool and given back.
+    struct buffer_lease {
+        explicit buffer_lease(buffer_pool& p) : pool(p), buffers(p.take()) {}
+        ~buffer_lease() { pool.give(std::move(buffers)); }
+        buffer_lease(const buffer_lease&) = delete;
+        buffer_lease& operator=(const buffer_lease&) = delete;
+        buffer_pool& pool;
+        std::unique_ptr<trace_buffers> buffers;
     };
 
     /// Where two neighbouring columns' edges disagree, added to `out`. An edge of either with no edge of the
@@ -720,6 +765,7 @@ private:
     double dt_ = 0.0;
     double source_level_ = 1.0;
     time_sampler sampler_{1, 1.0, pulse{}};
+    std::shared_ptr<buffer_pool> buffers_ = std::make_shared<buffer_pool>();
 };
 
 } // namespace sss
