@@ -3,13 +3,16 @@
 /// Internal to the fractal surfaces (seabed/fractal.hpp): the directional spectral density, the variance of each
 /// grid mode and the draw of Hermitian-symmetric random Fourier coefficients. Not part of the API.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "sss/core/constants.hpp"
+#include "sss/core/thread_pool.hpp"
 #include "sss/core/types.hpp"
 #include "sss/seabed/fractal_params.hpp"
 #include "sss/seabed/random.hpp"
@@ -64,21 +67,22 @@ template <Real T> [[nodiscard]] directional_density make_density(const fractal_p
     return d * dkx * dky;
 }
 
-/// One mode's random coefficient of variance `var` from `g`: real for a self-conjugate mode.
-template <Real T>
-[[nodiscard]] inline std::complex<double> draw_mode(double var, bool self_conjugate, const fractal_params<T>& p, rng& g) {
-    if (self_conjugate) {
-        const double x = p.amplitudes == spectral_amplitudes::gaussian ? g.normal() : (g.uniform() < 0.5 ? -1.0 : 1.0);
-        return {std::sqrt(var) * x, 0.0};
-    }
-    if (p.amplitudes == spectral_amplitudes::gaussian) {
+/// Random deviates one mode draws from each generator: two normals for a Gaussian mode, one for a self-conjugate
+/// Gaussian one (real), and one uniform for a random-phase mode (its phase) or a self-conjugate one (its sign).
+[[nodiscard]] inline std::size_t mode_deviates(bool gaussian, bool self_conjugate) noexcept {
+    return gaussian && !self_conjugate ? 2 : 1;
+}
+
+/// One mode's random coefficient of variance `var` from its deviates `d` (mode_deviates of them, drawn as
+/// generator.normal() for Gaussian amplitudes, generator.uniform() otherwise): real for a self-conjugate mode.
+[[nodiscard]] inline std::complex<double> mode_coefficient(double var, bool self_conjugate, bool gaussian,
+                                                           const double* d) noexcept {
+    if (self_conjugate) return {std::sqrt(var) * (gaussian ? d[0] : (d[0] < 0.5 ? -1.0 : 1.0)), 0.0};
+    if (gaussian) {
         const double sd = std::sqrt(0.5 * var);
-        const double re = g.normal();
-        const double im = g.normal();
-        return {sd * re, sd * im};
+        return {sd * d[0], sd * d[1]};
     }
-    const double phase = two_pi_v<double> * g.uniform();
-    return std::polar(std::sqrt(var), phase);
+    return std::polar(std::sqrt(var), two_pi_v<double> * d[0]);
 }
 
 /// Draws Hermitian-symmetric random coefficients of the spectrum for an nx x ny grid in the fixed order (rows of
@@ -86,26 +90,84 @@ template <Real T>
 /// sequence as alone), calling store(own, partner, v) with v[k] from gens[k] for each pair (partner == own for
 /// a self-conjugate mode, v then real): the caller sets c[own] = v and c[partner] = conj(v), or combines them.
 /// Returns the sum of the modes' variances, the band variance of the grid.
+///
+/// Work: the rows go in chunks; for each chunk the generators' deviates are drawn first, in the fixed order
+/// (Gaussian ones as uniform pairs, rng::draw_polar_pairs, turned into deviates on the threads), then the rows' spectral densities and coefficients are evaluated
+/// and stored on the threads of shared_thread_pool(): `store` is called concurrently for different pairs (each
+/// element of the spectrum belongs to one pair). The coefficients, and the band variance (summed in the fixed
+/// order), are those of drawing mode by mode, bit for bit.
 template <Real T, std::size_t N, class Store>
 double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fractal_params<T>& p,
                          std::array<rng*, N> gens, Store&& store) {
     const double dkx = two_pi_v<double> / (static_cast<double>(nx) * cell_m);
     const double dky = two_pi_v<double> / (static_cast<double>(ny) * cell_m);
     const directional_density w = make_density(p);
+    const bool gaussian = p.amplitudes == spectral_amplitudes::gaussian;
+    thread_pool& pool = shared_thread_pool();
+    const unsigned threads = nx * ny >= (std::size_t(1) << 16) ? 0u : 1u; // small grids are not worth a thread
+    // Mode (i, j) is drawn with its partner (-i, -j) when the partner's flat index is not below its own.
+    const auto partner_of = [&](std::size_t i, std::size_t j) { return ((ny - j) % ny) * nx + (nx - i) % nx; };
+    const std::size_t chunk_rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / nx);
+    std::vector<std::size_t> deviate_at(chunk_rows + 1); // first deviate of each row of the chunk
+    std::array<std::vector<double>, N> deviates;
+    std::vector<double> contribution(chunk_rows * nx); // each mode's share of the band variance, 0 if not drawn
     double band = 0.0;
-    std::array<std::complex<double>, N> v;
-    for (std::size_t j = 0; j < ny; ++j) {
-        const std::size_t pj = (ny - j) % ny;
-        for (std::size_t i = 0; i < nx; ++i) {
-            const std::size_t pi_ = (nx - i) % nx;
-            const std::size_t own = j * nx + i;
-            const std::size_t partner = pj * nx + pi_;
-            if (partner < own) continue; // set together with its partner
-            const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
-            band += partner == own ? var : 2.0 * var;
-            for (std::size_t k = 0; k < N; ++k) v[k] = draw_mode(var, partner == own, p, *gens[k]);
-            store(own, partner, v);
+    for (std::size_t j0 = 0; j0 < ny; j0 += chunk_rows) {
+        const std::size_t rows = std::min(chunk_rows, ny - j0);
+        deviate_at[0] = 0;
+        for (std::size_t r = 0; r < rows; ++r) {
+            const std::size_t j = j0 + r;
+            std::size_t count = 0;
+            for (std::size_t i = 0; i < nx; ++i) {
+                const std::size_t own = j * nx + i, partner = partner_of(i, j);
+                if (partner >= own) count += mode_deviates(gaussian, partner == own);
+            }
+            deviate_at[r + 1] = deviate_at[r] + count;
         }
+        // The sequential part: the generators' uniform draws (and rejections) in the fixed order.
+        std::array<rng::polar_span, N> pairs{};
+        for (std::size_t k = 0; k < N; ++k) {
+            deviates[k].resize(deviate_at[rows]);
+            if (gaussian)
+                pairs[k] = gens[k]->draw_polar_pairs(deviates[k]);
+            else
+                for (double& d : deviates[k]) d = gens[k]->uniform();
+        }
+        // Gaussian deviates from their pairs, in pieces of even length on the pool's threads.
+        if (gaussian) {
+            constexpr std::size_t piece = 8192;
+            const std::size_t pieces = (deviate_at[rows] + piece - 1) / piece;
+            pool.for_each(
+                N * pieces,
+                [&](std::size_t task) {
+                    const std::size_t k = task / pieces;
+                    const std::size_t b = pairs[k].begin + (task % pieces) * piece;
+                    if (b < pairs[k].end)
+                        rng::polar_normals(std::span<double>(deviates[k]).subspan(b, std::min(piece, pairs[k].end - b)));
+                },
+                threads);
+        }
+        pool.for_each(
+            rows,
+            [&](std::size_t r) {
+                const std::size_t j = j0 + r;
+                std::size_t d = deviate_at[r];
+                std::array<std::complex<double>, N> v;
+                for (std::size_t i = 0; i < nx; ++i) {
+                    const std::size_t own = j * nx + i, partner = partner_of(i, j);
+                    double& share = contribution[r * nx + i];
+                    share = 0.0;
+                    if (partner < own) continue; // set together with its partner
+                    const bool self = partner == own;
+                    const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
+                    share = self ? var : 2.0 * var;
+                    for (std::size_t k = 0; k < N; ++k) v[k] = mode_coefficient(var, self, gaussian, deviates[k].data() + d);
+                    d += mode_deviates(gaussian, self);
+                    store(own, partner, v);
+                }
+            },
+            threads);
+        for (std::size_t m = 0; m < rows * nx; ++m) band += contribution[m];
     }
     return band;
 }
