@@ -66,8 +66,9 @@ template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::s
     std::vector<std::complex<T>> last(sy);
     const detail::half_spectrum<T> s{work.data(), last.data(), sx, sy};
     (void)detail::draw_coefficients(sx, sy, static_cast<double>(cell_m), p, std::array<rng*, 1>{&g},
-                                    [&](std::size_t own, std::size_t partner,
-                                        const std::array<std::complex<double>, 1>& v) { s.set_pair(own, partner, v[0]); });
+                                    [&](const detail::mode_pair& m, const std::array<std::complex<double>, 1>& v) {
+                                        s.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
+                                    });
     detail::inverse_half_spectrum(s, 1.0);
     last = {};
     if (sx == nx && sy == ny) return raster<T>{nx, ny, cell_m, std::move(work)};

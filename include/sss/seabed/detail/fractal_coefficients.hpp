@@ -85,10 +85,16 @@ template <Real T> [[nodiscard]] directional_density make_density(const fractal_p
     return std::polar(std::sqrt(var), two_pi_v<double> * d[0]);
 }
 
+/// A mode (i, j) and its Hermitian partner (pi, pj) = (-i mod nx, -j mod ny), with their flat indices
+/// own = j nx + i and partner = pj nx + pi of the row-major nx x ny grid.
+struct mode_pair {
+    std::size_t i, j, pi, pj, own, partner;
+};
+
 /// Draws Hermitian-symmetric random coefficients of the spectrum for an nx x ny grid in the fixed order (rows of
 /// modes, each mode with its partner), from every generator of `gens` in step (each generator draws the same
-/// sequence as alone), calling store(own, partner, v) with v[k] from gens[k] for each pair (partner == own for
-/// a self-conjugate mode, v then real): the caller sets c[own] = v and c[partner] = conj(v), or combines them.
+/// sequence as alone), calling store(m, v) with the mode_pair m and v[k] from gens[k] for each pair
+/// (m.partner == m.own for a self-conjugate mode, v then real): the caller sets c[own] = v and c[partner] = conj(v), or combines them.
 /// Returns the sum of the modes' variances, the band variance of the grid.
 ///
 /// Work: the rows go in chunks; for each chunk the generators' deviates are drawn first, in the fixed order
@@ -106,7 +112,7 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
     thread_pool& pool = shared_thread_pool();
     const unsigned threads = nx * ny >= (std::size_t(1) << 16) ? 0u : 1u; // small grids are not worth a thread
     // Mode (i, j) is drawn with its partner (-i, -j) when the partner's flat index is not below its own.
-    const auto partner_of = [&](std::size_t i, std::size_t j) { return ((ny - j) % ny) * nx + (nx - i) % nx; };
+    const auto mirror = [](std::size_t i, std::size_t n) { return i == 0 ? i : n - i; }; // -i mod n
     const std::size_t chunk_rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / nx);
     std::vector<std::size_t> deviate_at(chunk_rows + 1); // first deviate of each row of the chunk
     std::array<std::vector<double>, N> deviates;
@@ -117,9 +123,10 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
         deviate_at[0] = 0;
         for (std::size_t r = 0; r < rows; ++r) {
             const std::size_t j = j0 + r;
+            const std::size_t pj = mirror(j, ny);
             std::size_t count = 0;
             for (std::size_t i = 0; i < nx; ++i) {
-                const std::size_t own = j * nx + i, partner = partner_of(i, j);
+                const std::size_t own = j * nx + i, partner = pj * nx + mirror(i, nx);
                 if (partner >= own) count += mode_deviates(gaussian, partner == own);
             }
             deviate_at[r + 1] = deviate_at[r] + count;
@@ -152,18 +159,20 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
             [&](std::size_t r) {
                 const std::size_t j = j0 + r;
                 std::size_t d = deviate_at[r];
+                const std::size_t pj = mirror(j, ny);
                 std::array<std::complex<double>, N> v;
                 for (std::size_t i = 0; i < nx; ++i) {
-                    const std::size_t own = j * nx + i, partner = partner_of(i, j);
+                    const std::size_t pi_ = mirror(i, nx);
+                    const mode_pair m{i, j, pi_, pj, j * nx + i, pj * nx + pi_};
                     double& share = contribution[r * nx + i];
                     share = 0.0;
-                    if (partner < own) continue; // set together with its partner
-                    const bool self = partner == own;
+                    if (m.partner < m.own) continue; // set together with its partner
+                    const bool self = m.partner == m.own;
                     const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
                     share = self ? var : 2.0 * var;
                     for (std::size_t k = 0; k < N; ++k) v[k] = mode_coefficient(var, self, gaussian, deviates[k].data() + d);
                     d += mode_deviates(gaussian, self);
-                    store(own, partner, v);
+                    store(m, v);
                 }
             },
             threads);
@@ -177,9 +186,9 @@ template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, s
                                          double cell_m, const fractal_params<T>& p, rng& g) {
     c.assign(nx * ny, std::complex<double>(0.0, 0.0));
     (void)draw_coefficients(nx, ny, cell_m, p, std::array<rng*, 1>{&g},
-                            [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 1>& v) {
-                                c[own] = v[0];
-                                c[partner] = std::conj(v[0]);
+                            [&](const mode_pair& m, const std::array<std::complex<double>, 1>& v) {
+                                c[m.own] = v[0];
+                                c[m.partner] = std::conj(v[0]);
                             });
 }
 

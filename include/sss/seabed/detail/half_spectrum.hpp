@@ -56,12 +56,11 @@ template <Real T> struct half_spectrum {
         p[1] = static_cast<T>(c.imag());
     }
 
-    /// Stores c at flat index `own` = ky * nx + kx and conj c at its Hermitian partner, each where it lies in
-    /// the half (the store of draw_coefficients).
-    void set_pair(std::size_t own, std::size_t partner, std::complex<double> c) const noexcept {
-        const std::size_t kx = own % nx, pkx = partner % nx;
-        if (kx <= nx / 2) set(kx, own / nx, c);
-        if (pkx <= nx / 2) set(pkx, partner / nx, std::conj(c));
+    /// Stores c at mode (i, j) and conj c at its Hermitian partner (pi, pj), each where it lies in the half (the
+    /// store of draw_coefficients).
+    void set_pair(std::size_t i, std::size_t j, std::size_t pi, std::size_t pj, std::complex<double> c) const noexcept {
+        if (i <= nx / 2) set(i, j, c);
+        if (pi <= nx / 2) set(pi, pj, std::conj(c));
     }
 };
 

@@ -62,15 +62,15 @@ template <Real S, Real T>
         last_b.resize(ny);
         const half_spectrum<S> sb{out.b.data(), last_b.data(), nx, ny};
         band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 2>{&ga, &gb},
-                                 [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 2>& v) {
-                                     sa.set_pair(own, partner, v[0]);
-                                     sb.set_pair(own, partner, v[1]);
+                                 [&](const mode_pair& m, const std::array<std::complex<double>, 2>& v) {
+                                     sa.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
+                                     sb.set_pair(m.i, m.j, m.pi, m.pj, v[1]);
                                  });
         inverse_half_spectrum(sb, 1.0 / std::sqrt(band));
     } else {
         band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 1>{&ga},
-                                 [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 1>& v) {
-                                     sa.set_pair(own, partner, v[0]);
+                                 [&](const mode_pair& m, const std::array<std::complex<double>, 1>& v) {
+                                     sa.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
                                  });
     }
     inverse_half_spectrum(sa, 1.0 / std::sqrt(band));
