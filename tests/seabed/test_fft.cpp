@@ -131,7 +131,7 @@ TEST_CASE("2D FFT equals the direct 2D DFT (square, rectangular, odd sizes; more
     }
 }
 
-TEST_CASE("a Hermitian half spectrum transforms in place to the real field of the full 2D inverse (any sizes, float and double)") {
+TEST_CASE("a Hermitian half spectrum transforms in place to the real part of the full 2D inverse, in float and double") {
     // The half kx = 0 .. nx/2 of a random Hermitian spectrum, in the field's own storage (detail/half_spectrum.hpp),
     // against the real part of the complex inverse 2D FFT of the whole spectrum: equal to the rounding of the
     // storage type (double, float) relative to the field's RMS; the imaginary part of the reference vanishes.

@@ -74,7 +74,8 @@ template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::s
     if (sx == nx && sy == ny) return raster<T>{nx, ny, cell_m, std::move(work)};
     raster<T> out{nx, ny, cell_m, std::vector<T>(nx * ny)};
     for (std::size_t iy = 0; iy < ny; ++iy)
-        std::copy_n(work.begin() + static_cast<std::ptrdiff_t>(iy * sx), nx, out.values.begin() + static_cast<std::ptrdiff_t>(iy * nx));
+        std::copy_n(work.begin() + static_cast<std::ptrdiff_t>(iy * sx), nx,
+                    out.values.begin() + static_cast<std::ptrdiff_t>(iy * nx));
     return out;
 }
 

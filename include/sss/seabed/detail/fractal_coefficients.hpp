@@ -94,14 +94,15 @@ struct mode_pair {
 /// Draws Hermitian-symmetric random coefficients of the spectrum for an nx x ny grid in the fixed order (rows of
 /// modes, each mode with its partner), from every generator of `gens` in step (each generator draws the same
 /// sequence as alone), calling store(m, v) with the mode_pair m and v[k] from gens[k] for each pair
-/// (m.partner == m.own for a self-conjugate mode, v then real): the caller sets c[own] = v and c[partner] = conj(v), or combines them.
-/// Returns the sum of the modes' variances, the band variance of the grid.
+/// (m.partner == m.own for a self-conjugate mode, v then real): the caller sets c[own] = v and
+/// c[partner] = conj(v), or combines them. Returns the sum of the modes' variances, the band variance of the grid.
 ///
-/// Work: the rows go in chunks; for each chunk the generators' deviates are drawn first, in the fixed order
-/// (Gaussian ones as uniform pairs, rng::draw_polar_pairs, turned into deviates on the threads), then the rows' spectral densities and coefficients are evaluated
-/// and stored on the threads of shared_thread_pool(): `store` is called concurrently for different pairs (each
-/// element of the spectrum belongs to one pair). The coefficients, and the band variance (summed in the fixed
-/// order), are those of drawing mode by mode, bit for bit.
+/// Work: the rows go in chunks. For each chunk the generators draw first, in the fixed order (for Gaussian
+/// amplitudes only the polar method's uniform pairs, rng::draw_polar_pairs); then, on the threads of
+/// shared_thread_pool(), the pairs become normal deviates (rng::polar_normals) and the rows' spectral densities
+/// and coefficients are evaluated and stored: `store` is called concurrently for different pairs (each element
+/// of the spectrum belongs to one pair). The coefficients, and the band variance (summed in the fixed order),
+/// are those of drawing mode by mode, bit for bit.
 template <Real T, std::size_t N, class Store>
 double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fractal_params<T>& p,
                          std::array<rng*, N> gens, Store&& store) {
@@ -113,7 +114,7 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
     const unsigned threads = nx * ny >= (std::size_t(1) << 16) ? 0u : 1u; // small grids are not worth a thread
     // Mode (i, j) is drawn with its partner (-i, -j) when the partner's flat index is not below its own.
     const auto mirror = [](std::size_t i, std::size_t n) { return i == 0 ? i : n - i; }; // -i mod n
-    const std::size_t chunk_rows = std::max<std::size_t>(1, (std::size_t(1) << 16) / nx);
+    const std::size_t chunk_rows = std::min(ny, std::max<std::size_t>(1, (std::size_t(1) << 16) / nx));
     std::vector<std::size_t> deviate_at(chunk_rows + 1); // first deviate of each row of the chunk
     std::array<std::vector<double>, N> deviates;
     std::vector<double> contribution(chunk_rows * nx); // each mode's share of the band variance, 0 if not drawn
@@ -150,7 +151,8 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
                     const std::size_t k = task / pieces;
                     const std::size_t b = pairs[k].begin + (task % pieces) * piece;
                     if (b < pairs[k].end)
-                        rng::polar_normals(std::span<double>(deviates[k]).subspan(b, std::min(piece, pairs[k].end - b)));
+                        rng::polar_normals(
+                            std::span<double>(deviates[k]).subspan(b, std::min(piece, pairs[k].end - b)));
                 },
                 threads);
         }
@@ -170,7 +172,8 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
                     const bool self = m.partner == m.own;
                     const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
                     share = self ? var : 2.0 * var;
-                    for (std::size_t k = 0; k < N; ++k) v[k] = mode_coefficient(var, self, gaussian, deviates[k].data() + d);
+                    for (std::size_t k = 0; k < N; ++k)
+                        v[k] = mode_coefficient(var, self, gaussian, deviates[k].data() + d);
                     d += mode_deviates(gaussian, self);
                     store(m, v);
                 }

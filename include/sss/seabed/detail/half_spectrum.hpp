@@ -84,7 +84,8 @@ template <Real T> void inverse_half_spectrum(const half_spectrum<T>& s, double s
             std::vector<complex> scratch(std::max(col_plan.scratch_size(), std::size_t{1}));
             for (std::size_t ky = 0; ky < ny; ++ky)
                 for (std::size_t c = 0; c < w; ++c) cols[c * ny + ky] = s.get(k0 + c, ky);
-            for (std::size_t c = 0; c < w; ++c) col_plan.execute(cols.data() + c * ny, fft_direction::backward, scratch.data());
+            for (std::size_t c = 0; c < w; ++c)
+                col_plan.execute(cols.data() + c * ny, fft_direction::backward, scratch.data());
             for (std::size_t y = 0; y < ny; ++y)
                 for (std::size_t c = 0; c < w; ++c) s.set(k0 + c, y, cols[c * ny + y]);
         },
