@@ -97,12 +97,14 @@ struct mode_pair {
 /// (m.partner == m.own for a self-conjugate mode, v then real): the caller sets c[own] = v and
 /// c[partner] = conj(v), or combines them. Returns the sum of the modes' variances, the band variance of the grid.
 ///
-/// Work: the rows go in chunks. For each chunk the generators draw first, in the fixed order (for Gaussian
-/// amplitudes only the polar method's uniform pairs, rng::draw_polar_pairs); then, on the threads of
-/// shared_thread_pool(), the pairs become normal deviates (rng::polar_normals) and the rows' spectral densities
-/// and coefficients are evaluated and stored: `store` is called concurrently for different pairs (each element
-/// of the spectrum belongs to one pair). The coefficients, and the band variance (summed in the fixed order),
-/// are those of drawing mode by mode, bit for bit.
+/// Work: the rows go in chunks, each in three stages: (a) the generators draw, in the fixed order (for Gaussian
+/// amplitudes only the polar method's uniform pairs, rng::draw_polar_pairs); (b) the pairs become normal
+/// deviates (rng::polar_normals); (c) the rows' spectral densities and coefficients are evaluated and stored.
+/// The stages of successive chunks overlap on the threads of shared_thread_pool() (a of one chunk, b of the one
+/// before, c of the one before that), so the sequential draws cost little more than their share: `store` is
+/// called concurrently for different pairs (each element of the spectrum belongs to one pair). The
+/// coefficients, and the band variance (summed in the fixed order), are those of drawing mode by mode, bit for
+/// bit.
 template <Real T, std::size_t N, class Store>
 double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fractal_params<T>& p,
                          std::array<rng*, N> gens, Store&& store) {
@@ -115,71 +117,91 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
     // Mode (i, j) is drawn with its partner (-i, -j) when the partner's flat index is not below its own.
     const auto mirror = [](std::size_t i, std::size_t n) { return i == 0 ? i : n - i; }; // -i mod n
     const std::size_t chunk_rows = std::min(ny, std::max<std::size_t>(1, (std::size_t(1) << 16) / nx));
-    std::vector<std::size_t> deviate_at(chunk_rows + 1); // first deviate of each row of the chunk
-    std::array<std::vector<double>, N> deviates;
-    std::vector<double> contribution(chunk_rows * nx); // each mode's share of the band variance, 0 if not drawn
-    double band = 0.0;
-    for (std::size_t j0 = 0; j0 < ny; j0 += chunk_rows) {
-        const std::size_t rows = std::min(chunk_rows, ny - j0);
-        deviate_at[0] = 0;
-        for (std::size_t r = 0; r < rows; ++r) {
-            const std::size_t j = j0 + r;
-            const std::size_t pj = mirror(j, ny);
+    const std::size_t chunks = (ny + chunk_rows - 1) / chunk_rows;
+    constexpr std::size_t piece = 8192; // deviates per task of stage b (even)
+
+    struct chunk {
+        std::size_t j0 = 0, rows = 0, pieces = 0;
+        std::vector<std::size_t> deviate_at;      // first deviate of each row, and the total
+        std::array<std::vector<double>, N> deviates;
+        std::array<rng::polar_span, N> pairs{};
+        std::vector<double> contribution;         // each mode's share of the band variance, 0 if not drawn
+    };
+    std::array<chunk, 3> buffers; // chunk c lives in buffers[c % 3]
+
+    const auto draw = [&](std::size_t c) { // stage a: sequential
+        chunk& b = buffers[c % 3];
+        b.j0 = c * chunk_rows;
+        b.rows = std::min(chunk_rows, ny - b.j0);
+        b.deviate_at.assign(b.rows + 1, 0);
+        for (std::size_t r = 0; r < b.rows; ++r) {
+            const std::size_t j = b.j0 + r, pj = mirror(j, ny);
             std::size_t count = 0;
             for (std::size_t i = 0; i < nx; ++i) {
                 const std::size_t own = j * nx + i, partner = pj * nx + mirror(i, nx);
                 if (partner >= own) count += mode_deviates(gaussian, partner == own);
             }
-            deviate_at[r + 1] = deviate_at[r] + count;
+            b.deviate_at[r + 1] = b.deviate_at[r] + count;
         }
-        // The sequential part: the generators' uniform draws (and rejections) in the fixed order.
-        std::array<rng::polar_span, N> pairs{};
         for (std::size_t k = 0; k < N; ++k) {
-            deviates[k].resize(deviate_at[rows]);
+            b.deviates[k].resize(b.deviate_at[b.rows]);
             if (gaussian)
-                pairs[k] = gens[k]->draw_polar_pairs(deviates[k]);
+                b.pairs[k] = gens[k]->draw_polar_pairs(b.deviates[k]);
             else
-                for (double& d : deviates[k]) d = gens[k]->uniform();
+                for (double& d : b.deviates[k]) d = gens[k]->uniform();
         }
-        // Gaussian deviates from their pairs, in pieces of even length on the pool's threads.
-        if (gaussian) {
-            constexpr std::size_t piece = 8192;
-            const std::size_t pieces = (deviate_at[rows] + piece - 1) / piece;
-            pool.for_each(
-                N * pieces,
-                [&](std::size_t task) {
-                    const std::size_t k = task / pieces;
-                    const std::size_t b = pairs[k].begin + (task % pieces) * piece;
-                    if (b < pairs[k].end)
-                        rng::polar_normals(
-                            std::span<double>(deviates[k]).subspan(b, std::min(piece, pairs[k].end - b)));
-                },
-                threads);
+        b.pieces = gaussian ? (b.deviate_at[b.rows] + piece - 1) / piece : 0;
+    };
+    const auto transform = [&](std::size_t c, std::size_t task) { // stage b: one piece of one generator's pairs
+        chunk& b = buffers[c % 3];
+        const std::size_t k = task / b.pieces;
+        const std::size_t at = b.pairs[k].begin + (task % b.pieces) * piece;
+        if (at < b.pairs[k].end)
+            rng::polar_normals(std::span<double>(b.deviates[k]).subspan(at, std::min(piece, b.pairs[k].end - at)));
+    };
+    const auto evaluate = [&](std::size_t c, std::size_t r) { // stage c: one row
+        chunk& b = buffers[c % 3];
+        const std::size_t j = b.j0 + r, pj = mirror(j, ny);
+        std::size_t d = b.deviate_at[r];
+        std::array<std::complex<double>, N> v;
+        for (std::size_t i = 0; i < nx; ++i) {
+            const std::size_t pi_ = mirror(i, nx);
+            const mode_pair m{i, j, pi_, pj, j * nx + i, pj * nx + pi_};
+            double& share = b.contribution[r * nx + i];
+            share = 0.0;
+            if (m.partner < m.own) continue; // set together with its partner
+            const bool self = m.partner == m.own;
+            const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
+            share = self ? var : 2.0 * var;
+            for (std::size_t k = 0; k < N; ++k)
+                v[k] = mode_coefficient(var, self, gaussian, b.deviates[k].data() + d);
+            d += mode_deviates(gaussian, self);
+            store(m, v);
         }
+    };
+
+    for (chunk& b : buffers) b.contribution.resize(chunk_rows * nx);
+    double band = 0.0;
+    for (std::size_t c = 0; c < chunks + 2; ++c) {
+        // Tasks of this step: [draw chunk c] [transform chunk c - 1] [evaluate chunk c - 2], each where it exists.
+        const std::size_t n_draw = c < chunks ? 1 : 0;
+        const std::size_t n_transform = c >= 1 && c - 1 < chunks ? N * buffers[(c - 1) % 3].pieces : 0;
+        const std::size_t n_evaluate = c >= 2 && c - 2 < chunks ? buffers[(c - 2) % 3].rows : 0;
         pool.for_each(
-            rows,
-            [&](std::size_t r) {
-                const std::size_t j = j0 + r;
-                std::size_t d = deviate_at[r];
-                const std::size_t pj = mirror(j, ny);
-                std::array<std::complex<double>, N> v;
-                for (std::size_t i = 0; i < nx; ++i) {
-                    const std::size_t pi_ = mirror(i, nx);
-                    const mode_pair m{i, j, pi_, pj, j * nx + i, pj * nx + pi_};
-                    double& share = contribution[r * nx + i];
-                    share = 0.0;
-                    if (m.partner < m.own) continue; // set together with its partner
-                    const bool self = m.partner == m.own;
-                    const double var = mode_variance(w, i, j, nx, ny, dkx, dky);
-                    share = self ? var : 2.0 * var;
-                    for (std::size_t k = 0; k < N; ++k)
-                        v[k] = mode_coefficient(var, self, gaussian, deviates[k].data() + d);
-                    d += mode_deviates(gaussian, self);
-                    store(m, v);
-                }
+            n_draw + n_transform + n_evaluate,
+            [&](std::size_t task) {
+                if (task < n_draw)
+                    draw(c);
+                else if (task < n_draw + n_transform)
+                    transform(c - 1, task - n_draw);
+                else
+                    evaluate(c - 2, task - n_draw - n_transform);
             },
             threads);
-        for (std::size_t m = 0; m < rows * nx; ++m) band += contribution[m];
+        if (n_evaluate > 0) {
+            const chunk& b = buffers[(c - 2) % 3];
+            for (std::size_t m = 0; m < b.rows * nx; ++m) band += b.contribution[m];
+        }
     }
     return band;
 }
