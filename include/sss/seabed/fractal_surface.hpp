@@ -53,7 +53,9 @@ template <Real T>
 /// Any nx, ny >= 1 (powers of two are fastest). Same (arguments, seed), same surface.
 /// Memory: the coefficients' Hermitian half is drawn into the surface's own storage and transformed there
 /// (detail/half_spectrum.hpp), so the peak is the surface plus one column (with oversample m: the
-/// (m nx) x (m ny) synthesis grid in T plus the surface).
+/// (m nx) x (m ny) synthesis grid in T plus the surface). Each row and column is transformed in double; for
+/// float the coefficients and the half-transformed columns are held in float, which differs from a synthesis
+/// wholly in double by a few float roundings of the surface's RMS.
 template <Real T> [[nodiscard]] raster<T> fractal_surface(std::size_t nx, std::size_t ny, T cell_m,
                                                           const fractal_params<T>& p, std::uint64_t seed) {
     require_grid(nx, ny, cell_m, "fractal_surface");
