@@ -215,7 +215,7 @@ private:
         } while (!(s < 1.0) || s == 0.0);
     }
 
-    [[gnu::always_inline]] static inline void polar_normals_loop(std::span<double> pairs) noexcept {
+    static void polar_normals_loop(std::span<double> pairs) noexcept {
         for (std::size_t k = 0; k + 1 < pairs.size(); k += 2) {
             const double f = polar_factor(pairs[k], pairs[k + 1]);
             pairs[k] *= f;
@@ -224,8 +224,13 @@ private:
     }
 
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__FMA__)
+    /// polar_normals_loop compiled for FMA instructions (its calls inlined here compile for them too).
     [[gnu::target("fma")]] static void polar_normals_fma(std::span<double> pairs) noexcept {
-        polar_normals_loop(pairs);
+        for (std::size_t k = 0; k + 1 < pairs.size(); k += 2) {
+            const double f = polar_factor(pairs[k], pairs[k + 1]);
+            pairs[k] *= f;
+            pairs[k + 1] *= f;
+        }
     }
 #endif
 
