@@ -206,15 +206,4 @@ double draw_coefficients(std::size_t nx, std::size_t ny, double cell_m, const fr
     return band;
 }
 
-/// Fills `c` (nx * ny, row-major) with Hermitian-symmetric random coefficients of the spectrum.
-template <Real T> void fill_coefficients(std::vector<std::complex<double>>& c, std::size_t nx, std::size_t ny,
-                                         double cell_m, const fractal_params<T>& p, rng& g) {
-    c.assign(nx * ny, std::complex<double>(0.0, 0.0));
-    (void)draw_coefficients(nx, ny, cell_m, p, std::array<rng*, 1>{&g},
-                            [&](const mode_pair& m, const std::array<std::complex<double>, 1>& v) {
-                                c[m.own] = v[0];
-                                c[m.partner] = std::conj(v[0]);
-                            });
-}
-
 } // namespace sss::seabed::detail
