@@ -1,7 +1,7 @@
-// Cost of seabed synthesis: a fractal surface by spectral synthesis (random coefficients + one inverse 2D FFT)
-// from 512^2 up to 4096^2 samples, the bare 2D FFT, a three-texture composite seabed with ripples, and two
-// perturbed ripple sets on 4096^2 at 0.25 m (each set's crest displacement and height variation, two unit fractal
-// fields, from one complex FFT).
+// Cost of seabed synthesis: a fractal surface by spectral synthesis (random coefficients + one inverse 2D FFT of
+// their Hermitian half, in the surface's own storage) from 512^2 up to 4096^2 samples, the bare complex 2D FFT, a
+// three-texture composite seabed with ripples, and two perturbed ripple sets on 4096^2 at 0.25 m (each set's crest
+// displacement and height variation, two unit fractal fields drawn in step, each transformed in its own storage).
 // Surface: APL-UW medium sand (TR 9407 Table 2: w2 = 0.004446 cm^4, gamma = 3.25), 5 cm cells, output float.
 
 #include <benchmark/benchmark.h>

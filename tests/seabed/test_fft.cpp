@@ -6,11 +6,13 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/seabed/detail/half_spectrum.hpp"
 #include "sss/seabed/fft.hpp"
 #include "sss/seabed/random.hpp"
 
@@ -126,6 +128,49 @@ TEST_CASE("2D FFT equals the direct 2D DFT (square, rectangular, odd sizes; more
                 worst = std::max(worst, std::abs(ref - y[ky * nx + kx]));
             }
         CHECK(worst < 1e-12);
+    }
+}
+
+TEST_CASE("a Hermitian half spectrum transforms in place to the real part of the full 2D inverse, in float and double") {
+    // The half kx = 0 .. nx/2 of a random Hermitian spectrum, in the field's own storage (detail/half_spectrum.hpp),
+    // against the real part of the complex inverse 2D FFT of the whole spectrum: equal to the rounding of the
+    // storage type (double, float) relative to the field's RMS; the imaginary part of the reference vanishes.
+    const auto run = [](auto zero, std::size_t nx, std::size_t ny) {
+        using T = decltype(zero);
+        sss::seabed::rng g(nx * 131 + ny);
+        std::vector<cd> full(nx * ny);
+        for (std::size_t j = 0; j < ny; ++j)
+            for (std::size_t i = 0; i < nx; ++i) {
+                const std::size_t own = j * nx + i, partner = ((ny - j) % ny) * nx + (nx - i) % nx;
+                if (partner < own) continue;
+                const cd v(g.normal(), partner == own ? 0.0 : g.normal());
+                full[own] = v;
+                full[partner] = std::conj(v);
+            }
+        std::vector<T> values(nx * ny);
+        std::vector<std::complex<T>> last(ny);
+        const sss::seabed::detail::half_spectrum<T> s{values.data(), last.data(), nx, ny};
+        for (std::size_t j = 0; j < ny; ++j)
+            for (std::size_t i = 0; i <= nx / 2; ++i) s.set(i, j, full[j * nx + i]);
+        const double scale = 0.5;
+        sss::seabed::detail::inverse_half_spectrum(s, scale);
+        sss::seabed::fft_2d(full, nx, ny, fft_direction::backward);
+        double worst = 0, imag = 0, rms = 0;
+        for (std::size_t k = 0; k < nx * ny; ++k) {
+            worst = std::max(worst, std::abs(static_cast<double>(values[k]) - scale * full[k].real()));
+            imag = std::max(imag, std::abs(full[k].imag()));
+            rms += std::norm(scale * full[k].real());
+        }
+        rms = std::sqrt(rms / static_cast<double>(nx * ny));
+        CAPTURE(nx);
+        CAPTURE(ny);
+        CHECK(imag < 1e-12 * rms / scale);
+        CHECK(worst <= 64.0 * static_cast<double>(std::numeric_limits<T>::epsilon()) * rms);
+    };
+    for (const auto& size : {std::pair<std::size_t, std::size_t>{1, 1}, {1, 6}, {5, 1}, {2, 2}, {8, 8}, {6, 10},
+                             {5, 7}, {7, 5}, {40, 3}, {64, 33}, {300, 256}}) {
+        run(0.0, size.first, size.second);
+        run(0.0f, size.first, size.second);
     }
 }
 

@@ -10,6 +10,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/seabed/detail/cosine.hpp"
 #include "sss/seabed/fft.hpp"
 #include "sss/seabed/ripples.hpp"
 
@@ -154,6 +155,21 @@ TEST_CASE("ripples have the requested wavelength and crest direction (spectral p
         CHECK(2 * pi / std::hypot(kx, ky) == doctest::Approx(c.lambda_m).epsilon(0.005).scale(0));
         CHECK(sss::rad_to_deg(line_angle_diff(crest_direction(kx, ky), sss::heading_to_ccw_from_east_rad(p.crest_heading_deg))) < 0.5);
     }
+}
+
+TEST_CASE("the ripples' inline cosine is within a double rounding of the cosine over [0, pi], exact at its ends") {
+    // Dense over the three intervals of the reduction and across their joins at pi/4 and 3 pi/4; the reference is
+    // the long double cosine.
+    double worst = 0.0;
+    for (int i = 0; i <= 200000; ++i) {
+        const double x = sss::pi_v<double> * static_cast<double>(i) / 200000.0;
+        const long double ref = std::cos(static_cast<long double>(x));
+        const long double got = sss::seabed::detail::cos_0_pi(x);
+        worst = std::max(worst, static_cast<double>(std::fabs(got - ref)));
+    }
+    CHECK(worst < 3e-16);
+    CHECK(sss::seabed::detail::cos_0_pi(0.0) == 1.0);
+    CHECK(sss::seabed::detail::cos_0_pi(sss::pi_v<double>) == -1.0);
 }
 
 TEST_CASE("ripple height: crest-to-trough H and RMS H / (2 sqrt 2)") {

@@ -129,11 +129,11 @@ template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::
     sss::require_finite(p.warp_gamma, "partition.warp_gamma");
     sss::require(p.warp_gamma > T(2) && p.warp_gamma < T(4), "partition.warp_gamma", "must lie in (2, 4)");
 
-    // The warp's x and y fields from one complex FFT: x in the real parts, y in the imaginary parts.
-    std::vector<std::complex<double>> warp_xy;
+    // The warp's x and y fields, drawn in step: x in `a`, y in `b`.
+    detail::fractal_pair<double> warp_xy;
     if (p.warp_m > T(0))
-        warp_xy = detail::unit_fractal_pair(nx, ny, cell_m, p.warp_gamma, p.warp_scale_m, derive_seed(seed, 1),
-                                          derive_seed(seed, 2), true);
+        warp_xy = detail::unit_fractal_pair<double>(nx, ny, cell_m, p.warp_gamma, p.warp_scale_m, derive_seed(seed, 1),
+                                                    derive_seed(seed, 2), true);
     const double warp = static_cast<double>(p.warp_m), cell = static_cast<double>(cell_m);
     region_raster<T> out{nx, ny, cell_m, std::vector<std::uint32_t>(nx * ny)};
     for (std::size_t iy = 0; iy < ny; ++iy)
@@ -141,8 +141,8 @@ template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::
             const std::size_t i = iy * nx + ix;
             double x = static_cast<double>(ix) * cell, y = static_cast<double>(iy) * cell;
             if (warp > 0.0) {
-                x += warp * warp_xy[i].real();
-                y += warp * warp_xy[i].imag();
+                x += warp * warp_xy.a[i];
+                y += warp * warp_xy.b[i];
             }
             std::size_t best = 0;
             double best_d2 = HUGE_VAL;

@@ -50,12 +50,12 @@ public:
     explicit fft_plan(std::size_t n) : n_(n) {
         sss::require(n >= 1, "fft_plan.n", "transform length must be >= 1");
         if (is_power_of_two(n)) {
-            init_radix2(n, twiddle_, bitrev_);
+            init_radix2(n, twiddle_, twiddle_back_, bitrev_);
             return;
         }
         // Bluestein: X_k = w_k sum_n (x_n w_n) conj(w_{k-n}), w_j = exp(-i pi j^2 / n).
         m_ = next_power_of_two(2 * n - 1);
-        init_radix2(m_, twiddle_, bitrev_);
+        init_radix2(m_, twiddle_, twiddle_back_, bitrev_);
         chirp_.resize(n);
         const std::size_t two_n = 2 * n;
         for (std::size_t j = 0; j < n; ++j) {
@@ -105,12 +105,24 @@ public:
     }
 
 private:
-    static void init_radix2(std::size_t n, std::vector<complex>& tw, std::vector<std::size_t>& rev) {
-        tw.resize(n / 2);
+    /// Twiddles w_j = exp(-2 pi i j / n), j < n/2, laid out per stage for the radix-2 passes: the pass over
+    /// butterflies of length len = 2 half uses w_{j n / len}, j < half, stored contiguously from index half - 1
+    /// (n - 1 values in all); `back` holds their conjugates for the backward transform. Each value is the same
+    /// cos and sin of one angle wherever it appears, so the layout changes no result.
+    static void init_radix2(std::size_t n, std::vector<complex>& tw, std::vector<complex>& back,
+                            std::vector<std::size_t>& rev) {
+        std::vector<complex> w(n / 2);
         for (std::size_t j = 0; j < n / 2; ++j) {
             const double angle = -two_pi_v<double> * static_cast<double>(j) / static_cast<double>(n);
-            tw[j] = complex(std::cos(angle), std::sin(angle));
+            w[j] = complex(std::cos(angle), std::sin(angle));
         }
+        tw.resize(n > 1 ? n - 1 : 0);
+        back.resize(tw.size());
+        for (std::size_t half = 1; half < n; half <<= 1)
+            for (std::size_t j = 0; j < half; ++j) {
+                tw[half - 1 + j] = w[j * (n / (2 * half))];
+                back[half - 1 + j] = std::conj(tw[half - 1 + j]);
+            }
         rev.resize(n);
         std::size_t bits = 0;
         while ((std::size_t{1} << bits) < n) ++bits;
@@ -125,16 +137,20 @@ private:
     void radix2(complex* a, std::size_t n, fft_direction dir) const noexcept {
         for (std::size_t j = 0; j < n; ++j)
             if (j < bitrev_[j]) std::swap(a[j], a[bitrev_[j]]);
-        const bool back = dir == fft_direction::backward;
-        for (std::size_t len = 2; len <= n; len <<= 1) {
-            const std::size_t half = len / 2;
-            const std::size_t stride = n / len;
-            for (std::size_t start = 0; start < n; start += len) {
+        // Butterflies of length 2: w_0 = 1, so hi w_0 = hi (up to the sign of a zero).
+        for (std::size_t start = 0; start + 1 < n; start += 2) {
+            const complex t = a[start + 1];
+            a[start + 1] = a[start] - t;
+            a[start] += t;
+        }
+        const complex* tw = dir == fft_direction::backward ? twiddle_back_.data() : twiddle_.data();
+        for (std::size_t half = 2; half < n; half <<= 1) {
+            const complex* w = tw + (half - 1);
+            for (std::size_t start = 0; start < n; start += 2 * half) {
                 complex* lo = a + start;
                 complex* hi = lo + half;
                 for (std::size_t j = 0; j < half; ++j) {
-                    const complex w = back ? std::conj(twiddle_[j * stride]) : twiddle_[j * stride];
-                    const complex t = detail::cmul(hi[j], w);
+                    const complex t = detail::cmul(hi[j], w[j]);
                     hi[j] = lo[j] - t;
                     lo[j] += t;
                 }
@@ -144,7 +160,8 @@ private:
 
     std::size_t n_;
     std::size_t m_ = 0; // Bluestein convolution length, 0 for powers of two
-    std::vector<complex> twiddle_;
+    std::vector<complex> twiddle_;      // per stage (init_radix2)
+    std::vector<complex> twiddle_back_; // their conjugates
     std::vector<std::size_t> bitrev_;
     std::vector<complex> chirp_;
     std::vector<complex> kernel_;

@@ -17,8 +17,11 @@
 ///   (and every multiply-add is written as std::fma, so compilers that fuse multiply-adds change nothing):
 ///   the deviates are bit-identical wherever doubles are IEEE-754 binary64.
 
+#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 
 namespace sss::seabed {
 
@@ -52,9 +55,17 @@ namespace sss::seabed {
     if (!(x > 0.0)) return x == 0.0 ? -HUGE_VAL : NAN;
     if (x == HUGE_VAL) return x;
     int e = 0;
-    double m = std::frexp(x, &e); // x = m 2^e, m in [0.5, 1): exact
+    double m = 0.0; // x = m 2^e, m in [0.5, 1): exact
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    const auto biased = static_cast<int>(bits >> 52); // x > 0: no sign bit
+    if (biased != 0) {                                 // a normal number: std::frexp's result, without the call
+        m = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFULL) | 0x3FE0000000000000ULL);
+        e = biased - 1022;
+    } else {
+        m = std::frexp(x, &e);
+    }
     if (m < 0.70710678118654752440) {
-        m = std::ldexp(m, 1); // exact
+        m *= 2.0; // exact
         e -= 1;
     }
     const double t = (m - 1.0) / (m + 1.0);
@@ -123,20 +134,111 @@ public:
             has_spare_ = false;
             return spare_;
         }
-        double u = 0.0, v = 0.0, s = 0.0;
-        do {
-            u = 2.0 * uniform() - 1.0;
-            v = 2.0 * uniform() - 1.0;
-            s = std::fma(u, u, v * v);
-        } while (!(s < 1.0) || s == 0.0);
-        const double f = std::sqrt(-2.0 * portable_log(s) / s);
+        double u = 0.0, v = 0.0;
+        polar_pair(u, v);
+        const double f = polar_factor(u, v);
         spare_ = v * f;
         has_spare_ = true;
         return u * f;
     }
 
+    /// `out.size()` normal deviates: bit for bit those of as many calls of normal() (the spare included), in the
+    /// two passes below.
+    void normals(std::span<double> out) noexcept {
+        const polar_span pairs = draw_polar_pairs(out);
+        polar_normals(out.subspan(pairs.begin, pairs.end - pairs.begin));
+    }
+
+    /// Where draw_polar_pairs left accepted pairs: out[begin, end), (u, v) alternating, end - begin even.
+    struct polar_span {
+        std::size_t begin = 0;
+        std::size_t end = 0;
+    };
+
+    /// The sequential pass of normals(out) (the generator and the rejection, no logarithm): out[0] takes the
+    /// spare if there is one, out[begin, end) the accepted uniform pairs (u, v) whose deviates go there, and for
+    /// an odd remainder out.size() - 1 its deviate (the pair's second becomes the spare). polar_normals on
+    /// out[begin, end), on any number of threads in pieces of even length, then completes normals(out).
+    [[nodiscard]] polar_span draw_polar_pairs(std::span<double> out) noexcept {
+        const std::size_t n = out.size();
+        std::size_t k = 0;
+        if (n > 0 && has_spare_) {
+            has_spare_ = false;
+            out[k++] = spare_;
+        }
+        const polar_span pairs{k, k + (n - k) / 2 * 2};
+        double u = 0.0, v = 0.0;
+        for (; k < pairs.end; k += 2) {
+            polar_pair(u, v);
+            out[k] = u;
+            out[k + 1] = v;
+        }
+        if (k < n) {
+            polar_pair(u, v);
+            const double f = polar_factor(u, v);
+            out[k] = u * f;
+            spare_ = v * f;
+            has_spare_ = true;
+        }
+        return pairs;
+    }
+
+    /// The second pass of normals(): turns accepted pairs (u, v) (alternating, even length) into their two
+    /// deviates (u f, v f) in place. The pairs are independent, so the processor overlaps their logarithms.
+    /// Built with GCC or Clang for x86-64 without FMA instructions enabled, it runs a copy compiled for them
+    /// when the processor has them: std::fma is correctly rounded in hardware as in the library, so the deviates
+    /// are the same bits, only the library call for each multiply-add is saved.
+    static void polar_normals(std::span<double> pairs) noexcept {
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__FMA__)
+        static const bool fma = [] {
+            __builtin_cpu_init();
+            return __builtin_cpu_supports("fma") != 0;
+        }();
+        if (fma) {
+            polar_normals_fma(pairs);
+            return;
+        }
+#endif
+        polar_normals_loop(pairs);
+    }
+
 private:
     static constexpr std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }
+
+    /// The polar method's next accepted pair: (u, v) uniform in (-1, 1)^2 until 0 < u^2 + v^2 < 1.
+    void polar_pair(double& u, double& v) noexcept {
+        double s = 0.0;
+        do {
+            u = 2.0 * uniform() - 1.0;
+            v = 2.0 * uniform() - 1.0;
+            s = std::fma(u, u, v * v);
+        } while (!(s < 1.0) || s == 0.0);
+    }
+
+    static void polar_normals_loop(std::span<double> pairs) noexcept {
+        for (std::size_t k = 0; k + 1 < pairs.size(); k += 2) {
+            const double f = polar_factor(pairs[k], pairs[k + 1]);
+            pairs[k] *= f;
+            pairs[k + 1] *= f;
+        }
+    }
+
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__FMA__)
+    /// polar_normals_loop compiled for FMA instructions (its calls inlined here compile for them too).
+    [[gnu::target("fma")]] static void polar_normals_fma(std::span<double> pairs) noexcept {
+        for (std::size_t k = 0; k + 1 < pairs.size(); k += 2) {
+            const double f = polar_factor(pairs[k], pairs[k + 1]);
+            pairs[k] *= f;
+            pairs[k + 1] *= f;
+        }
+    }
+#endif
+
+    /// The polar method's factor f = sqrt(-2 ln(s) / s), s = u^2 + v^2, of an accepted pair.
+    [[nodiscard]] static double polar_factor(double u, double v) noexcept {
+        const double s = std::fma(u, u, v * v);
+        return std::sqrt(-2.0 * portable_log(s) / s);
+    }
 
     std::uint64_t s_[4]{};
     double spare_ = 0.0;

@@ -35,6 +35,9 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/core/thread_pool.hpp"
+#include "sss/seabed/detail/cosine.hpp"
+#include "sss/seabed/detail/unit_fractal.hpp"
 #include "sss/seabed/fractal.hpp"
 #include "sss/seabed/random.hpp"
 #include "sss/seabed/raster.hpp"
@@ -100,36 +103,50 @@ template <Real T> void add_ripples(raster<T>& h, const ripple_params<T>& p, std:
     const double sin_k = sin_amp > 0.0 ? two_pi_v<double> / static_cast<double>(p.sinuosity_wavelength_m) : 0.0;
     const double l0 = p.perturbation_scale_m > T(0) ? static_cast<double>(p.perturbation_scale_m) : 4.0 * lambda;
 
-    // The crest displacement g1 and the height variation g2: both from one complex FFT (detail::unit_fractal_pair),
-    // g1 in the real parts, g2 in the imaginary parts, read in place.
+    // The crest displacement g1 and the height variation g2, drawn in step (detail::unit_fractal_pair), stored as T:
+    // g1 in `a`, g2 in `b` (or g2 alone in `a`).
     const bool shifted = p.perturbation_m > T(0), modulated = p.height_variation > T(0);
-    std::vector<std::complex<double>> fields;
-    if (shifted && modulated)
-        fields = detail::unit_fractal_pair(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
-                                         derive_seed(seed, 1), derive_seed(seed, 2), true);
-    else if (shifted || modulated)
-        fields = detail::unit_fractal_pair(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
-                                         derive_seed(seed, shifted ? 1 : 2), 0, false);
-    auto shift = [&](std::size_t k) { return fields[k].real(); };
-    auto modulation = [&](std::size_t k) { return shifted ? fields[k].imag() : fields[k].real(); };
+    detail::fractal_pair<T> fields;
+    if (shifted || modulated)
+        fields = detail::unit_fractal_pair<T>(h.nx, h.ny, h.cell_m, p.perturbation_gamma, static_cast<T>(l0),
+                                              derive_seed(seed, shifted ? 1 : 2), derive_seed(seed, 2),
+                                              shifted && modulated);
+    const T* shift = shifted ? fields.a.data() : nullptr;
+    const T* modulation = modulated ? (shifted ? fields.b.data() : fields.a.data()) : nullptr;
 
+    // The profile of ripple_profile in double, its cosine inline (detail::cos_0_pi: within a rounding of std::cos;
+    // the library call would take most of the time).
+    const auto profile = [f](double q) {
+        if (q < f) return -0.5 * detail::cos_0_pi(pi_v<double> * q / f);
+        return 0.5 * detail::cos_0_pi(pi_v<double> * (q - f) / (1.0 - f));
+    };
+    // Each sample on its own: rows are shared among the threads of shared_thread_pool().
     const double dx = static_cast<double>(h.cell_m);
     const double phase0 = static_cast<double>(p.phase_rad) / two_pi_v<double>;
-    for (std::size_t iy = 0; iy < h.ny; ++iy) {
-        const double y = static_cast<double>(iy) * dx;
-        for (std::size_t ix = 0; ix < h.nx; ++ix) {
-            const double x = static_cast<double>(ix) * dx;
-            const std::size_t k = iy * h.nx + ix;
-            double d = 0.0;
-            if (sin_amp > 0.0) d += sin_amp * std::sin(sin_k * (x * cx + y * cy));
-            if (shifted) d += static_cast<double>(p.perturbation_m) * shift(k);
-            const double s = (x * mx + y * my + d) / lambda + phase0;
-            const double q = s - std::floor(s);
-            double amp = static_cast<double>(p.height_m);
-            if (modulated) amp *= std::max(0.0, 1.0 + static_cast<double>(p.height_variation) * modulation(k));
-            h.values[k] += static_cast<T>(amp * ripple_profile(q, f));
-        }
-    }
+    const double height = static_cast<double>(p.height_m), perturbation = static_cast<double>(p.perturbation_m);
+    const double variation = static_cast<double>(p.height_variation);
+    constexpr std::size_t rows_per_task = 16;
+    shared_thread_pool().for_each(
+        (h.ny + rows_per_task - 1) / rows_per_task,
+        [&](std::size_t task) {
+            const std::size_t y1 = std::min(h.ny, (task + 1) * rows_per_task);
+            for (std::size_t iy = task * rows_per_task; iy < y1; ++iy) {
+                const double y = static_cast<double>(iy) * dx;
+                for (std::size_t ix = 0; ix < h.nx; ++ix) {
+                    const double x = static_cast<double>(ix) * dx;
+                    const std::size_t k = iy * h.nx + ix;
+                    double d = 0.0;
+                    if (sin_amp > 0.0) d += sin_amp * std::sin(sin_k * (x * cx + y * cy));
+                    if (shift) d += perturbation * static_cast<double>(shift[k]);
+                    const double s = (x * mx + y * my + d) / lambda + phase0;
+                    const double q = s - std::floor(s);
+                    double amp = height;
+                    if (modulation) amp *= std::max(0.0, 1.0 + variation * static_cast<double>(modulation[k]));
+                    h.values[k] += static_cast<T>(amp * profile(q));
+                }
+            }
+        },
+        h.nx * h.ny >= (std::size_t(1) << 16) ? 0u : 1u);
 }
 
 /// A raster of nx x ny samples holding the sum of the given ripple sets (set i uses stream i of `seed`).

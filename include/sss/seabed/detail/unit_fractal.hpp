@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Internal to the seabed generators: fractal fields of unit expected RMS, one at a time or two from one FFT,
+/// Internal to the seabed generators: fractal fields of unit expected RMS, one at a time or two drawn in step,
 /// the shapes of perturbation, warp and partition fields. Not part of the API.
 
 #include <array>
@@ -12,6 +12,7 @@
 
 #include "sss/core/types.hpp"
 #include "sss/seabed/detail/fractal_coefficients.hpp"
+#include "sss/seabed/detail/half_spectrum.hpp"
 #include "sss/seabed/fft.hpp"
 #include "sss/seabed/fractal_params.hpp"
 #include "sss/seabed/fractal_surface.hpp"
@@ -33,39 +34,47 @@ template <Real T> [[nodiscard]] raster<double> unit_fractal_field(std::size_t nx
     return g;
 }
 
+/// Two unit fractal fields of one spectrum, each nx * ny values row-major (element iy * nx + ix); `b` is empty
+/// when only one was asked for.
+template <Real S> struct fractal_pair {
+    std::vector<S> a;
+    std::vector<S> b;
+};
+
 /// Two independent unit fractal fields of one spectrum (as unit_fractal_field with seeds seed_a and seed_b, equal
-/// to rounding) from one complex inverse FFT: the real part of element iy * nx + ix holds field a, the imaginary
-/// part field b. The transform of a Hermitian spectrum is real, so the transform of C = c_a + i c_b is
-/// h_a + i h_b: one FFT and one complex array serve both fields (Press et al., 2007, Numerical Recipes, 3rd ed.,
-/// section 12.3.2, "two real FFTs for the price of one"). With `with_b` false the imaginary parts are 0.
-template <Real T>
-[[nodiscard]] std::vector<std::complex<double>> unit_fractal_pair(std::size_t nx, std::size_t ny, T cell_m, T gamma, T l0_m,
-                                                                  std::uint64_t seed_a, std::uint64_t seed_b, bool with_b) {
+/// to rounding), stored as S: the two generators draw in step (draw_coefficients) and each field's Hermitian half
+/// spectrum is transformed in its own storage (half_spectrum.hpp), so the peak is the two fields plus a column
+/// each. With `with_b` false only `a` is made.
+template <Real S, Real T>
+[[nodiscard]] fractal_pair<S> unit_fractal_pair(std::size_t nx, std::size_t ny, T cell_m, T gamma, T l0_m,
+                                                std::uint64_t seed_a, std::uint64_t seed_b, bool with_b) {
     fractal_params<double> f;
     f.spectrum = power_law_spectrum<double>{1.0, static_cast<double>(gamma), static_cast<double>(l0_m)};
     const double dx = static_cast<double>(cell_m);
-    std::vector<std::complex<double>> c(nx * ny, std::complex<double>(0.0, 0.0));
+    fractal_pair<S> out;
+    out.a.assign(nx * ny, S(0));
+    std::vector<std::complex<S>> last_a(ny), last_b;
+    const half_spectrum<S> sa{out.a.data(), last_a.data(), nx, ny};
     rng ga(seed_a), gb(seed_b);
     double band = 0.0;
     if (with_b) {
-        // C[own] = a + i b, C[partner] = conj(a) + i conj(b) (for own == partner, a and b are real).
+        out.b.assign(nx * ny, S(0));
+        last_b.resize(ny);
+        const half_spectrum<S> sb{out.b.data(), last_b.data(), nx, ny};
         band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 2>{&ga, &gb},
-                                 [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 2>& v) {
-                                     const std::complex<double> a = v[0], b = v[1];
-                                     c[own] = {a.real() - b.imag(), a.imag() + b.real()};
-                                     c[partner] = {a.real() + b.imag(), b.real() - a.imag()};
+                                 [&](const mode_pair& m, const std::array<std::complex<double>, 2>& v) {
+                                     sa.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
+                                     sb.set_pair(m.i, m.j, m.pi, m.pj, v[1]);
                                  });
+        inverse_half_spectrum(sb, 1.0 / std::sqrt(band));
     } else {
         band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 1>{&ga},
-                                 [&](std::size_t own, std::size_t partner, const std::array<std::complex<double>, 1>& v) {
-                                     c[own] = v[0];
-                                     c[partner] = std::conj(v[0]);
+                                 [&](const mode_pair& m, const std::array<std::complex<double>, 1>& v) {
+                                     sa.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
                                  });
     }
-    fft_2d(c, nx, ny, fft_direction::backward);
-    const double scale = 1.0 / std::sqrt(band);
-    for (auto& v : c) v *= scale;
-    return c;
+    inverse_half_spectrum(sa, 1.0 / std::sqrt(band));
+    return out;
 }
 
 } // namespace sss::seabed::detail
