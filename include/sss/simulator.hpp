@@ -451,14 +451,14 @@ private:
     };
 
     /// Where two neighbouring columns' edges disagree, added to `out`. An edge of either with no edge of the
-    /// other within a sample moved between them: from itself to the other's nearest edge, in time and in launch
-    /// interval (the columns' launch angles nearly coincide), one interval more on each side. If the other column
-    /// has no edge at all (an object ending between them), every edge of the column that has them is spanned.
+    /// other within a sample moved between them by about the distance to the other's nearest edge, so within a
+    /// column it lies within that distance of where the column's centre sees it, either way: that stretch, in
+    /// two-way time (one sample more) and in launch interval (the columns' launch angles nearly coincide; one
+    /// interval more), is traced again. If the other column has no edge at all (an object ending between them),
+    /// the stretch spans every edge of the column that has them.
     void disagreements(const std::vector<column_edge>& x, const std::vector<column_edge>& y,
                        std::vector<redo_range>& out) const {
         const double tol = dt_;
-        // The edge moves by about |a - b| from one column's centre to the next, so within the column it lies within
-        // that distance of its centre's position, either way.
         auto span = [&](const column_edge& a, const column_edge& b) {
             const double dt = std::abs(a.t - b.t) + tol;
             const std::size_t dk = (a.k > b.k ? a.k - b.k : b.k - a.k) + 1;
@@ -555,8 +555,8 @@ private:
     }
 
     /// Traces the launch intervals `runs` (each [k0, k1]: the rays at angles[k0] to angles[k1 + 1]) of a column
-    /// between along-track angles lo and hi (rad), over the launch angles of the column it divides, and visits
-    /// their echoes.
+    /// between along-track angles lo and hi (rad), over the launch angles of the column it divides, with that
+    /// column's refinement budget, and visits their echoes.
     template <Scene Sc, class Visitor>
     void trace_runs(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
                     const std::vector<std::pair<std::size_t, std::size_t>>& runs, column_scratch& s,
@@ -765,7 +765,7 @@ private:
     double dt_ = 0.0;
     double source_level_ = 1.0;
     time_sampler sampler_{1, 1.0, pulse{}};
-    std::shared_ptr<buffer_pool> buffers_ = std::make_shared<buffer_pool>();
+    std::shared_ptr<buffer_pool> buffers_ = std::make_shared<buffer_pool>(); ///< shared by copies
 };
 
 } // namespace sss
