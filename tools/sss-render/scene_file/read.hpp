@@ -359,7 +359,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.integer("rays_along", d.run.rays_along, 1);
         if (d.run.rays_along > 4096) r.fail("rays_along", "must be <= 4096, got " + std::to_string(d.run.rays_along));
         r.positive("rays_per_sample", d.run.rays_per_sample);
-        if (d.run.rays_per_sample > 1024) r.fail("rays_per_sample", "must be <= 1024");
+        if (d.run.rays_per_sample > 1024)
+            r.fail("rays_per_sample", "must be <= 1024, got " + detail::table_reader::fmt(d.run.rays_per_sample));
         r.choice("seabed_edges_along", d.run.seabed_edges_along, {"auto", "on", "off"});
         r.finish();
     }
