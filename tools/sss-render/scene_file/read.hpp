@@ -362,6 +362,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (d.run.rays_per_sample > 1024)
             r.fail("rays_per_sample", "must be <= 1024, got " + detail::table_reader::fmt(d.run.rays_per_sample));
         r.choice("seabed_edges_along", d.run.seabed_edges_along, {"auto", "on", "off"});
+        r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }
     {
