@@ -44,7 +44,7 @@ template <Real T = float> [[nodiscard]] std::vector<sss::seabed::sediment_region
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const auto& g = regions[i];
         sss::seabed::sediment_region<T> r{.id = std::uint32_t(i), .sediment = sss::seabed::sediment_named<T>(g.sediment),
-                                             .mean_height_m = T(g.mean_height_m), .outer_scale_m = T(g.outer_scale_m)};
+                                          .mean_height_m = T(g.mean_height_m), .outer_scale_m = T(g.outer_scale_m)};
         for (const auto& p : g.ripple_sets)
             r.ripples.push_back({.wavelength_m = T(p.wavelength_m), .height_m = T(p.height_m),
                                  .crest_heading_deg = T(p.crest_heading_deg), .symmetry_index = T(p.symmetry_index),
@@ -64,19 +64,19 @@ template <Real T> void apply_stamps(const description& d, sss::seabed::raster<T>
         const T cx = T(p.center_m[0] - x0), cy = T(p.center_m[1] - y0);
         if (p.type == "plate")
             sb::stamp(h, sb::plate<T>{.center_x_m = cx, .center_y_m = cy, .length_m = T(p.length_m), .width_m = T(p.width_m),
-                                         .heading_deg = T(p.heading_deg), .top_m = T(p.top_m)});
+                                      .heading_deg = T(p.heading_deg), .top_m = T(p.top_m)});
         else if (p.type == "mound")
             sb::stamp(h, sb::mound<T>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = T(p.radius_u_m),
-                                         .radius_v_m = T(p.radius_v_m), .heading_deg = T(p.heading_deg), .height_m = T(p.height_m)});
+                                      .radius_v_m = T(p.radius_v_m), .heading_deg = T(p.heading_deg), .height_m = T(p.height_m)});
         else if (p.type == "scour")
             sb::stamp(h, sb::scour<T>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = T(p.radius_u_m),
-                                         .radius_v_m = T(p.radius_v_m), .heading_deg = T(p.heading_deg), .depth_m = T(p.depth_m),
-                                         .rim_height_m = T(p.rim_height_m), .rim_width_m = T(p.rim_width_m)});
+                                      .radius_v_m = T(p.radius_v_m), .heading_deg = T(p.heading_deg), .depth_m = T(p.depth_m),
+                                      .rim_height_m = T(p.rim_height_m), .rim_width_m = T(p.rim_width_m)});
         else
             sb::stamp(h, sb::trench<T>{.x0_m = T(p.start_m[0] - x0), .y0_m = T(p.start_m[1] - y0), .x1_m = T(p.end_m[0] - x0),
-                                          .y1_m = T(p.end_m[1] - y0), .width_m = T(p.width_m), .floor_width_m = T(p.floor_width_m),
-                                          .depth_m = T(p.depth_m), .berm_height_m = T(p.berm_height_m),
-                                          .berm_width_m = T(p.berm_width_m)});
+                                       .y1_m = T(p.end_m[1] - y0), .width_m = T(p.width_m), .floor_width_m = T(p.floor_width_m),
+                                       .depth_m = T(p.depth_m), .berm_height_m = T(p.berm_height_m),
+                                       .berm_width_m = T(p.berm_width_m)});
     }
 }
 
@@ -88,7 +88,7 @@ template <Real T = float> [[nodiscard]] sss::scene::height_field<T> load_seabed(
     if (ext == ".raw") return sss::io::read_raw_f32<T>(b.file);
     if (ext == ".pgm")
         return sss::io::read_pgm16<T>(b.file, T(b.cell_m), {T(b.origin_m[0]), T(b.origin_m[1])},
-                                         {.scale_m = T(b.pgm_scale_m), .offset_m = T(b.pgm_offset_m)});
+                                      {.scale_m = T(b.pgm_scale_m), .offset_m = T(b.pgm_offset_m)});
     return sss::io::read_esri_ascii<T>(b.file);
 }
 
@@ -155,8 +155,8 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
         if (o.type == "lying_cylinder") {
             objects.push_back(sb::lying_cylinder(
                 sb::lying_cylinder_params<T>{.center_m = {T(o.center_m[0]), T(o.center_m[1])},
-                                                .heading_deg = T(o.heading_deg), .length_m = T(o.length_m),
-                                                .radius_m = T(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
+                                             .heading_deg = T(o.heading_deg), .length_m = T(o.length_m),
+                                             .radius_m = T(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
                 h));
         } else if (o.type == "sphere" || o.type == "cylinder") {
             const sss::scene::surface_ids ids{.material = material, .object = id, .label = label};
@@ -171,11 +171,11 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
         } else if (o.type == "tethered_mine") {
             objects.push_back(sb::tethered_mine(
                 sb::tethered_mine_params<T>{.anchor_m = {T(o.anchor_m[0]), T(o.anchor_m[1])},
-                                               .case_height_m = T(o.case_height_m),
-                                               .shape = o.case_shape == "sphere" ? sb::mine_case::sphere : sb::mine_case::cylinder,
-                                               .case_radius_m = T(o.case_radius_m), .case_length_m = T(o.case_length_m),
-                                               .case_heading_deg = T(o.case_heading_deg), .object_id = id, .class_id = label,
-                                               .case_material = material, .tether_material = material, .anchor_material = material},
+                                            .case_height_m = T(o.case_height_m),
+                                            .shape = o.case_shape == "sphere" ? sb::mine_case::sphere : sb::mine_case::cylinder,
+                                            .case_radius_m = T(o.case_radius_m), .case_length_m = T(o.case_length_m),
+                                            .case_heading_deg = T(o.case_heading_deg), .object_id = id, .class_id = label,
+                                            .case_material = material, .tether_material = material, .anchor_material = material},
                 h));
         } else {
             sb::pipeline_params<T> p{.route_m = {}, .radius_m = T(o.radius_m), .ids = {.material = material, .object = id, .label = label}};
@@ -216,14 +216,14 @@ template <Real T = float> [[nodiscard]] scene_beam<T> beam_of(const description&
     if (s.beam == "planar_array") {
         const auto axis = [](const array_axis& a) {
             return sss::beam::array_axis<T>{.count = std::size_t(a.count), .element_m = T(a.element_m), .pitch_m = T(a.pitch_m),
-                                               .shading = std::vector<T>(a.shading.begin(), a.shading.end())};
+                                            .shading = std::vector<T>(a.shading.begin(), a.shading.end())};
         };
         const auto layout = [&](const array_layout& a) {
             return sss::beam::array_layout<T>{.along = axis(a.along), .vertical = axis(a.vertical)};
         };
         sss::beam::planar_array_params<T> p{.frequency_hz = T(s.frequency_hz), .sound_speed_mps = T(d.sea.sound_speed_mps),
-                                               .depression_deg = T(s.depression_deg), .transmit = layout(s.transmit),
-                                               .receive = std::nullopt, .threshold_db = T(s.beam_threshold_db)};
+                                            .depression_deg = T(s.depression_deg), .transmit = layout(s.transmit),
+                                            .receive = std::nullopt, .threshold_db = T(s.beam_threshold_db)};
         if (s.receive) p.receive = layout(*s.receive);
         return scene_beam<T>(sss::beam::planar_array<T>(p));
     }
@@ -237,10 +237,10 @@ template <Real T = float> [[nodiscard]] scene_beam<T> beam_of(const description&
 template <Real T = float> [[nodiscard]] sss::motion::trajectory<T> load_trajectory(const description& d) {
     const auto& m = d.tow;
     sss::motion::trajectory_params<T> p{.ping_interval_s = T(m.ping_interval_s),
-                                           .ping_zero_at = m.ping_zero_at.value_or(std::numeric_limits<double>::quiet_NaN()),
-                                           .method = m.interpolation == "linear" ? sss::motion::interpolation::linear
-                                                                                 : sss::motion::interpolation::cubic,
-                                           .roll_from_turn = m.roll_from_turn};
+                                        .ping_zero_at = m.ping_zero_at.value_or(std::numeric_limits<double>::quiet_NaN()),
+                                        .method = m.interpolation == "linear" ? sss::motion::interpolation::linear
+                                                                              : sss::motion::interpolation::cubic,
+                                        .roll_from_turn = m.roll_from_turn};
     try {
         return sss::motion::trajectory<T>(sss::io::read_trajectory_csv<T>(m.trajectory_file), p);
     } catch (const sss::error& e) {
@@ -259,12 +259,12 @@ template <Real T> [[nodiscard]] scene_motion<T> motion_of(const description& d, 
         return sss::motion::oscillation<T>{.amplitude = T(o.amplitude), .period_s = T(o.period_s), .phase_deg = T(o.phase_deg)};
     };
     sss::motion::perturbed_params<T> p{.start_m = {T(m.start_m[0]), T(m.start_m[1])}, .heading_deg = T(m.heading_deg),
-                                          .speed_mps = T(m.speed_mps), .altitude_m = z_m, .ping_interval_s = T(m.ping_interval_s),
-                                          .turn = {}, .yaw_deg = wobble(m.yaw_deg), .sway_m = wobble(m.sway_m),
-                                          .pitch_deg = wobble(m.pitch_deg), .heave_m = wobble(m.heave_m), .roll_deg = wobble(m.roll_deg)};
+                                       .speed_mps = T(m.speed_mps), .altitude_m = z_m, .ping_interval_s = T(m.ping_interval_s),
+                                       .turn = {}, .yaw_deg = wobble(m.yaw_deg), .sway_m = wobble(m.sway_m),
+                                       .pitch_deg = wobble(m.pitch_deg), .heave_m = wobble(m.heave_m), .roll_deg = wobble(m.roll_deg)};
     if (m.turn != "none")
         p.turn = sss::motion::constant_turn<T>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
-                                                  .radius_m = T(m.turn_radius_m), .rate_deg_s = T(m.turn_rate_deg_s)};
+                                               .radius_m = T(m.turn_radius_m), .rate_deg_s = T(m.turn_rate_deg_s)};
     return scene_motion<T>(sss::motion::perturbed<T>(p));
 }
 
