@@ -170,7 +170,7 @@ template <Real T> int render_scene(const description& d, const render_request& r
     const world<T> w = make_world<T>(d);
     const bool sampled = d.tow.model == "trajectory";
     if (const T z = tow_z(d, w); !sampled && !(z > 0))
-        throw scene_error(r.scene_path + ": motion.altitude_m: the towfish's world z (" + detail::table_reader::fmt(z) +
+        throw scene_error(r.scene_path + ": motion.altitude_m: the towfish's world z (" + detail::fmt(z) +
                           " m) must be > 0: the motion policies keep the towfish above z = 0; "
                           "raise the seabed (mean_height_m) so that it lies above -altitude_m");
     if (const auto below = below_seabed(w, sampled ? track : motion_of(d, tow_z(d, w)), r.first, count); !below.empty())

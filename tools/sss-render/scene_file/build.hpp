@@ -3,8 +3,8 @@
 /// From a resolved `description` to the library's objects: the seabed (generated or loaded), the objects laid
 /// on it, and the simulator, chosen among the compiled instantiations listed once in `with_simulator`.
 
+#include "error.hpp"
 #include "policies.hpp"
-#include "read.hpp"
 #include "scene.hpp"
 
 #include <sss/io/height_field_io.hpp>
@@ -284,7 +284,7 @@ template <Real T>
     const bool by_time = tow.sampled() && !tow.sampled()->keyed_by_ping();
     return asked + " reaches ping " + std::to_string(last - 1) + ", but motion.trajectory_file '" + d.tow.trajectory_file + "' covers " +
            std::to_string(n) + " pings (0 to " + std::to_string(n - 1) + ")" +
-           (by_time ? " at motion.ping_interval_s = " + detail::table_reader::fmt(d.tow.ping_interval_s) + " s" : std::string());
+           (by_time ? " at motion.ping_interval_s = " + detail::fmt(d.tow.ping_interval_s) + " s" : std::string());
 }
 
 /// UTC time (s since 1970) of ping `first` in the XTF file: output.xtf_start_unix_s, plus the trajectory's own

@@ -39,10 +39,10 @@ template <Real T>
     double alt = d.tow.altitude_m;
     auto check = [&](std::size_t ping, const char* what, double x, double y) {
         std::string edges;
-        if (x < e.west_m - 1e-9) edges += " west by " + detail::table_reader::fmt(e.west_m - x) + " m";
-        if (x > e.east_m + 1e-9) edges += " east by " + detail::table_reader::fmt(x - e.east_m) + " m";
-        if (y < e.south_m - 1e-9) edges += " south by " + detail::table_reader::fmt(e.south_m - y) + " m";
-        if (y > e.north_m + 1e-9) edges += " north by " + detail::table_reader::fmt(y - e.north_m) + " m";
+        if (x < e.west_m - 1e-9) edges += " west by " + detail::fmt(e.west_m - x) + " m";
+        if (x > e.east_m + 1e-9) edges += " east by " + detail::fmt(x - e.east_m) + " m";
+        if (y < e.south_m - 1e-9) edges += " south by " + detail::fmt(e.south_m - y) + " m";
+        if (y > e.north_m + 1e-9) edges += " north by " + detail::fmt(y - e.north_m) + " m";
         if (!edges.empty()) out.push_back(std::string(what) + " at ping " + std::to_string(ping) + " lies beyond the seabed:" + edges);
     };
     for (std::size_t ping : {first, first + count / 2, first + count - 1}) {
@@ -57,8 +57,8 @@ template <Real T>
         check(ping, "the port swath edge", x - reach * fy, y + reach * fx);
         check(ping, "the starboard swath edge", x + reach * fy, y - reach * fx);
     }
-    if (!(r > alt)) out.push_back("sonar.max_range_m (" + detail::table_reader::fmt(r) + " m) does not reach the seabed " +
-                                  detail::table_reader::fmt(alt) + " m below: the image holds only water");
+    if (!(r > alt)) out.push_back("sonar.max_range_m (" + detail::fmt(r) + " m) does not reach the seabed " +
+                                  detail::fmt(alt) + " m below: the image holds only water");
     return out;
 }
 
@@ -70,8 +70,8 @@ template <Real T>
         const T z = pose.position.z;
         const T ground = w.seabed().seabed_height_m(pose.position.x, pose.position.y);
         if (std::isfinite(ground) && ground >= z)
-            return "the towfish (z " + detail::table_reader::fmt(z) + " m) is at or below the seabed (z " +
-                   detail::table_reader::fmt(ground) + " m) at ping " + std::to_string(ping);
+            return "the towfish (z " + detail::fmt(z) + " m) is at or below the seabed (z " +
+                   detail::fmt(ground) + " m) at ping " + std::to_string(ping);
     }
     return "";
 }
