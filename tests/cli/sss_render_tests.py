@@ -117,11 +117,13 @@ elif case == "outputs":
         check(r.returncode == 1 and "--pings 95:102 reaches ping 101" in r.stderr and "covers 101 pings (0 to 100)" in r.stderr
               and files_in(os.path.join(d, "tx")) == [], f"--pings beyond the trajectory is one error naming the count ({r.stderr})")
         # precision = "double": the arrays are float64, and the labels come from the double simulator too.
-        geo = open(os.path.join(scenes, "georeferenced.toml")).read().replace("npy = true", "npy = true\nxtf = true\nyolo = true")
+        geo = open(os.path.join(scenes, "georeferenced.toml")).read().replace(
+            "npy = true", "npy = true\nxtf = true\ncoco = true\nyolo = true\nlabel_images = true\nground_range = true")
         open(os.path.join(d, "geo.toml"), "w").write(geo)
         r = run([os.path.join(d, "geo.toml"), "-o", os.path.join(d, "geo"), "--pings", "12:20"])
-        check(r.returncode == 0 and files_in(os.path.join(d, "geo")) == ["classes.txt", "georeferenced.json", "georeferenced.npy",
-                                                                         "georeferenced.png", "georeferenced.txt", "georeferenced.xtf"],
+        want = ["classes.txt"] + ["georeferenced" + s for s in [".json", ".npy", ".png", ".txt", ".xtf", "_coco.json", "_ground.png"]]
+        want += ["georeferenced" + g + "_labels_" + s for g in ["", "_ground"] for s in ["class.png", "instance.png", "legend.json"]]
+        check(r.returncode == 0 and files_in(os.path.join(d, "geo")) == sorted(want),
               f"a double scene writes every product asked ({files_in(os.path.join(d, 'geo'))}, {r.stderr})")
         if r.returncode == 0:
             npy = open(os.path.join(d, "geo", "georeferenced.npy"), "rb").read()
