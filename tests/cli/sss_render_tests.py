@@ -5,7 +5,8 @@ broken         every scene in tests/cli/broken/ fails with exit status 1, one er
                fragment (file, line:column or key path, what is wrong), and writes no file
 roundtrip      --dry-run output, read again, prints the same resolved scene
 outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them);
-               a planar-array scene and a trajectory scene render, --pings beyond the trajectory is an error
+               a planar-array scene, a trajectory scene and a double scene render, --pings beyond the trajectory
+               is an error
 interrupt      SIGINT during the render: exit status 130, one line, no file left (not even a temporary one)
 progress_tty   on a pseudo-terminal the progress is a redrawn bar with pings done, pings/s and ETA
 progress_plain without a terminal the progress is plain lines, the last one with every ping done
@@ -49,7 +50,8 @@ if case == "broken":
 
 elif case == "roundtrip":
     with tempfile.TemporaryDirectory() as d:
-        scenes = [small] + [os.path.join(cli, "scenes", n) for n in ["primitives.toml", "layered.toml", "planar.toml", "trajectory.toml"]]
+        scenes = [small] + [os.path.join(cli, "scenes", n) for n in ["primitives.toml", "layered.toml", "planar.toml", "trajectory.toml",
+                                                                      "georeferenced.toml"]]
         for scene in scenes + [os.path.join(src, "examples", "scenes", "demo.toml")]:
             # From the scene's directory: a relative file key (trajectory.toml's turn.csv) is read from there.
             first = run([scene, "--dry-run"], cwd=os.path.dirname(scene))
@@ -58,8 +60,10 @@ elif case == "roundtrip":
             open(resolved, "w").write(first.stdout)
             second = run([resolved, "--dry-run"], cwd=os.path.dirname(scene))
             check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
-            for key in ["threads =", "blend_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db ="]:
+            for key in ["threads =", "blend_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db =", "precision ="]:
                 check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
+            want = 'precision = "double"' if scene.endswith("georeferenced.toml") else 'precision = "float"'
+            check(want in first.stdout, f"{scene}: the resolved scene keeps {want}")
             check(files_in(d) == ["resolved.toml"], "--dry-run writes nothing")
 
 elif case == "outputs":
@@ -112,6 +116,19 @@ elif case == "outputs":
         r = run(["trajectory.toml", "-o", os.path.join(d, "tx"), "--pings", "95:102"], cwd=scenes)
         check(r.returncode == 1 and "--pings 95:102 reaches ping 101" in r.stderr and "covers 101 pings (0 to 100)" in r.stderr
               and files_in(os.path.join(d, "tx")) == [], f"--pings beyond the trajectory is one error naming the count ({r.stderr})")
+        # precision = "double": the arrays are float64, and the labels come from the double simulator too.
+        geo = open(os.path.join(scenes, "georeferenced.toml")).read().replace(
+            "npy = true", "npy = true\nxtf = true\ncoco = true\nyolo = true\nlabel_images = true\nground_range = true")
+        open(os.path.join(d, "geo.toml"), "w").write(geo)
+        r = run([os.path.join(d, "geo.toml"), "-o", os.path.join(d, "geo"), "--pings", "12:20"])
+        want = ["classes.txt"] + ["georeferenced" + s for s in [".json", ".npy", ".png", ".txt", ".xtf", "_coco.json", "_ground.png"]]
+        want += ["georeferenced" + g + "_labels_" + s for g in ["", "_ground"] for s in ["class.png", "instance.png", "legend.json"]]
+        check(r.returncode == 0 and files_in(os.path.join(d, "geo")) == sorted(want),
+              f"a double scene writes every product asked ({files_in(os.path.join(d, 'geo'))}, {r.stderr})")
+        if r.returncode == 0:
+            npy = open(os.path.join(d, "geo", "georeferenced.npy"), "rb").read()
+            check(b"'descr': '<f8'" in npy[:128] and b"(8, " in npy[:128], f"the double scene's .npy holds 8 pings of float64 ({npy[:128]})")
+            check(len(open(os.path.join(d, "geo", "georeferenced.txt")).read().splitlines()) == 1, "the cylinder gets its YOLO box in double")
         text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
         scene2 = os.path.join(d, "other.toml")
         open(scene2, "w").write(text)

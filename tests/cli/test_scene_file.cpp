@@ -1,7 +1,8 @@
 // A scene file and the equivalent C++ program render bit-identical waterfalls: the scene file is a front door
 // to the library, not a second model. tests/cli/scenes/small.toml is written out here by hand, with the
 // library's parameter structs, and both are rendered for a few pings; so are planar.toml (a planar array) and
-// trajectory.toml (a sampled track), whose beam and motion sss-render holds in run-time policies.
+// trajectory.toml (a sampled track), whose beam and motion sss-render holds in run-time policies; and
+// georeferenced.toml (small.toml moved to UTM coordinates) in double, the precision it asks for.
 
 #include <doctest/doctest.h>
 
@@ -29,8 +30,10 @@ namespace {
 using T = float;
 namespace sb = sss::seabed;
 
-// small.toml, by hand.
-auto hand_written_world() {
+// small.toml, by hand, in scalar R, the whole scene moved by (x0_m, y0_m) (georeferenced.toml: 500 km east and
+// 6000 km north). The seabed's heights are synthesised in float on the raster's own grid and widened to R, as
+// sss-render builds them in either precision.
+template <class R = T> auto hand_written_world(double x0_m = 0, double y0_m = 0) {
     const std::size_t nx = 256, ny = 256;
     const T cell = T(0.2);
     const std::vector<sb::sediment_region<T>> regions{
@@ -43,25 +46,40 @@ auto hand_written_world() {
     std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
     for (std::size_t iy = 0; iy + 1 < ny; ++iy)
         for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];
-    sss::scene::height_field<T> seabed(
-        {.nx = nx, .ny = ny, .cell_m = cell, .heights_m = bed.height.values, .materials = material, .regions = material});
-    std::vector<sss::scene::object<T>> objects{sb::lying_cylinder(
-        sb::lying_cylinder_params<T>{.center_m = {T(38), T(12)}, .heading_deg = T(0), .length_m = T(2), .radius_m = T(0.3),
+    sss::scene::height_field<R> seabed({.nx = nx, .ny = ny, .cell_m = R(0.2), .origin_m = {R(x0_m), R(y0_m)},
+                                        .heights_m = std::vector<R>(bed.height.values.begin(), bed.height.values.end()),
+                                        .materials = material, .regions = material});
+    std::vector<sss::scene::object<R>> objects{sb::lying_cylinder(
+        sb::lying_cylinder_params<R>{.center_m = {R(x0_m + 38), R(y0_m + 12)}, .heading_deg = R(0), .length_m = R(2), .radius_m = R(0.3),
                                      .ids = {.material = 2, .object = 1, .label = 1}},
         sb::seabed_height_of(seabed))};
-    return sss::scene::scene(std::move(seabed), sss::scene::object_set<T>(std::move(objects)));
+    return sss::scene::scene(std::move(seabed), sss::scene::object_set<R>(std::move(objects)));
 }
 
 std::string small_scene_path() { return std::string(SSS_SOURCE_DIR) + "/tests/cli/scenes/small.toml"; }
 std::string scene_path(const char* name) { return std::string(SSS_SOURCE_DIR) + "/tests/cli/scenes/" + name; }
 
-bool bit_identical(const sss::waterfall<T>& a, const sss::waterfall<T>& b) {
-    return a.values.size() == b.values.size() && std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(T)) == 0;
+template <class R> bool bit_identical(const sss::waterfall<R>& a, const sss::waterfall<R>& b) {
+    return a.values.size() == b.values.size() && std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(R)) == 0;
 }
-double energy_of(const sss::waterfall<T>& w) {
+template <class R> double energy_of(const sss::waterfall<R>& w) {
     double e = 0;
-    for (T v : w.values) e += double(v);
+    for (R v : w.values) e += double(v);
     return e;
+}
+/// Sum of |a - b| over sum of |a|: how far waterfall b is from a.
+template <class R> double relative_difference(const sss::waterfall<R>& a, const sss::waterfall<R>& b) {
+    double diff = 0, sum = 0;
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+        diff += std::abs(double(a.values[i]) - double(b.values[i]));
+        sum += std::abs(double(a.values[i]));
+    }
+    return diff / sum;
+}
+/// Pings [first, first + count) of scene d in scalar R, as sss-render renders them with render.precision R.
+template <class R> sss::waterfall<R> scene_lines(const sss::scene_file::description& d, std::size_t first, std::size_t count) {
+    const auto w = sss::scene_file::make_world<R>(d);
+    return sss::scene_file::with_simulator(d, w, [&](const auto& s) { return s.render(w, first, count, 1); });
 }
 
 } // namespace
@@ -90,6 +108,45 @@ TEST_CASE("a scene file and the equivalent C++ program render bit-identical wate
     CHECK(energy > 0.0); // the seabed is in view: the comparison is not between two black images
 }
 
+TEST_CASE("a georeferenced scene file in double and the equivalent C++ program in double render bit-identical waterfalls") {
+    using D = double;
+    const auto d = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
+    REQUIRE(d.run.precision == "double");
+    const auto from_file = sss::scene_file::make_world<D>(d);
+    const auto by_hand = hand_written_world<D>(500000, 6000000);
+    REQUIRE(from_file.seabed().heights_m() == by_hand.seabed().heights_m());
+
+    const D z = by_hand.seabed().seabed_height_m(500025.5, 6000008.0) + 6;
+    const sss::simulator<sss::scattering::lambertian<D>, sss::propagation::straight<D>, sss::beam::ideal_fan<D>,
+                         sss::motion::perturbed<D>>
+        sim(sss::scattering::lambertian<D>({.mu_db = {-27, -20, -8}}),
+            sss::propagation::straight<D>({.sound_speed_mps = 1500, .absorption_db_per_km = 30}),
+            sss::beam::ideal_fan<D>({.along_width_deg = 1, .vertical_width_deg = 50, .depression_deg = 20}),
+            sss::motion::perturbed<D>({.start_m = {500025.5, 6000008}, .heading_deg = 0, .speed_mps = 2, .altitude_m = z,
+                                       .ping_interval_s = 0.1}),
+            sss::receiver_params{.sample_rate_hz = 20000, .max_range_m = 25});
+    const auto expected = sim.render(by_hand, 12, 6, 1);
+    const auto got = sss::scene_file::with_simulator(d, from_file, [&](const auto& s) { return s.render(from_file, 12, 6, 1); });
+    CHECK(bit_identical(got, expected));
+    CHECK(energy_of(got) > 0.0);
+}
+
+TEST_CASE("in double a scene moved 500 km east and 6000 km north renders what it renders at the origin; float cannot hold it") {
+    // Float holds a northing of 6000 km to 0.5 m and an easting of 500 km to 3 cm: the track's 0.2 m between pings
+    // and the seabed's 0.2 m cells are rounded away. Double holds both to a nanometre.
+    const auto local = sss::scene_file::parse_file(small_scene_path());
+    const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
+    const auto at_origin = scene_lines<double>(local, 12, 6);
+    const auto moved = scene_lines<double>(geo, 12, 6);
+    REQUIRE(moved.values.size() == at_origin.values.size());
+    const double in_double = relative_difference(at_origin, moved);
+    CHECK(energy_of(at_origin) > 0.0);
+    CHECK(in_double < 1e-6);
+    const double in_float = relative_difference(scene_lines<float>(local, 12, 6), scene_lines<float>(geo, 12, 6));
+    MESSAGE("sum |moved - at origin| / sum |at origin| over pings 12 to 17: double " << in_double << ", float " << in_float);
+    CHECK(in_float > 1e-2);
+}
+
 TEST_CASE("the resolved scene read back is the same scene, with every default written out") {
     const auto d = sss::scene_file::parse_file(small_scene_path());
     const std::string text = sss::scene_file::to_toml(d);
@@ -98,6 +155,12 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     CHECK(again.bed.regions.size() == 2);
     CHECK(again.bed.regions[0].ripple_sets[0].crest_heading_deg == 0.0);
     CHECK(again.sea.absorption_db_per_km == 30.0); // a default, written out and read back
+    CHECK(again.run.precision == "float");
+    const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
+    const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
+    CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));
+    CHECK(geo_again.run.precision == "double");
+    CHECK(geo_again.bed.origin_m == sss::scene_file::xy{500000, 6000000});
 }
 
 TEST_CASE("an unknown key is an error naming its line and column and the closest valid key") {

@@ -3,8 +3,8 @@
 /// From a resolved `description` to the library's objects: the seabed (generated or loaded), the objects laid
 /// on it, and the simulator, chosen among the compiled instantiations listed once in `with_simulator`.
 
+#include "error.hpp"
 #include "policies.hpp"
-#include "read.hpp"
 #include "scene.hpp"
 
 #include <sss/io/height_field_io.hpp>
@@ -23,6 +23,7 @@
 #include <sss/seabed/targets.hpp>
 
 #include <cmath>
+#include <concepts>
 #include <limits>
 #include <optional>
 #include <string>
@@ -31,91 +32,109 @@
 
 namespace sss::scene_file {
 
-/// The scalar type of every compiled instantiation (float: half the memory, and the precision of the data).
-using real = float;
-using world = sss::scene::scene<sss::scene::height_field<real>>;
+/// The scene of scalar T: float (half the memory, and the precision of most data), or double where the
+/// coordinates are large (render.precision; the instantiations compiled are listed above `with_simulator`).
+template <Real T> using world = sss::scene::scene<sss::scene::height_field<T>>;
 
 /// The seabed's regions as the library's sediment regions (a flat or loaded seabed: one default region).
-[[nodiscard]] inline std::vector<sss::seabed::sediment_region<real>> sediment_regions(const description& d) {
+template <Real T = float> [[nodiscard]] std::vector<sss::seabed::sediment_region<T>> sediment_regions(const description& d) {
     std::vector<region> regions = d.bed.regions;
     if (regions.empty()) regions.push_back(region{});
-    std::vector<sss::seabed::sediment_region<real>> out;
+    std::vector<sss::seabed::sediment_region<T>> out;
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const auto& g = regions[i];
-        sss::seabed::sediment_region<real> r{.id = std::uint32_t(i), .sediment = sss::seabed::sediment_named<real>(g.sediment),
-                                             .mean_height_m = real(g.mean_height_m), .outer_scale_m = real(g.outer_scale_m)};
+        sss::seabed::sediment_region<T> r{.id = std::uint32_t(i), .sediment = sss::seabed::sediment_named<T>(g.sediment),
+                                          .mean_height_m = T(g.mean_height_m), .outer_scale_m = T(g.outer_scale_m)};
         for (const auto& p : g.ripple_sets)
-            r.ripples.push_back({.wavelength_m = real(p.wavelength_m), .height_m = real(p.height_m),
-                                 .crest_heading_deg = real(p.crest_heading_deg), .symmetry_index = real(p.symmetry_index),
-                                 .sinuosity_m = real(p.sinuosity_m), .sinuosity_wavelength_m = real(p.sinuosity_wavelength_m),
-                                 .perturbation_m = real(p.perturbation_m), .height_variation = real(p.height_variation)});
+            r.ripples.push_back({.wavelength_m = T(p.wavelength_m), .height_m = T(p.height_m),
+                                 .crest_heading_deg = T(p.crest_heading_deg), .symmetry_index = T(p.symmetry_index),
+                                 .sinuosity_m = T(p.sinuosity_m), .sinuosity_wavelength_m = T(p.sinuosity_wavelength_m),
+                                 .perturbation_m = T(p.perturbation_m), .height_variation = T(p.height_variation)});
         out.push_back(std::move(r));
     }
     return out;
 }
 
-/// Stamps the scene's features on raster h (raster-local coordinates: world minus origin_m).
-inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
+/// Stamps the scene's features on raster h (raster-local coordinates: world minus origin_m, so float even
+/// for a double scene: make_seabed).
+template <Real T> void apply_stamps(const description& d, sss::seabed::raster<T>& h) {
     namespace sb = sss::seabed;
     const double x0 = d.bed.origin_m[0], y0 = d.bed.origin_m[1];
     for (const auto& p : d.bed.stamps) {
-        const real cx = real(p.center_m[0] - x0), cy = real(p.center_m[1] - y0);
+        const T cx = T(p.center_m[0] - x0), cy = T(p.center_m[1] - y0);
         if (p.type == "plate")
-            sb::stamp(h, sb::plate<real>{.center_x_m = cx, .center_y_m = cy, .length_m = real(p.length_m), .width_m = real(p.width_m),
-                                         .heading_deg = real(p.heading_deg), .top_m = real(p.top_m)});
+            sb::stamp(h, sb::plate<T>{.center_x_m = cx, .center_y_m = cy, .length_m = T(p.length_m), .width_m = T(p.width_m),
+                                      .heading_deg = T(p.heading_deg), .top_m = T(p.top_m)});
         else if (p.type == "mound")
-            sb::stamp(h, sb::mound<real>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = real(p.radius_u_m),
-                                         .radius_v_m = real(p.radius_v_m), .heading_deg = real(p.heading_deg), .height_m = real(p.height_m)});
+            sb::stamp(h, sb::mound<T>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = T(p.radius_u_m),
+                                      .radius_v_m = T(p.radius_v_m), .heading_deg = T(p.heading_deg), .height_m = T(p.height_m)});
         else if (p.type == "scour")
-            sb::stamp(h, sb::scour<real>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = real(p.radius_u_m),
-                                         .radius_v_m = real(p.radius_v_m), .heading_deg = real(p.heading_deg), .depth_m = real(p.depth_m),
-                                         .rim_height_m = real(p.rim_height_m), .rim_width_m = real(p.rim_width_m)});
+            sb::stamp(h, sb::scour<T>{.center_x_m = cx, .center_y_m = cy, .radius_u_m = T(p.radius_u_m),
+                                      .radius_v_m = T(p.radius_v_m), .heading_deg = T(p.heading_deg), .depth_m = T(p.depth_m),
+                                      .rim_height_m = T(p.rim_height_m), .rim_width_m = T(p.rim_width_m)});
         else
-            sb::stamp(h, sb::trench<real>{.x0_m = real(p.start_m[0] - x0), .y0_m = real(p.start_m[1] - y0), .x1_m = real(p.end_m[0] - x0),
-                                          .y1_m = real(p.end_m[1] - y0), .width_m = real(p.width_m), .floor_width_m = real(p.floor_width_m),
-                                          .depth_m = real(p.depth_m), .berm_height_m = real(p.berm_height_m),
-                                          .berm_width_m = real(p.berm_width_m)});
+            sb::stamp(h, sb::trench<T>{.x0_m = T(p.start_m[0] - x0), .y0_m = T(p.start_m[1] - y0), .x1_m = T(p.end_m[0] - x0),
+                                       .y1_m = T(p.end_m[1] - y0), .width_m = T(p.width_m), .floor_width_m = T(p.floor_width_m),
+                                       .depth_m = T(p.depth_m), .berm_height_m = T(p.berm_height_m),
+                                       .berm_width_m = T(p.berm_width_m)});
     }
 }
 
 /// The seabed in `seabed.file`, by its extension: ESRI ASCII (.asc), raw float32 with its sidecar (.raw), or
 /// 16-bit PGM (.pgm) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
-[[nodiscard]] inline sss::scene::height_field<real> load_seabed(const description& d) {
+template <Real T = float> [[nodiscard]] sss::scene::height_field<T> load_seabed(const description& d) {
     const auto& b = d.bed;
     const auto ext = b.file.substr(b.file.size() - 4);
-    if (ext == ".raw") return sss::io::read_raw_f32<real>(b.file);
+    if (ext == ".raw") return sss::io::read_raw_f32<T>(b.file);
     if (ext == ".pgm")
-        return sss::io::read_pgm16<real>(b.file, real(b.cell_m), {real(b.origin_m[0]), real(b.origin_m[1])},
-                                         {.scale_m = real(b.pgm_scale_m), .offset_m = real(b.pgm_offset_m)});
-    return sss::io::read_esri_ascii<real>(b.file);
+        return sss::io::read_pgm16<T>(b.file, T(b.cell_m), {T(b.origin_m[0]), T(b.origin_m[1])},
+                                      {.scale_m = T(b.pgm_scale_m), .offset_m = T(b.pgm_offset_m)});
+    return sss::io::read_esri_ascii<T>(b.file);
 }
 
-/// The seabed: loaded from `file`, flat at z = 0 without regions, else composed from the regions.
-[[nodiscard]] inline sss::scene::height_field<real> make_seabed(const description& d) {
+/// A generated seabed's heights (m, raster-local: world minus origin_m) and the region of each vertex, synthesised
+/// in scalar S: flat at z = 0 without regions (its region raster left empty), else composed from the regions,
+/// the stamps on top. make_seabed asks for float whatever the scene's precision.
+template <Real S> [[nodiscard]] sss::seabed::composite_seabed<S> synthesise_seabed(const description& d) {
     namespace sb = sss::seabed;
     const auto& b = d.bed;
-    if (!b.file.empty()) return load_seabed(d);
     const auto nx = std::size_t(b.nx), ny = std::size_t(b.ny);
-    const real cell = real(b.cell_m);
-    const sss::vec2<real> origin{real(b.origin_m[0]), real(b.origin_m[1])};
+    const S cell = S(b.cell_m);
     if (b.regions.empty()) {
-        auto flat = sb::make_raster<real>(nx, ny, cell, real(0));
-        apply_stamps(d, flat);
-        return sss::scene::height_field<real>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin, .heights_m = flat.values});
+        sb::composite_seabed<S> flat{.height = sb::make_raster<S>(nx, ny, cell, S(0)), .regions = {}};
+        apply_stamps(d, flat.height);
+        return flat;
     }
-    sb::voronoi_partition<real> part{.sites = {}, .warp_m = real(b.warp_m), .warp_scale_m = real(b.warp_scale_m)};
+    sb::voronoi_partition<S> part{.sites = {}, .warp_m = S(b.warp_m), .warp_scale_m = S(b.warp_scale_m)};
     for (const auto& s : b.sites)
-        part.sites.push_back({.x_m = real(s.x_m - b.origin_m[0]), .y_m = real(s.y_m - b.origin_m[1]), .texture = std::size_t(s.region)});
-    if (part.sites.empty()) part.sites.push_back({.x_m = real(0), .y_m = real(0), .texture = 0});
-    const auto regions = sediment_regions(d);
-    auto bed = sb::compose(sb::partition(nx, ny, cell, part, std::uint64_t(b.partition_seed)), sb::textures(regions),
-                           real(b.blend_m), std::uint64_t(b.seed));
+        part.sites.push_back({.x_m = S(s.x_m - b.origin_m[0]), .y_m = S(s.y_m - b.origin_m[1]), .texture = std::size_t(s.region)});
+    if (part.sites.empty()) part.sites.push_back({.x_m = S(0), .y_m = S(0), .texture = 0});
+    auto bed = sb::compose(sb::partition(nx, ny, cell, part, std::uint64_t(b.partition_seed)), sb::textures(sediment_regions<S>(d)),
+                           S(b.blend_m), std::uint64_t(b.seed));
     apply_stamps(d, bed.height);
-    std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
-    for (std::size_t iy = 0; iy + 1 < ny; ++iy)
-        for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];
-    return sss::scene::height_field<real>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin,
-                                           .heights_m = bed.height.values, .materials = material, .regions = material});
+    return bed;
+}
+
+/// The seabed: loaded from `file` (in T), else generated (synthesise_seabed).
+/// A generated seabed's heights are synthesised in float whatever T, on the raster's own grid (relative to
+/// origin_m, where float holds them to well under a micrometre), then widened to T: a scene's seabed is the
+/// same in both precisions, and double pays for its coordinates (origin, objects, track, rays), not for a
+/// second synthesis (partition, fractal, ripples, stamps) compiled in double.
+template <Real T = float> [[nodiscard]] sss::scene::height_field<T> make_seabed(const description& d) {
+    const auto& b = d.bed;
+    if (!b.file.empty()) return load_seabed<T>(d);
+    const auto nx = std::size_t(b.nx), ny = std::size_t(b.ny);
+    const auto bed = synthesise_seabed<float>(d);
+    sss::scene::height_field_params<T> p{.nx = nx, .ny = ny, .cell_m = T(b.cell_m), .origin_m = {T(b.origin_m[0]), T(b.origin_m[1])},
+                                         .heights_m = std::vector<T>(bed.height.values.begin(), bed.height.values.end())};
+    if (!b.regions.empty()) {
+        std::vector<std::uint32_t> material((nx - 1) * (ny - 1));
+        for (std::size_t iy = 0; iy + 1 < ny; ++iy)
+            for (std::size_t ix = 0; ix + 1 < nx; ++ix) material[iy * (nx - 1) + ix] = bed.regions.values[iy * nx + ix];
+        p.materials = material;
+        p.regions = std::move(material);
+    }
+    return sss::scene::height_field<T>(std::move(p));
 }
 
 /// The material id of every object: the first after the seabed's regions.
@@ -124,48 +143,48 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
 }
 
 /// The scene: the seabed and the objects laid on it; object k has object id k + 1.
-[[nodiscard]] inline world make_world(const description& d) {
+template <Real T = float> [[nodiscard]] world<T> make_world(const description& d) {
     namespace sb = sss::seabed;
-    auto seabed = make_seabed(d);
+    auto seabed = make_seabed<T>(d);
     const auto h = sb::seabed_height_of(seabed);
     const std::uint32_t material = object_material(d);
-    std::vector<sss::scene::object<real>> objects;
+    std::vector<sss::scene::object<T>> objects;
     for (std::size_t k = 0; k < d.objects.size(); ++k) {
         const auto& o = d.objects[k];
         const auto id = std::uint32_t(k + 1), label = std::uint32_t(o.class_id);
         if (o.type == "lying_cylinder") {
             objects.push_back(sb::lying_cylinder(
-                sb::lying_cylinder_params<real>{.center_m = {real(o.center_m[0]), real(o.center_m[1])},
-                                                .heading_deg = real(o.heading_deg), .length_m = real(o.length_m),
-                                                .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
+                sb::lying_cylinder_params<T>{.center_m = {T(o.center_m[0]), T(o.center_m[1])},
+                                             .heading_deg = T(o.heading_deg), .length_m = T(o.length_m),
+                                             .radius_m = T(o.radius_m), .ids = {.material = material, .object = id, .label = label}},
                 h));
         } else if (o.type == "sphere" || o.type == "cylinder") {
             const sss::scene::surface_ids ids{.material = material, .object = id, .label = label};
             const auto at = [&](const xy& p, double above) {
-                return sss::vec3<real>{real(p[0]), real(p[1]), h(real(p[0]), real(p[1])) + real(above)};
+                return sss::vec3<T>{T(p[0]), T(p[1]), h(T(p[0]), T(p[1])) + T(above)};
             };
             if (o.type == "sphere")
-                objects.push_back(sss::scene::object<real>({sss::scene::sphere<real>(at(o.center_m, o.height_m), real(o.radius_m), ids)}, {}));
+                objects.push_back(sss::scene::object<T>({sss::scene::sphere<T>(at(o.center_m, o.height_m), T(o.radius_m), ids)}, {}));
             else
-                objects.push_back(sss::scene::object<real>(
-                    {}, {sss::scene::cylinder<real>(at(o.center_m, o.end0_height_m), at(o.end_m, o.end1_height_m), real(o.radius_m), ids)}));
+                objects.push_back(sss::scene::object<T>(
+                    {}, {sss::scene::cylinder<T>(at(o.center_m, o.end0_height_m), at(o.end_m, o.end1_height_m), T(o.radius_m), ids)}));
         } else if (o.type == "tethered_mine") {
             objects.push_back(sb::tethered_mine(
-                sb::tethered_mine_params<real>{.anchor_m = {real(o.anchor_m[0]), real(o.anchor_m[1])},
-                                               .case_height_m = real(o.case_height_m),
-                                               .shape = o.case_shape == "sphere" ? sb::mine_case::sphere : sb::mine_case::cylinder,
-                                               .case_radius_m = real(o.case_radius_m), .case_length_m = real(o.case_length_m),
-                                               .case_heading_deg = real(o.case_heading_deg), .object_id = id, .class_id = label,
-                                               .case_material = material, .tether_material = material, .anchor_material = material},
+                sb::tethered_mine_params<T>{.anchor_m = {T(o.anchor_m[0]), T(o.anchor_m[1])},
+                                            .case_height_m = T(o.case_height_m),
+                                            .shape = o.case_shape == "sphere" ? sb::mine_case::sphere : sb::mine_case::cylinder,
+                                            .case_radius_m = T(o.case_radius_m), .case_length_m = T(o.case_length_m),
+                                            .case_heading_deg = T(o.case_heading_deg), .object_id = id, .class_id = label,
+                                            .case_material = material, .tether_material = material, .anchor_material = material},
                 h));
         } else {
-            sb::pipeline_params<real> p{.route_m = {}, .radius_m = real(o.radius_m), .ids = {.material = material, .object = id, .label = label}};
-            for (const auto& q : o.route_m) p.route_m.push_back({real(q[0]), real(q[1])});
-            if (o.max_span_m > 0) p.max_span_m = real(o.max_span_m);
+            sb::pipeline_params<T> p{.route_m = {}, .radius_m = T(o.radius_m), .ids = {.material = material, .object = id, .label = label}};
+            for (const auto& q : o.route_m) p.route_m.push_back({T(q[0]), T(q[1])});
+            if (o.max_span_m > 0) p.max_span_m = T(o.max_span_m);
             objects.push_back(sb::pipeline(p, h));
         }
     }
-    return world(std::move(seabed), sss::scene::object_set<real>(std::move(objects)));
+    return world<T>(std::move(seabed), sss::scene::object_set<T>(std::move(objects)));
 }
 
 [[nodiscard]] inline sss::receiver_params receiver_of(const description& d) {
@@ -186,44 +205,44 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
     return r;
 }
 
-[[nodiscard]] inline real tow_z(const description& d, const world& w) {
-    return w.seabed().seabed_height_m(real(d.tow.start_m[0]), real(d.tow.start_m[1])) + real(d.tow.altitude_m);
+template <Real T> [[nodiscard]] T tow_z(const description& d, const world<T>& w) {
+    return w.seabed().seabed_height_m(T(d.tow.start_m[0]), T(d.tow.start_m[1])) + T(d.tow.altitude_m);
 }
 
 /// The beam: the ideal fan, or the planar array of `[sonar.transmit]` (and `[sonar.receive]`) at the sonar's
 /// frequency, the water's sound speed and the sonar's depression.
-[[nodiscard]] inline scene_beam beam_of(const description& d) {
+template <Real T = float> [[nodiscard]] scene_beam<T> beam_of(const description& d) {
     const auto& s = d.sensor;
     if (s.beam == "planar_array") {
         const auto axis = [](const array_axis& a) {
-            return sss::beam::array_axis<real>{.count = std::size_t(a.count), .element_m = real(a.element_m), .pitch_m = real(a.pitch_m),
-                                               .shading = std::vector<real>(a.shading.begin(), a.shading.end())};
+            return sss::beam::array_axis<T>{.count = std::size_t(a.count), .element_m = T(a.element_m), .pitch_m = T(a.pitch_m),
+                                            .shading = std::vector<T>(a.shading.begin(), a.shading.end())};
         };
         const auto layout = [&](const array_layout& a) {
-            return sss::beam::array_layout<real>{.along = axis(a.along), .vertical = axis(a.vertical)};
+            return sss::beam::array_layout<T>{.along = axis(a.along), .vertical = axis(a.vertical)};
         };
-        sss::beam::planar_array_params<real> p{.frequency_hz = real(s.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps),
-                                               .depression_deg = real(s.depression_deg), .transmit = layout(s.transmit),
-                                               .receive = std::nullopt, .threshold_db = real(s.beam_threshold_db)};
+        sss::beam::planar_array_params<T> p{.frequency_hz = T(s.frequency_hz), .sound_speed_mps = T(d.sea.sound_speed_mps),
+                                            .depression_deg = T(s.depression_deg), .transmit = layout(s.transmit),
+                                            .receive = std::nullopt, .threshold_db = T(s.beam_threshold_db)};
         if (s.receive) p.receive = layout(*s.receive);
-        return scene_beam(sss::beam::planar_array<real>(p));
+        return scene_beam<T>(sss::beam::planar_array<T>(p));
     }
-    return scene_beam(sss::beam::ideal_fan<real>({.along_width_deg = real(s.along_width_deg),
-                                                  .vertical_width_deg = real(s.vertical_width_deg),
-                                                  .depression_deg = real(s.depression_deg)}));
+    return scene_beam<T>(sss::beam::ideal_fan<T>({.along_width_deg = T(s.along_width_deg),
+                                                  .vertical_width_deg = T(s.vertical_width_deg),
+                                                  .depression_deg = T(s.depression_deg)}));
 }
 
 /// The trajectory of `motion.trajectory_file` (a relative path: from the working directory). A file that cannot
 /// be read is a scene_error naming the scene, the key and the file's own message (with its line).
-[[nodiscard]] inline sss::motion::trajectory<real> load_trajectory(const description& d) {
+template <Real T = float> [[nodiscard]] sss::motion::trajectory<T> load_trajectory(const description& d) {
     const auto& m = d.tow;
-    sss::motion::trajectory_params<real> p{.ping_interval_s = real(m.ping_interval_s),
-                                           .ping_zero_at = m.ping_zero_at.value_or(std::numeric_limits<double>::quiet_NaN()),
-                                           .method = m.interpolation == "linear" ? sss::motion::interpolation::linear
-                                                                                 : sss::motion::interpolation::cubic,
-                                           .roll_from_turn = m.roll_from_turn};
+    sss::motion::trajectory_params<T> p{.ping_interval_s = T(m.ping_interval_s),
+                                        .ping_zero_at = m.ping_zero_at.value_or(std::numeric_limits<double>::quiet_NaN()),
+                                        .method = m.interpolation == "linear" ? sss::motion::interpolation::linear
+                                                                              : sss::motion::interpolation::cubic,
+                                        .roll_from_turn = m.roll_from_turn};
     try {
-        return sss::motion::trajectory<real>(sss::io::read_trajectory_csv<real>(m.trajectory_file), p);
+        return sss::motion::trajectory<T>(sss::io::read_trajectory_csv<T>(m.trajectory_file), p);
     } catch (const sss::error& e) {
         std::string what = e.what();
         if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
@@ -233,44 +252,45 @@ inline void apply_stamps(const description& d, sss::seabed::raster<real>& h) {
 
 /// The towfish's motion: with model "trajectory" the file's (world z from the file; `z_m` unused), else
 /// `perturbed` at world z `z_m` (a straight line, turns and oscillations all in one policy).
-[[nodiscard]] inline scene_motion motion_of(const description& d, real z_m) {
+template <Real T> [[nodiscard]] scene_motion<T> motion_of(const description& d, T z_m) {
     const auto& m = d.tow;
-    if (m.model == "trajectory") return scene_motion(load_trajectory(d));
+    if (m.model == "trajectory") return scene_motion<T>(load_trajectory<T>(d));
     const auto wobble = [](const oscillation& o) {
-        return sss::motion::oscillation<real>{.amplitude = real(o.amplitude), .period_s = real(o.period_s), .phase_deg = real(o.phase_deg)};
+        return sss::motion::oscillation<T>{.amplitude = T(o.amplitude), .period_s = T(o.period_s), .phase_deg = T(o.phase_deg)};
     };
-    sss::motion::perturbed_params<real> p{.start_m = {real(m.start_m[0]), real(m.start_m[1])}, .heading_deg = real(m.heading_deg),
-                                          .speed_mps = real(m.speed_mps), .altitude_m = z_m, .ping_interval_s = real(m.ping_interval_s),
-                                          .turn = {}, .yaw_deg = wobble(m.yaw_deg), .sway_m = wobble(m.sway_m),
-                                          .pitch_deg = wobble(m.pitch_deg), .heave_m = wobble(m.heave_m), .roll_deg = wobble(m.roll_deg)};
+    sss::motion::perturbed_params<T> p{.start_m = {T(m.start_m[0]), T(m.start_m[1])}, .heading_deg = T(m.heading_deg),
+                                       .speed_mps = T(m.speed_mps), .altitude_m = z_m, .ping_interval_s = T(m.ping_interval_s),
+                                       .turn = {}, .yaw_deg = wobble(m.yaw_deg), .sway_m = wobble(m.sway_m),
+                                       .pitch_deg = wobble(m.pitch_deg), .heave_m = wobble(m.heave_m), .roll_deg = wobble(m.roll_deg)};
     if (m.turn != "none")
-        p.turn = sss::motion::constant_turn<real>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
-                                                  .radius_m = real(m.turn_radius_m), .rate_deg_s = real(m.turn_rate_deg_s)};
-    return scene_motion(sss::motion::perturbed<real>(p));
+        p.turn = sss::motion::constant_turn<T>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
+                                               .radius_m = T(m.turn_radius_m), .rate_deg_s = T(m.turn_rate_deg_s)};
+    return scene_motion<T>(sss::motion::perturbed<T>(p));
 }
 
 /// World z of the towfish at ping 0, where the layered water's surface is placed from: tow_z, or with a
 /// trajectory the z of its ping 0.
-[[nodiscard]] inline real ping0_z(const description& d, const world& w, const scene_motion& tow) {
+template <Real T> [[nodiscard]] T ping0_z(const description& d, const world<T>& w, const scene_motion<T>& tow) {
     if (d.tow.model == "trajectory") return tow.pose_at(0).position.z;
     return tow_z(d, w);
 }
 
 /// The pings [first, last) checked against the trajectory's pings; "" when they all have a pose, else the
 /// sentence of the scene_error: `asked` names the setting that asked for them (render.pings or --pings A:B).
-[[nodiscard]] inline std::string pings_beyond(const description& d, const scene_motion& tow, std::size_t last, const std::string& asked) {
+template <Real T>
+[[nodiscard]] std::string pings_beyond(const description& d, const scene_motion<T>& tow, std::size_t last, const std::string& asked) {
     const std::size_t n = tow.ping_count();
     if (last <= n) return "";
     const bool by_time = tow.sampled() && !tow.sampled()->keyed_by_ping();
     return asked + " reaches ping " + std::to_string(last - 1) + ", but motion.trajectory_file '" + d.tow.trajectory_file + "' covers " +
            std::to_string(n) + " pings (0 to " + std::to_string(n - 1) + ")" +
-           (by_time ? " at motion.ping_interval_s = " + detail::table_reader::fmt(d.tow.ping_interval_s) + " s" : std::string());
+           (by_time ? " at motion.ping_interval_s = " + detail::fmt(d.tow.ping_interval_s) + " s" : std::string());
 }
 
 /// UTC time (s since 1970) of ping `first` in the XTF file: output.xtf_start_unix_s, plus the trajectory's own
 /// time of ping 0 when the motion is a trajectory (a CSV timed in Unix seconds then needs no offset), plus
 /// `first` ping intervals.
-[[nodiscard]] inline double xtf_start_unix_s(const description& d, const scene_motion& tow, std::size_t first) {
+template <Real T> [[nodiscard]] double xtf_start_unix_s(const description& d, const scene_motion<T>& tow, std::size_t first) {
     const double ping0_s = tow.sampled() ? tow.sampled()->start_time_s() : 0.0;
     return d.out.xtf_start_unix_s + ping0_s + double(first) * d.tow.ping_interval_s;
 }
@@ -312,57 +332,83 @@ private:
 
 // ---------------------------------------------------------------------------------------------
 // The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
-// float x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water x scene_beam x scene_motion.
-// The beam and the motion are run-time choices (policies.hpp): scene_beam holds the ideal fan or the planar
-// array, scene_motion the perturbed track (a straight line, a turn, oscillations) or a sampled trajectory, so
-// they add no instantiation: four simulator types serve every beam and motion.
-using policy = sss::policies<real>;
-template <class Scattering, class Propagation>
-using simulator_of = sss::simulator<Scattering, Propagation, scene_beam, scene_motion, receiver_stages>;
-using jackson_scattering = sss::scattering::by_material<policy::jackson, sss::scattering::hard_target<real>>;
+//   float  x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water
+//   double x {lambertian, jackson seabed + hard_target objects} x  straight water
+// each x scene_beam<T> x scene_motion<T> x receiver_stages. The beam and the motion are run-time choices
+// (policies.hpp): scene_beam holds the ideal fan or the planar array, scene_motion the perturbed track (a
+// straight line, a turn, oscillations) or a sampled trajectory, so they add no instantiation: six simulator
+// types serve every beam and motion. The scalar is render.precision; with_simulator<T> instantiates only T's,
+// so sss-render compiles each scalar in its own translation unit (render_float.cpp, render_double.cpp).
+// Double is for coordinates float cannot hold to a centimetre (a georeferenced seabed, UTM eastings and
+// northings, a long track): both scattering models, since the seabed's material decides which, but straight
+// water only: each simulator type costs about 6 s of compile time per build, and a layered double pair would
+// add 12 s to every build for scenes that can place their origin near the survey instead. A scene asking for
+// a pair not listed is refused by not_compiled, with the keys to change.
+template <Real T> inline constexpr bool layered_water_compiled = std::same_as<T, float>;
 
+template <Real T> using policy = sss::policies<T>;
+template <Real T, class Scattering, class Propagation>
+using simulator_of = sss::simulator<Scattering, Propagation, scene_beam<T>, scene_motion<T>, receiver_stages>;
+template <Real T> using jackson_scattering = sss::scattering::by_material<typename policy<T>::jackson, sss::scattering::hard_target<T>>;
 
-template <class Water, class F> decltype(auto) with_water(const description& d, const scene_motion& tow, const Water& water, F&& f);
+/// "" when the whitelist holds a simulator of scalar T for scene d, else the sentence saying which keys to change.
+template <Real T> [[nodiscard]] std::string not_compiled(const description& d) {
+    if (!layered_water_compiled<T> && d.sea.model == "layered")
+        return "render.precision: \"" + d.run.precision + "\" is compiled for water.model = \"straight\" only; a layered water needs "
+               "precision = \"float\"";
+    return "";
+}
 
-/// Calls f(simulator) with the whitelisted simulator the scene asks for; the scene's own words name it.
-template <class F> decltype(auto) with_simulator(const description& d, const world& w, F&& f) {
-    const scene_motion tow = motion_of(d, tow_z(d, w));
-    if (d.sea.model == "layered") {
-        auto profile = d.sea.svp_file.empty()
-                           ? sss::propagation::sound_speed_profile<real>(std::vector<real>(d.sea.depth_m.begin(), d.sea.depth_m.end()),
-                                                                         std::vector<real>(d.sea.speed_mps.begin(), d.sea.speed_mps.end()))
-                           : sss::io::read_sound_speed_csv<real>(d.sea.svp_file);
-        const sss::propagation::layered<real> water(
-            std::move(profile),
-            {.surface_z_m = ping0_z(d, w, tow) + real(d.sea.towfish_depth_m), .frequency_hz = real(d.sensor.frequency_hz),
-             .water = {.temperature_c = real(d.sea.temperature_c), .salinity_ppt = real(d.sea.salinity_ppt), .ph = real(d.sea.ph)},
-             .absorption = d.sea.absorption_model == "ainslie_mccolm" ? sss::propagation::absorption_formula::ainslie_mccolm
-                                                                      : sss::propagation::absorption_formula::francois_garrison,
-             .reference_speed_mps = real(d.sea.sound_speed_mps)});
-        return with_water(d, tow, water, std::forward<F>(f));
+/// The layered water of scene d: its profile, the surface ping0_z + towfish_depth_m above, its absorption.
+template <Real T>
+[[nodiscard]] sss::propagation::layered<T> layered_water(const description& d, const world<T>& w, const scene_motion<T>& tow) {
+    auto profile = d.sea.svp_file.empty()
+                       ? sss::propagation::sound_speed_profile<T>(std::vector<T>(d.sea.depth_m.begin(), d.sea.depth_m.end()),
+                                                                  std::vector<T>(d.sea.speed_mps.begin(), d.sea.speed_mps.end()))
+                       : sss::io::read_sound_speed_csv<T>(d.sea.svp_file);
+    return sss::propagation::layered<T>(
+        std::move(profile),
+        {.surface_z_m = ping0_z(d, w, tow) + T(d.sea.towfish_depth_m), .frequency_hz = T(d.sensor.frequency_hz),
+         .water = {.temperature_c = T(d.sea.temperature_c), .salinity_ppt = T(d.sea.salinity_ppt), .ph = T(d.sea.ph)},
+         .absorption = d.sea.absorption_model == "ainslie_mccolm" ? sss::propagation::absorption_formula::ainslie_mccolm
+                                                                  : sss::propagation::absorption_formula::francois_garrison,
+         .reference_speed_mps = T(d.sea.sound_speed_mps)});
+}
+
+template <Real T, class Water, class F>
+decltype(auto) with_water(const description& d, const scene_motion<T>& tow, const Water& water, F&& f);
+
+/// Calls f(simulator) with the whitelisted simulator the scene asks for, of the world's scalar T; the scene's
+/// own words name it.
+template <Real T, class F> decltype(auto) with_simulator(const description& d, const world<T>& w, F&& f) {
+    if (const auto why = not_compiled<T>(d); !why.empty()) throw scene_error(d.path + ": " + why);
+    const scene_motion<T> tow = motion_of(d, tow_z(d, w));
+    if constexpr (layered_water_compiled<T>) {
+        if (d.sea.model == "layered") return with_water(d, tow, layered_water(d, w, tow), std::forward<F>(f));
     }
-    const sss::propagation::straight<real> water(
-        {.sound_speed_mps = real(d.sea.sound_speed_mps), .absorption_db_per_km = real(d.sea.absorption_db_per_km)});
+    const sss::propagation::straight<T> water(
+        {.sound_speed_mps = T(d.sea.sound_speed_mps), .absorption_db_per_km = T(d.sea.absorption_db_per_km)});
     return with_water(d, tow, water, std::forward<F>(f));
 }
 
 /// with_simulator's second step: the scattering, for the water already chosen.
-template <class Water, class F> decltype(auto) with_water(const description& d, const scene_motion& tow, const Water& water, F&& f) {
-    const scene_beam beam = beam_of(d);
+template <Real T, class Water, class F>
+decltype(auto) with_water(const description& d, const scene_motion<T>& tow, const Water& water, F&& f) {
+    const scene_beam<T> beam = beam_of<T>(d);
     const auto rx = receiver_of(d);
-    const auto regions = sediment_regions(d);
+    const auto regions = sediment_regions<T>(d);
     if (d.sensor.scattering == "jackson") {
-        const jackson_scattering scatter(
-            sss::seabed::jackson_for(regions, {.frequency_hz = real(d.sensor.frequency_hz), .sound_speed_mps = real(d.sea.sound_speed_mps)}),
-            sss::scattering::hard_target<real>{});
-        return f(simulator_of<jackson_scattering, Water>(scatter, water, beam, tow, rx, rays_of(d), receiver_stages(d)));
+        const jackson_scattering<T> scatter(
+            sss::seabed::jackson_for(regions, {.frequency_hz = T(d.sensor.frequency_hz), .sound_speed_mps = T(d.sea.sound_speed_mps)}),
+            sss::scattering::hard_target<T>{});
+        return f(simulator_of<T, jackson_scattering<T>, Water>(scatter, water, beam, tow, rx, rays_of(d), receiver_stages(d)));
     }
-    std::vector<real> mu;
-    if (d.bed.regions.empty()) mu.push_back(real(region{}.mu_db));
-    for (const auto& g : d.bed.regions) mu.push_back(real(g.mu_db));
-    mu.push_back(real(d.sensor.target_mu_db));
-    return f(simulator_of<policy::lambertian, Water>(policy::lambertian({.mu_db = mu}), water, beam, tow, rx, rays_of(d),
-                                                     receiver_stages(d)));
+    std::vector<T> mu;
+    if (d.bed.regions.empty()) mu.push_back(T(region{}.mu_db));
+    for (const auto& g : d.bed.regions) mu.push_back(T(g.mu_db));
+    mu.push_back(T(d.sensor.target_mu_db));
+    using lambertian = typename policy<T>::lambertian;
+    return f(simulator_of<T, lambertian, Water>(lambertian({.mu_db = mu}), water, beam, tow, rx, rays_of(d), receiver_stages(d)));
 }
 
 } // namespace sss::scene_file

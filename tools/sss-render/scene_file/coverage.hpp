@@ -22,7 +22,7 @@ struct extent {
     const auto& b = d.bed;
     return {b.origin_m[0], b.origin_m[1], b.origin_m[0] + double(b.nx - 1) * b.cell_m, b.origin_m[1] + double(b.ny - 1) * b.cell_m};
 }
-[[nodiscard]] inline extent extent_of(const sss::scene::height_field<real>& h) {
+template <Real T> [[nodiscard]] extent extent_of(const sss::scene::height_field<T>& h) {
     const double x0 = h.origin_m().x, y0 = h.origin_m().y, c = h.cell_m();
     return {x0, y0, x0 + double(h.nx() - 1) * c, y0 + double(h.ny() - 1) * c};
 }
@@ -30,18 +30,19 @@ struct extent {
 /// The problems of pings [first, first + count) of motion `tow` (motion_of(d, altitude_m)): each a sentence
 /// naming the ping and the edge. Planar geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side
 /// of the track; the altitude is altitude_m, or with a trajectory each checked ping's z (a seabed near z = 0).
-[[nodiscard]] inline std::vector<std::string> swath_problems(const description& d, const extent& e, const scene_motion& tow,
-                                                             std::size_t first, std::size_t count) {
+template <Real T>
+[[nodiscard]] std::vector<std::string> swath_problems(const description& d, const extent& e, const scene_motion<T>& tow, std::size_t first,
+                                                      std::size_t count) {
     std::vector<std::string> out;
     const bool sampled = d.tow.model == "trajectory";
     const double r = d.sensor.max_range_m;
     double alt = d.tow.altitude_m;
     auto check = [&](std::size_t ping, const char* what, double x, double y) {
         std::string edges;
-        if (x < e.west_m - 1e-9) edges += " west by " + detail::table_reader::fmt(e.west_m - x) + " m";
-        if (x > e.east_m + 1e-9) edges += " east by " + detail::table_reader::fmt(x - e.east_m) + " m";
-        if (y < e.south_m - 1e-9) edges += " south by " + detail::table_reader::fmt(e.south_m - y) + " m";
-        if (y > e.north_m + 1e-9) edges += " north by " + detail::table_reader::fmt(y - e.north_m) + " m";
+        if (x < e.west_m - 1e-9) edges += " west by " + detail::fmt(e.west_m - x) + " m";
+        if (x > e.east_m + 1e-9) edges += " east by " + detail::fmt(x - e.east_m) + " m";
+        if (y < e.south_m - 1e-9) edges += " south by " + detail::fmt(e.south_m - y) + " m";
+        if (y > e.north_m + 1e-9) edges += " north by " + detail::fmt(y - e.north_m) + " m";
         if (!edges.empty()) out.push_back(std::string(what) + " at ping " + std::to_string(ping) + " lies beyond the seabed:" + edges);
     };
     for (std::size_t ping : {first, first + count / 2, first + count - 1}) {
@@ -49,27 +50,28 @@ struct extent {
         if (sampled) alt = pose.position.z;
         const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
         const double x = pose.position.x, y = pose.position.y;
-        const auto f = pose.to_world({real(1), real(0), real(0)});
+        const auto f = pose.to_world({T(1), T(0), T(0)});
         const double fl = std::hypot(double(f.x), double(f.y));
         const double fx = double(f.x) / fl, fy = double(f.y) / fl; // forward; starboard is (fy, -fx)
         check(ping, "the towfish", x, y);
         check(ping, "the port swath edge", x - reach * fy, y + reach * fx);
         check(ping, "the starboard swath edge", x + reach * fy, y - reach * fx);
     }
-    if (!(r > alt)) out.push_back("sonar.max_range_m (" + detail::table_reader::fmt(r) + " m) does not reach the seabed " +
-                                  detail::table_reader::fmt(alt) + " m below: the image holds only water");
+    if (!(r > alt)) out.push_back("sonar.max_range_m (" + detail::fmt(r) + " m) does not reach the seabed " +
+                                  detail::fmt(alt) + " m below: the image holds only water");
     return out;
 }
 
 /// The pings among [first, first + count) where the towfish is at or below the seabed (the first one), or "".
-[[nodiscard]] inline std::string below_seabed(const world& w, const scene_motion& tow, std::size_t first, std::size_t count) {
+template <Real T>
+[[nodiscard]] std::string below_seabed(const world<T>& w, const scene_motion<T>& tow, std::size_t first, std::size_t count) {
     for (std::size_t ping = first; ping < first + count; ++ping) {
         const auto pose = tow.pose_at(ping);
-        const real z = pose.position.z;
-        const real ground = w.seabed().seabed_height_m(pose.position.x, pose.position.y);
+        const T z = pose.position.z;
+        const T ground = w.seabed().seabed_height_m(pose.position.x, pose.position.y);
         if (std::isfinite(ground) && ground >= z)
-            return "the towfish (z " + detail::table_reader::fmt(z) + " m) is at or below the seabed (z " +
-                   detail::table_reader::fmt(ground) + " m) at ping " + std::to_string(ping);
+            return "the towfish (z " + detail::fmt(z) + " m) is at or below the seabed (z " +
+                   detail::fmt(ground) + " m) at ping " + std::to_string(ping);
     }
     return "";
 }

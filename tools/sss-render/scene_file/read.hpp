@@ -4,6 +4,7 @@
 /// whose one-line message names the file, the line and column, the key path and what is wrong; an unknown key
 /// is an error that suggests the closest valid key.
 
+#include "error.hpp"
 #include "scene.hpp"
 
 #include <sss/core/error.hpp>
@@ -34,12 +35,6 @@
 #include <vector>
 
 namespace sss::scene_file {
-
-/// A scene file that cannot be used: "file:line:column: key.path: what is wrong".
-class scene_error : public sss::error {
-public:
-    using sss::error::error;
-};
 
 namespace detail {
 /// toml++ 3.3 tells whitespace from other code points through a table with gaps: for most code points of the Basic
@@ -268,11 +263,7 @@ public:
     static std::string suggestion(std::string_view got, std::initializer_list<std::string_view> known) {
         return suggestion<std::initializer_list<std::string_view>>(got, known);
     }
-    static std::string fmt(double v) {
-        std::ostringstream s;
-        s << v;
-        return s.str();
-    }
+    static std::string fmt(double v) { return detail::fmt(v); }
 
 private:
     static bool all_numbers(const toml::array& a) {
@@ -362,6 +353,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (d.run.rays_per_sample > 1024)
             r.fail("rays_per_sample", "must be <= 1024, got " + detail::table_reader::fmt(d.run.rays_per_sample));
         r.choice("seabed_edges_along", d.run.seabed_edges_along, {"auto", "on", "off"});
+        r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }
     {

@@ -1,0 +1,274 @@
+#pragma once
+/// \file
+/// The definition of sss-render's render (render.hpp), included only by render_float.cpp and render_double.cpp:
+/// the scene's world and simulator of scalar T, the render with its progress, and the files the scene asks for,
+/// each written under a temporary name and renamed only when every one of them is complete.
+
+#include "render.hpp"
+#include "scene_file/build.hpp"
+#include "scene_file/coverage.hpp"
+#include "scene_file/write.hpp"
+
+#include <sss/core/render_control.hpp>
+#include <sss/io/labels.hpp>
+#include <sss/io/npy.hpp>
+#include <sss/io/png.hpp>
+#include <sss/io/xtf.hpp>
+#include <sss/labels/ground_truth.hpp>
+#include <sss/receiver/ground_range.hpp>
+#include <sss/receiver/quantise.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+extern "C" inline void sss_render_on_sigint(int) { sss::scene_file::interrupted.store(true); }
+
+namespace sss::scene_file {
+
+// The seabed's synthesis is float in both scalars (make_seabed): compiled once, in render_float.cpp.
+extern template sss::seabed::composite_seabed<float> synthesise_seabed<float>(const description&);
+
+namespace detail {
+
+/// Progress on stderr: a redrawn bar on a terminal, a plain line per tenth otherwise.
+class progress {
+public:
+    explicit progress(std::size_t total) : total_(total), tty_(isatty(STDERR_FILENO) != 0), t0_(clock::now()) {}
+    void update(std::size_t done) {
+        const double s = std::chrono::duration<double>(clock::now() - t0_).count();
+        const double rate = s > 0 ? double(done) / s : 0.0;
+        const double eta = rate > 0 ? double(total_ - done) / rate : 0.0;
+        if (tty_) {
+            const std::size_t width = 30, fill = total_ ? done * width / total_ : width;
+            std::fprintf(stderr, "\r[%s%s] %zu/%zu pings  %.1f pings/s  ETA %.0f s ", std::string(fill, '#').c_str(),
+                         std::string(width - fill, '.').c_str(), done, total_, rate, eta);
+            if (done == total_) std::fputc('\n', stderr);
+        } else {
+            const std::size_t tenth = total_ ? done * 10 / total_ : 10;
+            if (tenth == last_tenth_ && done != total_) return;
+            last_tenth_ = tenth;
+            std::fprintf(stderr, "sss-render: %zu/%zu pings, %.1f pings/s, ETA %.0f s\n", done, total_, rate, eta);
+        }
+        std::fflush(stderr);
+    }
+
+private:
+    using clock = std::chrono::steady_clock;
+    std::size_t total_;
+    bool tty_;
+    clock::time_point t0_;
+    std::size_t last_tenth_ = std::size_t(-1);
+};
+
+/// Pings [first, first + count) in one render; its progress callback draws the bar and stops the render at Ctrl-C
+/// (pings under way finish, nothing is kept).
+template <class Sim, Real T>
+sss::waterfall<T> render(const Sim& sim, const world<T>& w, std::size_t first, std::size_t count, unsigned threads) {
+    progress bar(count);
+    try {
+        return sim.render(w, first, count,
+                          sss::render_control{.threads = threads, .progress = [&bar](const sss::render_progress& p) {
+                                                  bar.update(p.done);
+                                                  return !interrupted.load();
+                                              }});
+    } catch (const sss::render_cancelled&) {
+        throw interrupted_error{};
+    }
+}
+
+/// The files being written: each under a temporary name until `commit` renames them all.
+class output_set {
+public:
+    explicit output_set(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    ~output_set() {
+        for (const auto& [tmp, final] : files_) std::filesystem::remove(tmp, ignored_);
+    }
+    /// The temporary path to write `name` to.
+    std::string add(const std::string& name) {
+        const auto tmp = dir_ / ("." + name + ".partial");
+        files_.emplace_back(tmp, dir_ / name);
+        return tmp.string();
+    }
+    /// A writer that appends suffixes to a stem: each `stem + suffix` is one file.
+    std::string add_stem(const std::string& stem, std::initializer_list<const char*> suffixes) {
+        const std::string tmp = "." + stem + ".partial";
+        for (const char* s : suffixes) files_.emplace_back(dir_ / (tmp + s), dir_ / (stem + s));
+        return (dir_ / tmp).string();
+    }
+    std::vector<std::string> commit() {
+        if (interrupted.load()) throw interrupted_error{};
+        std::vector<std::string> names;
+        for (const auto& [tmp, final] : files_) {
+            std::filesystem::rename(tmp, final);
+            names.push_back(final.string());
+        }
+        files_.clear();
+        return names;
+    }
+
+private:
+    std::filesystem::path dir_;
+    std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;
+    std::error_code ignored_;
+};
+
+/// Power compensated for spreading (r^3) and absorption, as a sidescan's TVG shows it.
+template <Real T> std::vector<double> compensated(const sss::waterfall<T>& w, double c_mps, double absorption_db_per_km) {
+    std::vector<double> gain(w.samples), shown(w.values.size());
+    for (std::size_t k = 0; k < w.samples; ++k) {
+        const double r = (double(k) + 0.5) * w.dt_s * 0.5 * c_mps;
+        gain[k] = r * r * r * std::pow(10.0, 2.0 * absorption_db_per_km * r / 1e4);
+    }
+    for (std::size_t p = 0; p < w.pings; ++p)
+        for (std::size_t c = 0; c < w.width(); ++c) {
+            const std::size_t k = c < w.samples ? w.samples - 1 - c : c - w.samples;
+            shown[p * w.width() + c] = double(w.at(p, c)) * gain[k];
+        }
+    return shown;
+}
+
+/// The level shown white: the 99.5th percentile of the positive values (dB), so that a few highlights or
+/// speckle peaks do not darken the whole image.
+inline double white_level_db(const std::vector<double>& v) {
+    std::vector<double> positive;
+    for (double x : v)
+        if (x > 0 && std::isfinite(x)) positive.push_back(x);
+    if (positive.empty()) return 0.0;
+    const auto at = positive.begin() + std::ptrdiff_t(double(positive.size() - 1) * 0.995);
+    std::nth_element(positive.begin(), at, positive.end());
+    return 10.0 * std::log10(*at);
+}
+
+} // namespace detail
+
+template <Real T> int render_scene(const description& d, const render_request& r) {
+    if (const auto why = not_compiled<T>(d); !why.empty()) throw scene_error(r.scene_path + ": " + why);
+    const std::size_t count = r.last - r.first;
+    const extent e = d.bed.file.empty() ? extent_of(d) : extent_of(load_seabed<T>(d));
+    // The track at the scene's altitude (a trajectory: its own z), for the ping count and the coverage.
+    const scene_motion<T> track = motion_of(d, T(d.tow.altitude_m));
+    if (const auto beyond = pings_beyond(d, track, r.last, r.pings_asked); !beyond.empty())
+        throw scene_error(r.scene_path + ": " + beyond);
+    const auto problems = swath_problems(d, e, track, r.first, count);
+    if (r.dry_run) {
+        std::fputs(to_toml(d).c_str(), stdout);
+        for (const auto& p : problems) std::fprintf(stderr, "sss-render: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
+        return 0;
+    }
+    for (const auto& p : problems) std::fprintf(stderr, "sss-render: warning: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
+    std::signal(SIGINT, sss_render_on_sigint);
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const world<T> w = make_world<T>(d);
+    const bool sampled = d.tow.model == "trajectory";
+    if (const T z = tow_z(d, w); !sampled && !(z > 0))
+        throw scene_error(r.scene_path + ": motion.altitude_m: the towfish's world z (" + detail::fmt(z) +
+                          " m) must be > 0: the motion policies keep the towfish above z = 0; "
+                          "raise the seabed (mean_height_m) so that it lies above -altitude_m");
+    if (const auto below = below_seabed(w, sampled ? track : motion_of(d, tow_z(d, w)), r.first, count); !below.empty())
+        throw scene_error(r.scene_path + (sampled ? ": motion.trajectory_file: " : ": motion.altitude_m: ") + below);
+    const auto t1 = std::chrono::steady_clock::now();
+    std::vector<sss::pose<T>> poses;
+    const bool want_labels = d.out.coco || d.out.yolo || d.out.label_images;
+    sss::label_image labels;
+    const auto image = with_simulator(d, w, [&](const auto& sim) {
+        for (std::size_t i = r.first; i < r.last; ++i) poses.push_back(sim.motion().pose_at(i));
+        auto rendered = detail::render(sim, w, r.first, count, unsigned(d.run.threads));
+        if (want_labels) labels = sss::label_render(sim, w, r.first, count, {.threads = unsigned(d.run.threads)});
+        return rendered;
+    });
+    const auto t2 = std::chrono::steady_clock::now();
+
+    std::filesystem::create_directories(r.out_dir);
+    detail::output_set files(r.out_dir);
+    const std::string& stem = d.out.stem;
+    // Each ping's altitude above the seabed under the towfish (XTF, ground range), and the ground-range cells per
+    // side that cover the slant range (the flat-bottom mapping of the waterfall and of the label images).
+    const auto tow_altitudes = [&] {
+        std::vector<double> altitude;
+        for (const auto& p : poses) altitude.push_back(double(p.position.z - w.seabed().seabed_height_m(p.position.x, p.position.y)));
+        return altitude;
+    };
+    const auto ground_cells = [&] { return std::size_t(std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m)); };
+    if (d.out.png || d.out.ground_range) {
+        // With the receiver's TVG the record is already compensated; without it the display compensates.
+        sss::waterfall<double> shown{.pings = image.pings, .samples = image.samples, .dt_s = image.dt_s,
+                                     .values = d.rx.tvg ? std::vector<double>(image.values.begin(), image.values.end())
+                                                        : detail::compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km)};
+        auto grey = [&](const std::vector<double>& v) {
+            if (d.out.png_scale == "quantised") {
+                std::vector<double> sorted(v);
+                const auto at = sorted.begin() + std::ptrdiff_t(double(sorted.size() - 1) * 0.95);
+                std::nth_element(sorted.begin(), at, sorted.end());
+                const double ref = *at > 0 ? *at : 1.0;
+                return sss::quantise<std::uint8_t>(std::span<const double>(v), {.gain = sss::quantise_gain(ref, 100.0)});
+            }
+            return sss::io::to_grey_db<std::uint8_t>(std::span<const double>(v), {.dynamic_range_db = d.out.png_dynamic_range_db,
+                                                                                   .top_db = detail::white_level_db(v)});
+        };
+        if (d.out.png) sss::io::write_png_grey8(files.add(stem + ".png"), image.width(), image.pings, grey(shown.values));
+        if (d.out.ground_range) {
+            const auto ground = sss::to_ground_range(shown, tow_altitudes(), d.sea.sound_speed_mps, d.out.ground_range_cell_m,
+                                                     ground_cells());
+            sss::io::write_png_grey8(files.add(stem + "_ground.png"), ground.width(), ground.pings, grey(ground.values));
+        }
+    }
+    if (d.out.npy) {
+        sss::io::write_npy(files.add(stem + ".npy"), image);
+        sss::io::write_render_sidecar<T>(files.add(stem + ".json"), image, poses,
+                                         {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps});
+    }
+    if (d.out.xtf) {
+        const std::vector<double> altitude = tow_altitudes();
+        sss::io::xtf_render_params xp{.start_unix_s = xtf_start_unix_s(d, track, r.first),
+                                      .ping_interval_s = d.tow.ping_interval_s, .first_ping_number = std::uint32_t(r.first + 1),
+                                      .sound_speed_mps = d.sea.sound_speed_mps,
+                                      .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
+                                                 .longitude_deg = d.out.xtf_origin_longitude_deg}};
+        const auto widths = widths_of(beam_of<T>(d), d.sensor.depression_deg);
+        xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
+                          .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};
+        xp.header.starboard = xp.header.port;
+        sss::io::write_xtf(files.add(stem + ".xtf"), sss::io::make_xtf<T>(image, poses, xp, altitude));
+    }
+    if (want_labels) {
+        std::vector<sss::io::label_class> classes;
+        for (const auto& o : d.objects)
+            if (std::none_of(classes.begin(), classes.end(), [&](const auto& c) { return c.id == std::uint32_t(o.class_id); }))
+                classes.push_back({std::uint32_t(o.class_id), o.class_name});
+        const auto box = sss::io::box_extent::highlight_and_shadow;
+        if (d.out.coco) {
+            const std::vector<sss::io::coco_image> set{{stem + ".png", &labels}};
+            sss::io::write_text(files.add(stem + "_coco.json"), sss::io::coco_json(set, classes, box));
+        }
+        if (d.out.yolo) {
+            sss::io::write_text(files.add(stem + ".txt"), sss::io::yolo_txt(labels, classes, box));
+            sss::io::write_text(files.add("classes.txt"), sss::io::yolo_classes_txt(classes));
+        }
+        if (d.out.label_images) {
+            sss::io::write_label_images(files.add_stem(stem + "_labels", {"_class.png", "_instance.png", "_legend.json"}), labels, classes);
+            if (d.out.ground_range) // pixel for pixel with stem_ground.png: the same altitudes, cell and width
+                sss::io::write_label_images(files.add_stem(stem + "_ground_labels", {"_class.png", "_instance.png", "_legend.json"}),
+                                            sss::ground_range_labels(labels, tow_altitudes(), {.cell_m = d.out.ground_range_cell_m,
+                                                                                                  .cells = ground_cells(),
+                                                                                                  .sound_speed_mps = d.sea.sound_speed_mps}),
+                                            classes);
+        }
+    }
+    const auto written = files.commit();
+    auto s = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+    std::fprintf(stderr, "sss-render: %zu pings x 2 x %zu samples in %.2f s (%.2f ms/ping; scene %.2f s)\n", count,
+                 image.samples, s(t1, t2), 1e3 * s(t1, t2) / double(count), s(t0, t1));
+    for (const auto& f : written) std::printf("%s\n", f.c_str());
+    return 0;
+}
+
+} // namespace sss::scene_file
