@@ -129,6 +129,12 @@ elif case == "outputs":
             npy = open(os.path.join(d, "geo", "georeferenced.npy"), "rb").read()
             check(b"'descr': '<f8'" in npy[:128] and b"(8, " in npy[:128], f"the double scene's .npy holds 8 pings of float64 ({npy[:128]})")
             check(len(open(os.path.join(d, "geo", "georeferenced.txt")).read().splitlines()) == 1, "the cylinder gets its YOLO box in double")
+        # ... and in layered water, the survey double exists for (UTM bathymetry, a measured profile).
+        open(os.path.join(d, "geo_layered.toml"), "w").write(open(os.path.join(scenes, "georeferenced.toml")).read() +
+                                                             '\n[water]\nmodel = "layered"\ndepth_m = [0, 10, 30]\nspeed_mps = [1500, 1495, 1485]\n')
+        r = run([os.path.join(d, "geo_layered.toml"), "-o", os.path.join(d, "geol"), "--pings", "12:14"])
+        check(r.returncode == 0 and files_in(os.path.join(d, "geol")) == ["georeferenced.json", "georeferenced.npy", "georeferenced.png"],
+              f"a double scene in layered water renders ({files_in(os.path.join(d, 'geol'))}, {r.stderr})")
         text = open(small).read().replace("npy = true", "npy = false").replace('stem = "small"', 'stem = "other"')
         scene2 = os.path.join(d, "other.toml")
         open(scene2, "w").write(text)

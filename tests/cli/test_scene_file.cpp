@@ -145,6 +145,17 @@ TEST_CASE("in double a scene moved 500 km east and 6000 km north renders what it
     const double in_float = relative_difference(scene_lines<float>(local, 12, 6), scene_lines<float>(geo, 12, 6));
     MESSAGE("sum |moved - at origin| / sum |at origin| over pings 12 to 17: double " << in_double << ", float " << in_float);
     CHECK(in_float > 1e-2);
+    // The same in layered water: the rays bend through the profile below a surface placed from the towfish's
+    // depth, and the track's coordinates are as large.
+    auto local_layered = local, geo_layered = geo;
+    for (auto* d : {&local_layered, &geo_layered}) {
+        d->sea.model = "layered";
+        d->sea.depth_m = {0, 10, 30};
+        d->sea.speed_mps = {1500, 1495, 1485};
+    }
+    const auto layered_at_origin = scene_lines<double>(local_layered, 12, 6);
+    CHECK(energy_of(layered_at_origin) > 0.0);
+    CHECK(relative_difference(layered_at_origin, scene_lines<double>(geo_layered, 12, 6)) < 1e-6);
 }
 
 TEST_CASE("the resolved scene read back is the same scene, with every default written out") {

@@ -150,7 +150,6 @@ inline double white_level_db(const std::vector<double>& v) {
 } // namespace detail
 
 template <Real T> int render_scene(const description& d, const render_request& r) {
-    if (const auto why = not_compiled<T>(d); !why.empty()) throw scene_error(r.scene_path + ": " + why);
     const std::size_t count = r.last - r.first;
     const extent e = d.bed.file.empty() ? extent_of(d) : extent_of(load_seabed<T>(d));
     // The track at the scene's altitude (a trajectory: its own z), for the ping count and the coverage.

@@ -332,32 +332,21 @@ private:
 
 // ---------------------------------------------------------------------------------------------
 // The whitelist: the simulator types sss-render is compiled with, listed here and nowhere else.
-//   float  x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water
-//   double x {lambertian, jackson seabed + hard_target objects} x  straight water
+//   {float, double} x {lambertian, jackson seabed + hard_target objects} x {straight, layered} water
 // each x scene_beam<T> x scene_motion<T> x receiver_stages. The beam and the motion are run-time choices
 // (policies.hpp): scene_beam holds the ideal fan or the planar array, scene_motion the perturbed track (a
-// straight line, a turn, oscillations) or a sampled trajectory, so they add no instantiation: six simulator
+// straight line, a turn, oscillations) or a sampled trajectory, so they add no instantiation: eight simulator
 // types serve every beam and motion. The scalar is render.precision; with_simulator<T> instantiates only T's,
 // so sss-render compiles each scalar in its own translation unit (render_float.cpp, render_double.cpp).
 // Double is for coordinates float cannot hold to a centimetre (a georeferenced seabed, UTM eastings and
-// northings, a long track): both scattering models, since the seabed's material decides which, but straight
-// water only: each simulator type costs about 6 s of compile time per build, and a layered double pair would
-// add 12 s to every build for scenes that can place their origin near the survey instead. A scene asking for
-// a pair not listed is refused by not_compiled, with the keys to change.
-template <Real T> inline constexpr bool layered_water_compiled = std::same_as<T, float>;
+// northings, a long track), with every scattering and water a survey there may need: a bathymetry in UTM
+// coordinates with a measured sound-speed profile is the case double exists for. Each simulator type costs about
+// 6 s of compile time per build; the other policies are run-time choices, so the product stays at eight.
 
 template <Real T> using policy = sss::policies<T>;
 template <Real T, class Scattering, class Propagation>
 using simulator_of = sss::simulator<Scattering, Propagation, scene_beam<T>, scene_motion<T>, receiver_stages>;
 template <Real T> using jackson_scattering = sss::scattering::by_material<typename policy<T>::jackson, sss::scattering::hard_target<T>>;
-
-/// "" when the whitelist holds a simulator of scalar T for scene d, else the sentence saying which keys to change.
-template <Real T> [[nodiscard]] std::string not_compiled(const description& d) {
-    if (!layered_water_compiled<T> && d.sea.model == "layered")
-        return "render.precision: \"" + d.run.precision + "\" is compiled for water.model = \"straight\" only; a layered water needs "
-               "precision = \"float\"";
-    return "";
-}
 
 /// The layered water of scene d: its profile, the surface ping0_z + towfish_depth_m above, its absorption.
 template <Real T>
@@ -381,11 +370,8 @@ decltype(auto) with_water(const description& d, const scene_motion<T>& tow, cons
 /// Calls f(simulator) with the whitelisted simulator the scene asks for, of the world's scalar T; the scene's
 /// own words name it.
 template <Real T, class F> decltype(auto) with_simulator(const description& d, const world<T>& w, F&& f) {
-    if (const auto why = not_compiled<T>(d); !why.empty()) throw scene_error(d.path + ": " + why);
     const scene_motion<T> tow = motion_of(d, tow_z(d, w));
-    if constexpr (layered_water_compiled<T>) {
-        if (d.sea.model == "layered") return with_water(d, tow, layered_water(d, w, tow), std::forward<F>(f));
-    }
+    if (d.sea.model == "layered") return with_water(d, tow, layered_water(d, w, tow), std::forward<F>(f));
     const sss::propagation::straight<T> water(
         {.sound_speed_mps = T(d.sea.sound_speed_mps), .absorption_db_per_km = T(d.sea.absorption_db_per_km)});
     return with_water(d, tow, water, std::forward<F>(f));
