@@ -59,10 +59,12 @@
 #include "sss/receiver/time_sampler.hpp"
 #include "sss/sampling/detail/tube_refinement.hpp"
 #include "sss/sampling/launch_angles.hpp"
+#include "sss/sampling/reach.hpp"
 #include "sss/scattering/concept.hpp"
 #include "sss/scattering/lambertian.hpp"
 #include "sss/scattering/specular_bounce.hpp"
 #include "sss/scene/concept.hpp"
+#include "sss/scene/area_view.hpp"
 
 namespace sss {
 
@@ -231,17 +233,45 @@ public:
     /// crossing the beam obliquely), the stretch of the column between the disagreeing edges is traced again as
     /// `along_split` narrower columns over the same launch angles, which share its solid angle exactly; their
     /// echoes replace its own there, and the rest of the column stands.
+    ///
+    /// Where the scene can bound its geometry over a rectangle (AreaScene) and the propagation how far its rays
+    /// reach (ReachBoundedPropagation), the rays see the scene over the rectangle they can reach (sampling/reach.hpp,
+    /// scene/area_view.hpp): the same geometry, with the top of what lies there. The launch angles still follow the whole
+    /// scene's top (sampling/launch_angles.hpp), so the rays traced are the same either way.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
+        if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
+            const beam_extent<T> ext = beam_.extent(sd);
+            const double reach_m = double(one_way_limit_s()) * double(propagation_.reach_speed_mps(p.position.z));
+            const plane_rectangle<T> r = side_reach(p, sd, ext, reach_m, !bouncing);
+            trace_over(scene::area_view<Sc>(scene, r.lo, r.hi), scene.top_m(), p, sd, visit);
+        } else {
+            trace_over(scene, scene.top_m(), p, sd, visit);
+        }
+    }
+
+    /// Along-track columns on one side: the requested count, or more where the beam's pattern needs them.
+    [[nodiscard]] std::size_t along_columns(const beam_extent<T>& ext, side sd) const noexcept {
+        std::size_t n = density_.along;
+        if constexpr (AlongResolvedBeam<B>) {
+            const double step = double(beam_.along_resolution_rad(sd));
+            const double width = double(ext.along_max_rad) - double(ext.along_min_rad);
+            if (step > 0.0 && width > 0.0) n = std::max(n, static_cast<std::size_t>(std::min(4096.0, std::ceil(width / step))));
+        }
+        return n;
+    }
+
+private:
+    /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`.
+    template <Scene Sc, class Visitor>
+    void trace_over(const Sc& scene, T top_m, const pose<T>& p, side sd, Visitor&& visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
         const double t_max_s = double(samples_) * dt_;
         trace_frame f{p, sd, ext, T{}, T{}, T{}, T{}, {}};
-        // Trace slightly past the line's end so the ray placed exactly at the last range is not lost to rounding;
-        // the sampler drops whatever falls beyond the line.
-        f.t_max_one_way = static_cast<T>(0.5 * t_max_s * (1.0 + 1e-5));
+        f.t_max_one_way = one_way_limit_s();
         f.max_range_m = static_cast<T>(0.5 * t_max_s * c_ref_);
         f.altitude = p.position.z - scene.seabed_height_m(p.position.x, p.position.y);
-        f.clearance = p.position.z - scene.top_m();
+        f.clearance = p.position.z - top_m;
         if (density_.across != 0) f.cd.rays = density_.across;
         else f.cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
         const std::size_t n_along = along_columns(ext, sd);
@@ -320,18 +350,6 @@ public:
         }
     }
 
-    /// Along-track columns on one side: the requested count, or more where the beam's pattern needs them.
-    [[nodiscard]] std::size_t along_columns(const beam_extent<T>& ext, side sd) const noexcept {
-        std::size_t n = density_.along;
-        if constexpr (AlongResolvedBeam<B>) {
-            const double step = double(beam_.along_resolution_rad(sd));
-            const double width = double(ext.along_max_rad) - double(ext.along_min_rad);
-            if (step > 0.0 && width > 0.0) n = std::max(n, static_cast<std::size_t>(std::min(4096.0, std::ceil(width / step))));
-        }
-        return n;
-    }
-
-private:
     /// True when the scattering policy switches on one specular bounce (scattering/specular_bounce.hpp).
     /// The member's value decides, not its presence: a policy declaring it false does not bounce.
     static constexpr bool bouncing = [] {
@@ -342,6 +360,10 @@ private:
     }();
     /// True when a line stage is asked for.
     static constexpr bool has_stage = !std::is_same_v<Stage, no_line_stage>;
+
+    /// How long a ray is followed, one way (s): slightly past the line's end, so that the ray placed exactly at the
+    /// last range is not lost to rounding (the sampler drops whatever falls beyond the line).
+    [[nodiscard]] T one_way_limit_s() const noexcept { return static_cast<T>(0.5 * double(samples_) * dt_ * (1.0 + 1e-5)); }
 
     template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
         return line_context<T>{p, sd, dt_, c_ref_,

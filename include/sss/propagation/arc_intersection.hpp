@@ -11,8 +11,8 @@
 /// distance between arc and chord)
 ///     e = (1 - cos(k ds / 2)) / k  <=  k ds^2 / 8,
 /// so chords with ds <= sqrt(8 tol / k) keep every point of the arc within tol of a chord (chord_arc_length_m).
-/// A 1 mm tolerance in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives 2.5 m chords; under a
-/// 0.017 1/s gradient, 27 m. Measured on a 3 deg ray in a 5.9 m/s-per-m thermocline: 33 chords over 45 m, the
+/// A 0.1 mm tolerance (layered's default) in a thermocline of 2 m/s per m at 1500 m/s (k ~ 1.3e-3 1/m) gives
+/// 0.78 m chords; under a 0.017 1/s gradient, 8.4 m. Measured on a 3 deg ray in a 5.9 m/s-per-m thermocline: 33 chords over 45 m, the
 /// arc at most 0.94 mm from them (tests/propagation/test_layered.cpp).
 ///
 /// The scene's hit on a chord lies on the facet the chord met, within tol of the arc. The arc meets that facet's

@@ -26,6 +26,15 @@
 ///
 /// with `rays` a `std::span<const ray<T>>` and `paths` a `std::span<std::optional<path<T>>>` of the same size.
 /// `sss::trace_all` calls it where it exists and falls back to one `trace` per ray.
+///
+/// Optional (`ReachBoundedPropagation`): a policy whose rays keep their horizontal heading also offers
+///
+/// | `p.reach_speed_mps(z)` | T | k (m/s): a ray launched from world z with unit direction d stays, for one-way |
+/// |                        |   | time t, within horizontal distance k t sqrt(d.x^2 + d.y^2) of its origin along |
+/// |                        |   | d's heading, and its path is at most k t long                                  |
+///
+/// The simulator then knows the rectangle a side's rays can reach (sampling/reach.hpp) and shows the scene's
+/// geometry over it only (scene/area_view.hpp).
 
 #include <concepts>
 #include <cstddef>
@@ -62,6 +71,12 @@ concept BatchPropagation = Propagation<P> && Scene<Sc> &&
              std::span<std::optional<path<typename P::value_type>>> out) {
         { p.trace_many(rays, s, t, out) };
     };
+
+/// A Propagation policy that bounds how far its rays reach (see the table above).
+template <class P>
+concept ReachBoundedPropagation = Propagation<P> && requires(const P& p, typename P::value_type z) {
+    { p.reach_speed_mps(z) } -> std::same_as<typename P::value_type>;
+};
 
 /// paths[k] = p.trace(rays[k], scene, t_max_s) for every k, through the policy's batch method when it has one.
 /// `paths` must hold at least rays.size() slots.

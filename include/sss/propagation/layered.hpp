@@ -64,7 +64,9 @@ template <Real T> struct layered_params {
     T frequency_hz = T(300000);        ///< acoustic frequency for absorption (Hz)
     water_properties<T> water{};       ///< temperature, salinity, pH for absorption
     absorption_formula absorption = absorption_formula::francois_garrison;
-    T chord_tolerance_m = T(1e-3);     ///< largest distance between an arc and the chords handed to the scene (m)
+    /// Largest distance between an arc and the chords handed to the scene (m). A ray that passes an edge (a crest
+    /// at grazing incidence) closer than this may be taken to meet it or not (docs/design/layered.md).
+    T chord_tolerance_m = T(1e-4);
     T reference_speed_mps = T(0);      ///< speed for sampling (m/s); 0: the water column's harmonic mean
     bool launch_table = true;          ///< look rays up in a per-ping launch table above the geometry (file comment)
 };
@@ -110,6 +112,18 @@ public:
     /// deepest knot, depth / integral dz/c (the speed of a vertical ray's average); c(0) when that column is
     /// empty (all knots at or above the surface).
     [[nodiscard]] T reference_speed_mps() const noexcept { return c_ref_; }
+
+    /// c_max^2 / c(z) (m/s), c_max the fastest speed of the profile (ReachBoundedPropagation): a ray stays in the
+    /// vertical plane of its launch, and by Snell's law (cos(theta) / c constant, theta the inclination) it moves
+    /// horizontally at c cos(theta) = c^2 cos(theta_0) / c(z) <= (c_max^2 / c(z)) cos(theta_0); its path, at speed at
+    /// most c_max <= c_max^2 / c(z), is no longer.
+    [[nodiscard]] T reach_speed_mps(T origin_z) const noexcept {
+        const T depth = std::max(p_.surface_z_m - origin_z, T(0));
+        T c_max = T(0);
+        for (const T c : profile_.speeds_mps()) c_max = std::max(c_max, c);
+        const T c0 = profile_.speed_mps(depth);
+        return c_max * (c_max / c0);
+    }
 
     /// Absorption (dB/km) at depth_m (m) with the chosen formula.
     [[nodiscard]] T absorption_db_per_km(T depth_m) const noexcept {

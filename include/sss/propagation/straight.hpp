@@ -38,6 +38,8 @@ public:
 
     [[nodiscard]] const straight_params<T>& params() const noexcept { return p_; }
     [[nodiscard]] T reference_speed_mps() const noexcept { return p_.sound_speed_mps; }
+    /// Rays run straight at the speed of sound: in time t, c t along their direction (ReachBoundedPropagation).
+    [[nodiscard]] T reach_speed_mps(T) const noexcept { return p_.sound_speed_mps; }
 
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace(const ray<T>& r, const S& scene, T t_max_s) const {

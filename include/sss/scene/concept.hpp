@@ -20,6 +20,15 @@
 /// with `rays` a `std::span<const ray<T>>` and `hits` a `std::span<std::optional<hit<T>>>` of the same size.
 /// `sss::intersect_all` calls it where it exists and falls back to one `intersect` per ray, so callers need not
 /// ask.
+///
+/// Optional (`AreaScene`): a scene that can bound its geometry over part of the plane also offers
+///
+/// | `s.top_m(lo, hi)` | `T` | world z above which no geometry exists over x in [lo.x, hi.x], y in [lo.y, hi.y] (m) |
+///
+/// with `lo`, `hi` `vec2<T>` (world x, y, m): at most `top_m()`, and -infinity where nothing lies over the
+/// rectangle. The simulator asks it for the rectangle a side's rays can reach (sampling/reach.hpp), so that one
+/// high point elsewhere in a large scene does not make every ray look for geometry from that height down
+/// (scene/area_view.hpp).
 
 #include <concepts>
 #include <cstddef>
@@ -45,6 +54,12 @@ concept BatchScene = Scene<S> && requires(const S& s, std::span<const ray<typena
                                           typename S::value_type t,
                                           std::span<std::optional<hit<typename S::value_type>>> hits) {
     { s.intersect_many(rays, t, hits) };
+};
+
+/// A Scene that bounds its geometry over a rectangle of the plane (see the table above).
+template <class S>
+concept AreaScene = Scene<S> && requires(const S& s, const vec2<typename S::value_type>& p) {
+    { s.top_m(p, p) } -> std::same_as<typename S::value_type>;
 };
 
 /// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.

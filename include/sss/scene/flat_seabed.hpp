@@ -48,6 +48,8 @@ public:
 
     [[nodiscard]] T seabed_height_m(T, T) const noexcept { return height_m_; }
     [[nodiscard]] T top_m() const noexcept { return height_m_; }
+    /// The plane lies under every rectangle.
+    [[nodiscard]] T top_m(const vec2<T>&, const vec2<T>&) const noexcept { return height_m_; }
 
 private:
     T height_m_;

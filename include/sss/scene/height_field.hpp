@@ -180,6 +180,34 @@ public:
     }
     /// Highest vertex (m): no geometry above it.
     [[nodiscard]] T top_m() const noexcept { return bounds_.top_m; }
+    /// No geometry above it over the rectangle [lo, hi] (world x, y, m): the highest block of the maximum pyramid
+    /// among those covering the rectangle's cells, at the finest level that needs at most 16 blocks along each axis
+    /// (so at least the highest vertex there, and at most top_m()); -infinity for a rectangle off the grid.
+    [[nodiscard]] T top_m(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
+        // In cells from vertex (0, 0).
+        const double fu0 = double(lo.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
+        const double fu1 = double(hi.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
+        const double fv0 = double(lo.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
+        const double fv1 = double(hi.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
+        const double cx = double(grid_.nx - 2), cy = double(grid_.ny - 2); // last cell index
+        if (!(fu1 >= 0.0) || !(fv1 >= 0.0) || !(fu0 <= cx + 1.0) || !(fv0 <= cy + 1.0))
+            return -std::numeric_limits<T>::infinity(); // off the grid (or NaN)
+        const double u0 = std::floor(fu0), u1 = std::ceil(fu1), v0 = std::floor(fv0), v1 = std::ceil(fv1);
+        if (pyramid_.levels() == 0) return bounds_.top_m;
+        // The cells holding the rectangle: [u0, u1 - 1], and the cell before u0 when the rectangle starts on a
+        // vertex line (its vertices are the same, but rounding of the world coordinate could put it there).
+        const auto a = static_cast<std::int32_t>(std::clamp(u0 - 1.0, 0.0, cx));
+        const auto b = static_cast<std::int32_t>(std::clamp(u1, 0.0, cx));
+        const auto c = static_cast<std::int32_t>(std::clamp(v0 - 1.0, 0.0, cy));
+        const auto d = static_cast<std::int32_t>(std::clamp(v1, 0.0, cy));
+        std::int32_t level = 1;
+        while (level < pyramid_.levels() && ((b >> level) - (a >> level) >= 16 || (d >> level) - (c >> level) >= 16))
+            ++level;
+        T m = -std::numeric_limits<T>::infinity();
+        for (std::int32_t by = c >> level; by <= (d >> level); ++by)
+            for (std::int32_t bx = a >> level; bx <= (b >> level); ++bx) m = std::max(m, pyramid_.max_m(level, bx, by));
+        return m;
+    }
     /// Lowest vertex (m).
     [[nodiscard]] T bottom_m() const noexcept { return bounds_.bottom_m; }
 

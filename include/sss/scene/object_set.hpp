@@ -65,6 +65,16 @@ public:
     [[nodiscard]] const box<T>& bounds() const noexcept { return bounds_; }
     /// Highest world z of any object (m); -infinity for an empty set.
     [[nodiscard]] T top_m() const noexcept { return empty() ? -std::numeric_limits<T>::infinity() : bounds_.hi.z; }
+    /// The highest top among the objects whose bounding boxes reach over the rectangle [lo, hi] (world x, y, m);
+    /// -infinity when none does.
+    [[nodiscard]] T top_m(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
+        T m = -std::numeric_limits<T>::infinity();
+        for (const object<T>& o : objects_) {
+            const box<T>& b = o.bounds();
+            if (b.hi.x >= lo.x && b.lo.x <= hi.x && b.hi.y >= lo.y && b.lo.y <= hi.y) m = std::max(m, b.hi.z);
+        }
+        return m;
+    }
 
     /// Nearest hit over all objects with 0 < distance <= t_max_m, through the hierarchy.
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {

@@ -57,6 +57,14 @@ public:
 
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return seabed_.seabed_height_m(x_m, y_m); }
     [[nodiscard]] T top_m() const { return std::max(seabed_.top_m(), objects_.top_m()); }
+    /// The same over the rectangle [lo, hi] (world x, y, m; see AreaScene): the seabed's own there when it can
+    /// tell (else its top), and the objects' that reach over the rectangle.
+    [[nodiscard]] T top_m(const vec2<T>& lo, const vec2<T>& hi) const {
+        T s;
+        if constexpr (AreaScene<Seabed>) s = seabed_.top_m(lo, hi);
+        else s = seabed_.top_m();
+        return std::max(s, objects_.top_m(lo, hi));
+    }
 
 private:
     Seabed seabed_;

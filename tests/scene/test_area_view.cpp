@@ -1,0 +1,144 @@
+// The top of a scene over a rectangle of the plane bounds every piece of geometry there and nothing more than the
+// whole scene's top; an area view answers every query as its scene does, with that top, and leaves out objects
+// that reach nowhere over its rectangle.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <sss/scene/flat_seabed.hpp>
+#include <sss/scene/height_field.hpp>
+#include <sss/scene/object_set.hpp>
+#include <sss/scene/area_view.hpp>
+#include <sss/scene/scene.hpp>
+#include <sss/seabed/targets.hpp>
+
+#include "support/grid_relief.hpp"
+
+namespace {
+
+using sss::vec2;
+using sss::vec3;
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// 301 x 201 vertices at 0.5 m from (-50, 20): a slope of 5 cm per metre eastwards with +-0.4 m of noise.
+sss::scene::height_field<double> sloped_field() {
+    std::mt19937_64 g(11);
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    auto h = sss_test::sample_heights<double>(301, 201, 0.5, [&](double x, double) { return 0.05 * x + u(g); });
+    return sss::scene::height_field<double>({.nx = 301, .ny = 201, .cell_m = 0.5, .origin_m = {-50.0, 20.0}, .heights_m = std::move(h)});
+}
+
+// The highest vertex of every cell that holds part of the rectangle: a bound the surface over it reaches.
+double highest_under(const sss::scene::height_field<double>& f, vec2<double> lo, vec2<double> hi) {
+    const double c = f.cell_m();
+    const auto clamp_cell = [](double v, std::size_t n) { return std::clamp(v, 0.0, double(n - 2)); };
+    const double u0 = clamp_cell(std::floor((lo.x - f.origin_m().x) / c), f.nx()), u1 = clamp_cell(std::floor((hi.x - f.origin_m().x) / c), f.nx());
+    const double v0 = clamp_cell(std::floor((lo.y - f.origin_m().y) / c), f.ny()), v1 = clamp_cell(std::floor((hi.y - f.origin_m().y) / c), f.ny());
+    double m = -inf;
+    for (auto iy = std::size_t(v0); iy <= std::size_t(v1) + 1; ++iy)
+        for (auto ix = std::size_t(u0); ix <= std::size_t(u1) + 1; ++ix) m = std::max(m, f.height_m(ix, iy));
+    return m;
+}
+
+} // namespace
+
+TEST_CASE("a height field's top over a rectangle bounds every cell there and never exceeds its top") {
+    const auto f = sloped_field();
+    std::mt19937_64 g(3);
+    std::uniform_real_distribution<double> x(-60.0, 110.0), y(10.0, 130.0), size(0.0, 40.0);
+    int tighter = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const double x0 = x(g), y0 = y(g);
+        const vec2<double> lo{x0, y0}, hi{x0 + (k % 7 == 0 ? 0.0 : size(g)), y0 + (k % 11 == 0 ? 0.0 : size(g))};
+        const double top = f.top_m(lo, hi);
+        const bool off = hi.x < -50.0 || lo.x > 100.0 || hi.y < 20.0 || lo.y > 120.0;
+        if (off) {
+            CHECK(top == -inf);
+            continue;
+        }
+        CHECK(top >= highest_under(f, lo, hi));
+        CHECK(top <= f.top_m());
+        if (hi.x < 0.0 && top < f.top_m() - 2.0) ++tighter;
+    }
+    // The bound is local: west of x = 0 the slope keeps it metres below the field's top.
+    CHECK(tighter > 100);
+    CHECK(f.top_m({-1000.0, -1000.0}, {1000.0, 1000.0}) == f.top_m());
+    // A rectangle on a vertex line, and one a single point wide.
+    CHECK(f.top_m({0.0, 40.0}, {0.0, 40.0}) >= highest_under(f, {0.0, 40.0}, {0.0, 40.0}));
+}
+
+TEST_CASE("objects count over a rectangle only where their boxes reach over it") {
+    auto seabed = [](double, double) { return 0.0; };
+    std::vector<sss::scene::object<double>> objs;
+    objs.push_back(sss::seabed::tethered_mine<double>({.anchor_m = {0.0, 0.0}, .case_height_m = 5.0, .object_id = 1}, seabed));
+    objs.push_back(sss::seabed::tethered_mine<double>({.anchor_m = {200.0, 0.0}, .case_height_m = 2.0, .object_id = 2}, seabed));
+    const sss::scene::object_set<double> set(std::move(objs));
+    CHECK(set.top_m({-10.0, -10.0}, {10.0, 10.0}) == doctest::Approx(5.5));
+    CHECK(set.top_m({190.0, -10.0}, {210.0, 10.0}) == doctest::Approx(2.5));
+    CHECK(set.top_m({50.0, -10.0}, {150.0, 10.0}) == -inf);
+    CHECK(set.top_m({-10.0, -10.0}, {210.0, 10.0}) == set.top_m());
+    CHECK(sss::scene::object_set<double>().top_m({0.0, 0.0}, {1.0, 1.0}) == -inf);
+    CHECK(sss::scene::flat_seabed<double>(-3.0).top_m({0.0, 0.0}, {1.0, 1.0}) == -3.0);
+}
+
+TEST_CASE("an area view answers every ray over its rectangle as its scene does, with the top of what lies there") {
+    auto field = sloped_field();
+    std::vector<sss::scene::object<double>> objs;
+    const auto ground = [&field](double x, double y) { return field.seabed_height_m(x, y); };
+    objs.push_back(sss::seabed::tethered_mine<double>({.anchor_m = {-30.0, 70.0}, .case_height_m = 4.0, .object_id = 1}, ground));
+    objs.push_back(sss::seabed::tethered_mine<double>({.anchor_m = {80.0, 70.0}, .case_height_m = 12.0, .object_id = 2}, ground));
+    const sss::scene::scene sc(std::move(field), sss::scene::object_set<double>(std::move(objs)));
+
+    const vec2<double> lo{-45.0, 50.0}, hi{-10.0, 90.0}; // the lower mine only
+    const sss::scene::area_view view(sc, lo, hi);
+    CHECK(view.objects_near());
+    CHECK(view.top_m() >= sc.objects().top_m(lo, hi));
+    CHECK(view.top_m() < sc.top_m() - 5.0);
+    const sss::scene::area_view bare(sc, vec2<double>{10.0, 25.0}, vec2<double>{40.0, 45.0}); // no object
+    CHECK_FALSE(bare.objects_near());
+
+    std::mt19937_64 g(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int hits = 0, object_hits = 0;
+    for (int k = 0; k < 4000; ++k) {
+        // From above the rectangle down to a point in it: the whole ray stays over it.
+        const vec3<double> from{lo.x + (hi.x - lo.x) * u(g), lo.y + (hi.y - lo.y) * u(g), 15.0};
+        const vec3<double> to{lo.x + (hi.x - lo.x) * u(g), lo.y + (hi.y - lo.y) * u(g), -10.0};
+        const sss::ray<double> r{from, glm::normalize(to - from)};
+        const double t = glm::length(to - from);
+        const auto a = view.intersect(r, t), b = sc.intersect(r, t);
+        REQUIRE(bool(a) == bool(b));
+        if (!a) continue;
+        ++hits;
+        if (a->object != sss::no_object) ++object_hits;
+        CHECK(a->distance_m == b->distance_m);
+        CHECK(a->object == b->object);
+        CHECK(a->point.z <= view.top_m());
+    }
+    CHECK(hits > 3000);
+    CHECK(object_hits > 0);
+    // Batches too.
+    std::vector<sss::ray<double>> rays;
+    for (int k = 0; k < 64; ++k) {
+        const double e = 0.2 + 1.2 * double(k) / 63.0;
+        rays.push_back({vec3<double>{-44.0, 70.0, 12.0}, vec3<double>{std::cos(e), 0.0, -std::sin(e)}});
+    }
+    std::vector<std::optional<sss::hit<double>>> ha(rays.size()), hb(rays.size());
+    view.intersect_many(rays, 30.0, ha);
+    sc.intersect_many(rays, 30.0, hb);
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        REQUIRE(bool(ha[k]) == bool(hb[k]));
+        if (ha[k]) CHECK(ha[k]->distance_m == hb[k]->distance_m);
+    }
+}
+
+TEST_CASE("an area view over nothing keeps its scene's top") {
+    const auto f = sloped_field();
+    const sss::scene::area_view view(f, vec2<double>{500.0, 500.0}, vec2<double>{600.0, 600.0});
+    CHECK(view.top_m() == f.top_m());
+}
