@@ -235,9 +235,10 @@ public:
     /// echoes replace its own there, and the rest of the column stands.
     ///
     /// Where the scene can bound its geometry over a rectangle (AreaScene) and the propagation how far its rays
-    /// reach (ReachBoundedPropagation), the rays see the scene over the rectangle they can reach (sampling/reach.hpp,
-    /// scene/area_view.hpp): the same geometry, with the top of what lies there. The launch angles still follow the whole
-    /// scene's top (sampling/launch_angles.hpp), so the rays traced are the same either way.
+    /// reach (ReachBoundedPropagation), the rays see the scene over the rectangle they can reach
+    /// (sampling/reach.hpp, scene/area_view.hpp): the same geometry, with the top of what lies there. The launch
+    /// angles still follow the whole scene's top (sampling/launch_angles.hpp), so the rays traced are the same
+    /// either way.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
