@@ -101,6 +101,11 @@ template <Real T> struct tube_echo {
     hit<T> surface{};    ///< what the (first) end of the tube met: material, object, label
 };
 
+/// The echo observer of simulator::ping that does nothing: ping(scene, index) is ping(scene, index, no_echo_observer{}).
+struct no_echo_observer {
+    template <class Echo> constexpr void operator()(side, const Echo&) const noexcept {}
+};
+
 template <Scattering S = scattering::lambertian<double>, Propagation P = propagation::straight<double>,
           Beam B = beam::ideal_fan<double>, Motion M = motion::straight_line<double>, class Stage = no_line_stage>
 class simulator {
@@ -145,6 +150,14 @@ public:
     /// Renders ping `index`: one port and one starboard line. Throws invalid_parameter naming the ping when the
     /// towfish is not above the seabed there (a sonar in or under the seabed records nothing meaningful).
     template <Scene Sc> [[nodiscard]] ping_lines<T> ping(const Sc& scene, std::size_t index) const {
+        return ping(scene, index, no_echo_observer{});
+    }
+
+    /// ping, and `observe(side, const tube_echo<T>&)` called with every piece of echo as the lines gather it (the
+    /// echoes `trace` visits), so that whatever else is built from them (labels: labels/ground_truth.hpp) needs no
+    /// second trace. The lines are those of ping(scene, index).
+    template <Scene Sc, class Observer>
+    [[nodiscard]] ping_lines<T> ping(const Sc& scene, std::size_t index, Observer&& observe) const {
         static_assert(std::is_same_v<typename Sc::value_type, T>, "sss::simulator: scene scalar type differs");
         const pose<T> p = motion_.pose_at(index);
         const T seabed_z = scene.seabed_height_m(p.position.x, p.position.y);
@@ -153,11 +166,17 @@ public:
                                     "the towfish at (" + std::to_string(p.position.x) + ", " +
                                         std::to_string(p.position.y) + ", " + std::to_string(p.position.z) +
                                         ") m is not above the seabed (z = " + std::to_string(seabed_z) + " m)");
-        return ping_at(scene, p);
+        return ping_at(scene, p, observe);
     }
 
     /// Renders one ping from an explicit pose.
     template <Scene Sc> [[nodiscard]] ping_lines<T> ping_at(const Sc& scene, const pose<T>& p) const {
+        return ping_at(scene, p, no_echo_observer{});
+    }
+
+    /// ping_at, with an observer of the echoes as in ping(scene, index, observe).
+    template <Scene Sc, class Observer>
+    [[nodiscard]] ping_lines<T> ping_at(const Sc& scene, const pose<T>& p, Observer&& observe) const {
         time_sampler sampler = sampler_; // the pulse kernels are built once, in the constructor
         ping_lines<T> lines;
         lines.dt_s = dt_;
@@ -167,7 +186,7 @@ public:
             if constexpr (LineStageWithMaterials<Stage>) {
                 if (stage_.needs_materials()) {
                     std::vector<std::uint32_t> materials;
-                    accumulate_with_materials(scene, p, sd, sampler, materials);
+                    accumulate_with_materials(scene, p, sd, sampler, materials, observe);
                     sampler.render(line);
                     line_context<T> ctx = line_context_for(scene, p, sd);
                     ctx.materials = materials;
@@ -175,7 +194,7 @@ public:
                     continue;
                 }
             }
-            accumulate(scene, p, sd, sampler);
+            accumulate(scene, p, sd, sampler, observe);
             sampler.render(line);
             if constexpr (has_stage) stage_.process(line, line_context_for(scene, p, sd));
         }
@@ -204,26 +223,7 @@ public:
         w.samples = samples_;
         w.dt_s = dt_;
         w.values.assign(checked_elements(count, w.width(), "render.count"), T(0));
-        const auto& progress = control.progress;
-        if (progress && !progress(render_progress{0, count})) throw render_cancelled(0, count);
-        std::mutex report_lock;
-        std::size_t done = 0;
-        bool cancelled = false;
-        thread_pool& pool = control.pool != nullptr ? *control.pool : shared_thread_pool();
-        pool.for_each(
-            count,
-            [&](std::size_t i) {
-                w.set_row(i, ping(scene, first + i));
-                if (!progress) return;
-                const std::lock_guard<std::mutex> hold(report_lock);
-                if (cancelled) return; // finished after the cancellation: dropped
-                ++done;
-                if (!progress(render_progress{done, count})) {
-                    cancelled = true;
-                    throw render_cancelled(done, count); // for_each hands out no further ping
-                }
-            },
-            control.threads);
+        run_pings(count, control, [&](std::size_t i) { w.set_row(i, ping(scene, first + i)); });
         return w;
     }
 
@@ -747,19 +747,24 @@ private:
         out.via = h;
     }
 
-    template <Scene Sc> void accumulate(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler) const {
-        trace(scene, p, sd, [&](const tube_echo<T>& t) { sampler.add_span(t.t0_s, t.t1_s, t.power); });
+    template <Scene Sc, class Observer>
+    void accumulate(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler, Observer& observe) const {
+        trace(scene, p, sd, [&](const tube_echo<T>& t) {
+            sampler.add_span(t.t0_s, t.t1_s, t.power);
+            observe(sd, t);
+        });
     }
 
     /// accumulate, and the material of the strongest echo arriving in each sample (by the tube's mid time);
     /// samples no echo arrives in take the material of the sample before (the pulse carries it on).
-    template <Scene Sc>
+    template <Scene Sc, class Observer>
     void accumulate_with_materials(const Sc& scene, const pose<T>& p, side sd, time_sampler& sampler,
-                                   std::vector<std::uint32_t>& materials) const {
+                                   std::vector<std::uint32_t>& materials, Observer& observe) const {
         materials.assign(samples_, 0);
         std::vector<double> strongest(samples_, 0.0);
         trace(scene, p, sd, [&](const tube_echo<T>& t) {
             sampler.add_span(t.t0_s, t.t1_s, t.power);
+            observe(sd, t);
             const double k = 0.5 * (t.t0_s + t.t1_s) / dt_;
             if (!(k >= 0.0) || !(k < double(samples_))) return;
             const auto i = static_cast<std::size_t>(k);

@@ -186,6 +186,43 @@ TEST_CASE("A sphere in the water column: its highlight before the first bottom r
     CHECK(l[std::size_t(sample_of(H)) - 2].kind == sample_class::water_column);
 }
 
+TEST_CASE("render_labelled is render and label_render in one trace: the same image and labels to the bit, on any number of threads") {
+    const survey s = rough_survey();
+    const std::size_t first = 14, count = 10;
+    const auto both = render_labelled(s.sim, s.world, first, count, {.threads = 2});
+    const waterfall<double> image = s.sim.render(s.world, first, count, 1);
+    const label_image labels = label_render(s.sim, s.world, first, count, {.threads = 1});
+    CHECK(both.image.pings == count);
+    CHECK(both.image.samples == image.samples);
+    CHECK(both.image.dt_s == image.dt_s);
+    CHECK(both.image.values == image.values);
+    CHECK(both.labels.pings == count);
+    CHECK(both.labels.samples == labels.samples);
+    CHECK(both.labels.values == labels.values);
+    // The pings chosen see the targets: the comparison covers highlights and shadows, not only bare seabed.
+    std::size_t highlights = 0, shadows = 0;
+    for (const sample_label& l : both.labels.values) {
+        highlights += l.kind == sample_class::highlight;
+        shadows += l.kind == sample_class::shadow;
+    }
+    CHECK(highlights > 20u);
+    CHECK(shadows > 20u);
+    const auto one = render_labelled(s.sim, s.world, first, count, {.threads = 1});
+    CHECK(one.image.values == both.image.values);
+    CHECK(one.labels.values == both.labels.values);
+    // render's contract: a progress callback that says stop after 3 pings cancels, naming 3.
+    std::size_t stopped_at = 0;
+    try {
+        (void)render_labelled(s.sim, s.world, first, count,
+                              {.threads = 1, .progress = [](const render_progress& p) { return p.done < 3; }});
+    } catch (const render_cancelled& c) {
+        stopped_at = c.done();
+    }
+    CHECK(stopped_at == 3u);
+    CHECK_THROWS_WITH_AS((void)render_labelled(s.sim, s.world, 0, 1, {}, {.shadow_fraction = 0.0}),
+                         doctest::Contains("label_params.shadow_fraction"), invalid_parameter);
+}
+
 TEST_CASE("On rough relief every box encloses the samples its object's echo dominates, and the label image, COCO and YOLO agree") {
     const survey s = rough_survey();
     const label_image img = label_render(s.sim, s.world, 0, s.pings, {.threads = 2});

@@ -68,17 +68,22 @@ private:
     std::size_t last_tenth_ = std::size_t(-1);
 };
 
-/// Pings [first, first + count) in one render; its progress callback draws the bar and stops the render at Ctrl-C
-/// (pings under way finish, nothing is kept).
+/// Pings [first, first + count) in one render, with their labels into *labels unless it is null (one trace for
+/// both: sss::render_labelled); its progress callback draws the bar and stops the render at Ctrl-C (pings under
+/// way finish, nothing is kept).
 template <class Sim, Real T>
-sss::waterfall<T> render(const Sim& sim, const world<T>& w, std::size_t first, std::size_t count, unsigned threads) {
+sss::waterfall<T> render(const Sim& sim, const world<T>& w, std::size_t first, std::size_t count, unsigned threads,
+                         sss::label_image* labels) {
     progress bar(count);
+    const sss::render_control control{.threads = threads, .progress = [&bar](const sss::render_progress& p) {
+                                          bar.update(p.done);
+                                          return !interrupted.load();
+                                      }};
     try {
-        return sim.render(w, first, count,
-                          sss::render_control{.threads = threads, .progress = [&bar](const sss::render_progress& p) {
-                                                  bar.update(p.done);
-                                                  return !interrupted.load();
-                                              }});
+        if (labels == nullptr) return sim.render(w, first, count, control);
+        auto both = sss::render_labelled(sim, w, first, count, control);
+        *labels = std::move(both.labels);
+        return std::move(both.image);
     } catch (const sss::render_cancelled&) {
         throw interrupted_error{};
     }
@@ -180,9 +185,7 @@ template <Real T> int render_scene(const description& d, const render_request& r
     sss::label_image labels;
     const auto image = with_simulator(d, w, [&](const auto& sim) {
         for (std::size_t i = r.first; i < r.last; ++i) poses.push_back(sim.motion().pose_at(i));
-        auto rendered = detail::render(sim, w, r.first, count, unsigned(d.run.threads));
-        if (want_labels) labels = sss::label_render(sim, w, r.first, count, {.threads = unsigned(d.run.threads)});
-        return rendered;
+        return detail::render(sim, w, r.first, count, unsigned(d.run.threads), want_labels ? &labels : nullptr);
     });
     const auto t2 = std::chrono::steady_clock::now();
 

@@ -11,9 +11,13 @@
 /// finish and are dropped; then render throws render_cancelled, whose done() is the `done` of the call that
 /// returned false. Nothing else changes: the simulator and the pool are ready for the next render, and render
 /// returns no partial waterfall.
+///
+/// `run_pings` is that loop on its own, for renders that build more than a waterfall from each ping (labels beside
+/// the image: labels/ground_truth.hpp, render_labelled) and keep render's contract.
 
 #include <cstddef>
 #include <functional>
+#include <mutex>
 #include <string>
 
 #include "sss/core/error.hpp"
@@ -49,5 +53,32 @@ private:
     std::size_t done_;
     std::size_t total_;
 };
+
+/// Calls work(i) for every i in [0, count) as simulator::render calls its pings (the file comment): on control's
+/// pool and threads, one i at a time per thread, with control's progress and cancellation; throws render_cancelled
+/// when the callback cancels, and rethrows the first exception work throws. work(i) must write only what belongs
+/// to i (calls for different i overlap).
+template <class Work> void run_pings(std::size_t count, const render_control& control, Work&& work) {
+    const auto& progress = control.progress;
+    if (progress && !progress(render_progress{0, count})) throw render_cancelled(0, count);
+    std::mutex report_lock;
+    std::size_t done = 0;
+    bool cancelled = false;
+    thread_pool& pool = control.pool != nullptr ? *control.pool : shared_thread_pool();
+    pool.for_each(
+        count,
+        [&](std::size_t i) {
+            work(i);
+            if (!progress) return;
+            const std::lock_guard<std::mutex> hold(report_lock);
+            if (cancelled) return; // finished after the cancellation: dropped
+            ++done;
+            if (!progress(render_progress{done, count})) {
+                cancelled = true;
+                throw render_cancelled(done, count); // for_each hands out no further ping
+            }
+        },
+        control.threads);
+}
 
 } // namespace sss

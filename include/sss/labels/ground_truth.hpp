@@ -6,7 +6,8 @@
 /// Per ping and side, the simulator's rays are traced twice through `simulator::trace` (its public visitor):
 /// 1. through the scene: every tube of echo energy is spread over the samples its two-way times cover (as the
 ///    receiver does, without the pulse's smear), kept apart by the hit it came from: the seabed (by region and
-///    material) and each object (by id);
+///    material) and each object (by id). render_labelled takes these echoes from the trace that renders the
+///    image (simulator::ping with an observer), so image and labels cost two traces, not three;
 /// 2. through the seabed alone (`scene.seabed()`): the echo the seabed would return if no object were there.
 ///    For each such tube, the straight segment from the transducer to the seabed point it met is tested against
 ///    the objects (`scene.objects().intersect`); an object on it blocks that energy, and the blocked energy is
@@ -34,10 +35,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
 #include "sss/core/pose.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/core/render_control.hpp"
 #include "sss/labels/detail/label_accumulator.hpp"
 #include "sss/receiver/image.hpp"
 #include "sss/scene/scene.hpp"
@@ -80,32 +83,39 @@ struct label_params {
 
 namespace sss {
 
-/// The labels of one side of one ping (see the file comment): `samples_per_line()` labels, near range first.
-template <class Sim, class Seabed>
-[[nodiscard]] std::vector<sample_label> label_line(const Sim& sim, const scene::scene<Seabed>& sc, const pose<typename Sim::value_type>& p,
-                                                   side sd, const label_params& lp = {}) {
-    using T = typename Sim::value_type;
+namespace detail {
+
+/// The first pass (file comment): one piece of the scene's echo, kept apart by the hit it came from.
+template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<T>& e) {
+    if (!(e.power > 0.0)) return;
+    const hit<T>& h = e.surface;
+    if (h.object == no_object) {
+        acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
+            if (acc.add(acc.seabed, acc.seabed_best, k, share * e.power)) {
+                acc.seabed_region[k] = h.label;
+                acc.seabed_material[k] = h.material;
+            }
+        });
+    } else {
+        const std::size_t s = acc.slot(h.object, h.label);
+        acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
+            if (acc.add(acc.echo[s], acc.best_echo[s], k, share * e.power)) acc.echo_material[s][k] = h.material;
+        });
+    }
+}
+
+inline void check_label_params(const label_params& lp) {
     sss::require(lp.highlight_fraction > 0.0 && lp.highlight_fraction <= 1.0, "label_params.highlight_fraction", "must lie in (0, 1]");
     sss::require(lp.shadow_fraction > 0.0 && lp.shadow_fraction <= 1.0, "label_params.shadow_fraction", "must lie in (0, 1]");
-    const std::size_t n = sim.samples_per_line();
-    sss::detail::label_accumulator acc(n, sim.dt_s());
-    sim.trace(sc, p, sd, [&](const tube_echo<T>& e) {
-        if (!(e.power > 0.0)) return;
-        const hit<T>& h = e.surface;
-        if (h.object == no_object) {
-            acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
-                if (acc.add(acc.seabed, acc.seabed_best, k, share * e.power)) {
-                    acc.seabed_region[k] = h.label;
-                    acc.seabed_material[k] = h.material;
-                }
-            });
-        } else {
-            const std::size_t s = acc.slot(h.object, h.label);
-            acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
-                if (acc.add(acc.echo[s], acc.best_echo[s], k, share * e.power)) acc.echo_material[s][k] = h.material;
-            });
-        }
-    });
+}
+
+/// The second pass (the bare seabed, and what the objects block of it) over the first pass's `acc`, and the labels.
+template <class Sim, class Seabed>
+[[nodiscard]] std::vector<sample_label> finish_labels(const Sim& sim, const scene::scene<Seabed>& sc,
+                                                      const pose<typename Sim::value_type>& p, side sd,
+                                                      label_accumulator& acc, const label_params& lp) {
+    using T = typename Sim::value_type;
+    const std::size_t n = acc.n;
     const auto& objects = sc.objects();
     sim.trace(sc.seabed(), p, sd, [&](const tube_echo<T>& e) {
         if (!(e.power > 0.0)) return;
@@ -154,6 +164,29 @@ template <class Sim, class Seabed>
     return out;
 }
 
+/// Row i of img from one ping's port and starboard labels (near range first), port mirrored on the left.
+inline void set_label_row(label_image& img, std::size_t i, const std::vector<sample_label>& port,
+                          const std::vector<sample_label>& starboard) {
+    sample_label* row = img.values.data() + i * img.width();
+    for (std::size_t k = 0; k < img.samples; ++k) {
+        row[img.samples - 1 - k] = port[k];
+        row[img.samples + k] = starboard[k];
+    }
+}
+
+} // namespace detail
+
+/// The labels of one side of one ping (see the file comment): `samples_per_line()` labels, near range first.
+template <class Sim, class Seabed>
+[[nodiscard]] std::vector<sample_label> label_line(const Sim& sim, const scene::scene<Seabed>& sc, const pose<typename Sim::value_type>& p,
+                                                   side sd, const label_params& lp = {}) {
+    using T = typename Sim::value_type;
+    detail::check_label_params(lp);
+    detail::label_accumulator acc(sim.samples_per_line(), sim.dt_s());
+    sim.trace(sc, p, sd, [&](const tube_echo<T>& e) { detail::label_scene_echo(acc, e); });
+    return detail::finish_labels(sim, sc, p, sd, acc, lp);
+}
+
 /// The labels of pings [first, first + count) at the simulator's motion poses, in the waterfall's geometry, on
 /// `lp.threads` threads (the result does not depend on their number).
 template <class Sim, class Seabed>
@@ -166,13 +199,7 @@ template <class Sim, class Seabed>
     img.values.resize(count * img.width());
     auto work = [&](std::size_t i) {
         const auto p = sim.motion().pose_at(first + i);
-        const auto port = label_line(sim, sc, p, side::port, lp);
-        const auto stbd = label_line(sim, sc, p, side::starboard, lp);
-        sample_label* row = img.values.data() + i * img.width();
-        for (std::size_t k = 0; k < img.samples; ++k) {
-            row[img.samples - 1 - k] = port[k];
-            row[img.samples + k] = stbd[k];
-        }
+        detail::set_label_row(img, i, label_line(sim, sc, p, side::port, lp), label_line(sim, sc, p, side::starboard, lp));
     };
     unsigned threads = lp.threads != 0 ? lp.threads : std::max(1u, std::thread::hardware_concurrency());
     threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
@@ -194,6 +221,45 @@ template <class Sim, class Seabed>
     for (auto& th : pool) th.join();
     if (failure) std::rethrow_exception(failure);
     return img;
+}
+
+/// A waterfall and its labels, rendered together (render_labelled).
+template <Real T> struct labelled_waterfall {
+    waterfall<T> image;
+    label_image labels;
+};
+
+/// simulator::render and label_render of pings [first, first + count) in one pass: each side of each ping is
+/// traced once through the scene, and its echoes make both the line and the labels' first pass (file comment);
+/// only the bare seabed's pass is traced again. The image is the one sim.render(sc, first, count, control) returns
+/// and the labels those of label_render(sim, sc, first, count, lp), to the bit; threads, pool, progress and
+/// cancellation follow `control` as in render (lp.threads is not used). For a scene with objects this saves one of
+/// the three traces per side that render and label_render make between them.
+template <class Sim, class Seabed>
+[[nodiscard]] labelled_waterfall<typename Sim::value_type> render_labelled(const Sim& sim, const scene::scene<Seabed>& sc,
+                                                                           std::size_t first, std::size_t count,
+                                                                           const render_control& control = {},
+                                                                           const label_params& lp = {}) {
+    using T = typename Sim::value_type;
+    detail::check_label_params(lp);
+    sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first", "first + count overflows the ping index");
+    labelled_waterfall<T> out;
+    const std::size_t n = sim.samples_per_line();
+    out.image.pings = out.labels.pings = count;
+    out.image.samples = out.labels.samples = n;
+    out.image.dt_s = out.labels.dt_s = sim.dt_s();
+    out.image.values.assign(checked_elements(count, out.image.width(), "render.count"), T(0));
+    out.labels.values.resize(out.image.values.size());
+    run_pings(count, control, [&](std::size_t i) {
+        detail::label_accumulator port(n, sim.dt_s()), starboard(n, sim.dt_s());
+        out.image.set_row(i, sim.ping(sc, first + i, [&](side sd, const tube_echo<T>& e) {
+            detail::label_scene_echo(sd == side::port ? port : starboard, e);
+        }));
+        const auto p = sim.motion().pose_at(first + i);
+        detail::set_label_row(out.labels, i, detail::finish_labels(sim, sc, p, side::port, port, lp),
+                              detail::finish_labels(sim, sc, p, side::starboard, starboard, lp));
+    });
+    return out;
 }
 
 /// Labels on a ground-range grid, by the flat-bottom mapping: ground cell j of width `cell_m` (centre
