@@ -8,7 +8,9 @@
 /// among all ranks rather than falling to one. Each rank renders its chunks with simulator::render on its own
 /// threads (its pool), then the root gathers every rank's rows (MPI_Gatherv) and puts them in ping order. A ping
 /// depends only on its index, never on which process renders it or with what, so the root's waterfall has the same
-/// bytes as one process's simulator::render of the whole range.
+/// bytes as one process's simulator::render of the whole range. render_labelled does the same for the waterfall
+/// and its ground-truth labels (labels/ground_truth.hpp), gathered side by side; XTF and the other products are
+/// written on the root from these and the motion's poses, as from one process's render.
 ///
 /// Launch: every rank runs the same program and calls render collectively, e.g. on one machine
 /// `mpirun -np 2 ./survey`, on a cluster `mpirun -np 8 --hostfile hosts --map-by node ./survey` (one rank per
@@ -21,11 +23,13 @@
 #include <algorithm>
 #include <climits>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "sss/core/error.hpp"
+#include "sss/labels/ground_truth.hpp"
 #include "sss/receiver/image.hpp"
 
 namespace sss::mpi {
@@ -38,63 +42,118 @@ struct render_params {
     unsigned threads = 0;           ///< threads per rank (0: the machine's concurrency)
 };
 
+namespace detail {
+
+/// How the range's pings are dealt: chunk k holds its pings [k chunk, k chunk + pings_in(k)) and goes to rank
+/// k mod ranks.
+struct chunking {
+    std::size_t count, chunk, chunks, ranks;
+    [[nodiscard]] std::size_t pings_in(std::size_t k) const noexcept { return std::min(chunk, count - k * chunk); }
+};
+
+[[nodiscard]] inline chunking chunks_of(std::size_t count, const render_params& p, int& rank, int& size) {
+    sss::require(p.chunk_pings >= 1, "mpi::render_params.chunk_pings", "must be >= 1");
+    MPI_Comm_rank(p.comm, &rank);
+    MPI_Comm_size(p.comm, &size);
+    sss::require(p.root >= 0 && p.root < size, "mpi::render_params.root", "must be a rank of the communicator");
+    return {count, p.chunk_pings, (count + p.chunk_pings - 1) / p.chunk_pings, static_cast<std::size_t>(size)};
+}
+
+/// Every rank's rows (`width` values of type V per ping, its chunks in order in `mine`) gathered on the root in
+/// ping order; empty elsewhere. `type` is V's MPI type.
+template <class V>
+[[nodiscard]] std::vector<V> gather_rows(const std::vector<V>& mine, std::size_t width, const chunking& c, int rank,
+                                         const render_params& p, MPI_Datatype type) {
+    const bool root = rank == p.root;
+    // Every rank works out every rank's share, so that all of them refuse a message too large together (none is
+    // left waiting in MPI_Gatherv for a root that threw).
+    std::vector<int> counts(c.ranks), displs(c.ranks);
+    std::size_t at = 0;
+    for (std::size_t r = 0; r < c.ranks; ++r) {
+        std::size_t rows = 0;
+        for (std::size_t k = r; k < c.chunks; k += c.ranks) rows += c.pings_in(k);
+        sss::require(rows * width <= static_cast<std::size_t>(INT_MAX) && at <= static_cast<std::size_t>(INT_MAX),
+                     "mpi::render.count", "gives more values than one MPI message can carry");
+        counts[r] = static_cast<int>(rows * width);
+        displs[r] = static_cast<int>(at);
+        at += rows * width;
+    }
+    std::vector<V> gathered(root ? c.count * width : 0);
+    MPI_Gatherv(mine.data(), static_cast<int>(mine.size()), type, gathered.data(), counts.data(), displs.data(), type,
+                p.root, p.comm);
+    if (!root) return {};
+    std::vector<V> out(c.count * width);
+    for (std::size_t r = 0; r < c.ranks; ++r) {
+        auto from = static_cast<std::size_t>(displs[r]);
+        for (std::size_t k = r; k < c.chunks; k += c.ranks) {
+            const std::size_t n = c.pings_in(k) * width;
+            std::copy_n(gathered.begin() + static_cast<std::ptrdiff_t>(from), n,
+                        out.begin() + static_cast<std::ptrdiff_t>(k * c.chunk * width));
+            from += n;
+        }
+    }
+    return out;
+}
+
+template <class T> [[nodiscard]] MPI_Datatype value_type_of() noexcept {
+    static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "sss::mpi::render: float or double");
+    return std::is_same_v<T, float> ? MPI_FLOAT : MPI_DOUBLE;
+}
+
+} // namespace detail
+
 /// Renders pings [first, first + count) of `sim` over `scene` across the ranks of p.comm (a collective call: every
 /// rank calls it with the same arguments). Returns the whole waterfall on p.root, an empty one (no values) elsewhere.
 template <class Sim, class Sc>
 [[nodiscard]] waterfall<typename Sim::value_type> render(const Sim& sim, const Sc& scene, std::size_t first,
                                                          std::size_t count, const render_params& p = {}) {
     using T = typename Sim::value_type;
-    static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "sss::mpi::render: float or double");
-    sss::require(p.chunk_pings >= 1, "mpi::render_params.chunk_pings", "must be >= 1");
     int rank = 0, size = 1;
-    MPI_Comm_rank(p.comm, &rank);
-    MPI_Comm_size(p.comm, &size);
-    sss::require(p.root >= 0 && p.root < size, "mpi::render_params.root", "must be a rank of the communicator");
-    const std::size_t chunk = p.chunk_pings, chunks = (count + chunk - 1) / chunk;
+    const detail::chunking c = detail::chunks_of(count, p, rank, size);
     const std::size_t width = 2 * sim.samples_per_line();
-    const auto ranks = static_cast<std::size_t>(size);
-    auto pings_in = [&](std::size_t k) { return std::min(chunk, count - k * chunk); };
-
     std::vector<T> mine;
-    for (std::size_t k = static_cast<std::size_t>(rank); k < chunks; k += ranks) {
-        const waterfall<T> w = sim.render(scene, first + k * chunk, pings_in(k), p.threads);
+    for (std::size_t k = static_cast<std::size_t>(rank); k < c.chunks; k += c.ranks) {
+        const waterfall<T> w = sim.render(scene, first + k * c.chunk, c.pings_in(k), p.threads);
         mine.insert(mine.end(), w.values.begin(), w.values.end());
     }
-
-    const bool root = rank == p.root;
-    std::vector<int> counts(root ? ranks : 0), displs(root ? ranks : 0);
-    if (root) {
-        std::size_t at = 0;
-        for (std::size_t r = 0; r < ranks; ++r) {
-            std::size_t rows = 0;
-            for (std::size_t k = r; k < chunks; k += ranks) rows += pings_in(k);
-            sss::require(rows * width <= static_cast<std::size_t>(INT_MAX) && at <= static_cast<std::size_t>(INT_MAX),
-                                 "mpi::render.count", "gives more values than one MPI message can carry");
-            counts[r] = static_cast<int>(rows * width);
-            displs[r] = static_cast<int>(at);
-            at += rows * width;
-        }
-    }
-    const MPI_Datatype type = std::is_same_v<T, float> ? MPI_FLOAT : MPI_DOUBLE;
-    std::vector<T> gathered(root ? count * width : 0);
-    MPI_Gatherv(mine.data(), static_cast<int>(mine.size()), type, gathered.data(), counts.data(), displs.data(), type,
-                p.root, p.comm);
-
     waterfall<T> out;
     out.samples = sim.samples_per_line();
     out.dt_s = sim.dt_s();
-    if (!root) return out;
-    out.pings = count;
-    out.values.assign(count * width, T(0));
-    for (std::size_t r = 0; r < ranks; ++r) {
-        std::size_t from = static_cast<std::size_t>(displs[r]);
-        for (std::size_t k = r; k < chunks; k += ranks) {
-            const std::size_t n = pings_in(k) * width;
-            std::copy_n(gathered.begin() + static_cast<std::ptrdiff_t>(from), n,
-                        out.values.begin() + static_cast<std::ptrdiff_t>(k * chunk * width));
-            from += n;
-        }
+    out.values = detail::gather_rows(mine, width, c, rank, p, detail::value_type_of<T>());
+    if (rank == p.root) out.pings = count;
+    return out;
+}
+
+/// render_labelled (labels/ground_truth.hpp) across the ranks of p.comm, as render above: each rank renders its
+/// chunks' waterfall and labels in one pass, and the root gathers both. Returns on p.root the image and labels one
+/// process's render_labelled returns, to the bit; elsewhere both empty.
+template <class Sim, class Seabed>
+[[nodiscard]] labelled_waterfall<typename Sim::value_type> render_labelled(const Sim& sim, const scene::scene<Seabed>& sc,
+                                                                           std::size_t first, std::size_t count,
+                                                                           const render_params& p = {},
+                                                                           const label_params& lp = {}) {
+    using T = typename Sim::value_type;
+    int rank = 0, size = 1;
+    const detail::chunking c = detail::chunks_of(count, p, rank, size);
+    const std::size_t width = 2 * sim.samples_per_line();
+    std::vector<T> mine;
+    std::vector<std::uint32_t> mine_labels; // four words per label: class, object, label, material
+    for (std::size_t k = static_cast<std::size_t>(rank); k < c.chunks; k += c.ranks) {
+        const auto both = sss::render_labelled(sim, sc, first + k * c.chunk, c.pings_in(k), {.threads = p.threads}, lp);
+        mine.insert(mine.end(), both.image.values.begin(), both.image.values.end());
+        for (const sample_label& l : both.labels.values)
+            mine_labels.insert(mine_labels.end(), {static_cast<std::uint32_t>(l.kind), l.object, l.label, l.material});
     }
+    labelled_waterfall<T> out;
+    out.image.samples = out.labels.samples = sim.samples_per_line();
+    out.image.dt_s = out.labels.dt_s = sim.dt_s();
+    out.image.values = detail::gather_rows(mine, width, c, rank, p, detail::value_type_of<T>());
+    const std::vector<std::uint32_t> words = detail::gather_rows(mine_labels, 4 * width, c, rank, p, MPI_UINT32_T);
+    if (rank != p.root) return out;
+    out.image.pings = out.labels.pings = count;
+    out.labels.values.resize(count * width);
+    for (std::size_t i = 0; i < out.labels.values.size(); ++i)
+        out.labels.values[i] = {static_cast<sample_class>(words[4 * i]), words[4 * i + 1], words[4 * i + 2], words[4 * i + 3]};
     return out;
 }
 

@@ -1,5 +1,6 @@
 // Rendering across processes (sss/mpi/render.hpp), run under `mpirun -np 2`: the root's waterfall has the same bytes
-// as one process's simulator::render, for chunk sizes that divide the pings among the ranks evenly and unevenly.
+// as one process's simulator::render, for chunk sizes that divide the pings among the ranks evenly and unevenly;
+// and the root's waterfall and labels those of one process's render_labelled.
 // Built and registered only when MPI is found.
 
 #define DOCTEST_CONFIG_IMPLEMENT
@@ -12,7 +13,9 @@
 #include <span>
 #include <vector>
 
+#include <sss/labels/ground_truth.hpp>
 #include <sss/mpi/render.hpp>
+#include <sss/seabed/targets.hpp>
 #include <sss/seabed/wave_sum.hpp>
 #include <sss/scene/height_field.hpp>
 #include <sss/sss.hpp>
@@ -63,6 +66,52 @@ TEST_CASE("pings rendered on two ranks and gathered give the bytes of one proces
         for (float v : one.values) energy += double(v);
         CHECK(energy > 0);
     }
+}
+
+TEST_CASE("waterfall and labels rendered on two ranks and gathered are one process's render_labelled, to the bit") {
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    namespace sb = sss::seabed;
+    auto hf = seabed();
+    const auto height = sb::seabed_height_of(hf);
+    std::vector<sss::scene::object<float>> objects;
+    // Two cylinders along track, one each side of the track (x = 64 m), 14 and 16 m off it.
+    objects.push_back(sb::lying_cylinder(sb::lying_cylinder_params<float>{.center_m = {80.0f, 22.0f}, .heading_deg = 0.0f, .length_m = 4.0f,
+                                                                          .radius_m = 0.4f, .ids = {.material = 1, .object = 1, .label = 1}},
+                                         height));
+    objects.push_back(sb::lying_cylinder(sb::lying_cylinder_params<float>{.center_m = {50.0f, 22.0f}, .heading_deg = 0.0f, .length_m = 4.0f,
+                                                                          .radius_m = 0.3f, .ids = {.material = 1, .object = 2, .label = 2}},
+                                         height));
+    const sss::scene::scene world(std::move(hf), sss::scene::object_set<float>(std::move(objects)));
+    sss::motion::perturbed_params<float> tow;
+    tow.start_m = {64.0f, 20.0f};
+    tow.altitude_m = 8.0f;
+    tow.roll_deg = {2.0f, 5.0f, 0.0f};
+    sss::receiver_params rx;
+    rx.max_range_m = 40;
+    const sss::simulator<sss::scattering::lambertian<float>, sss::propagation::straight<float>, sss::beam::ideal_fan<float>,
+                         sss::motion::perturbed<float>>
+        sim(sss::scattering::lambertian<float>({.mu_db = {-27.0f, -10.0f}}), {}, {}, sss::motion::perturbed<float>(tow), rx);
+    const auto gathered = sss::mpi::render_labelled(sim, world, 5, 11, sss::mpi::render_params{.chunk_pings = 3, .threads = 1});
+    if (rank != 0) {
+        CHECK(gathered.image.values.empty());
+        CHECK(gathered.labels.values.empty());
+        return;
+    }
+    const auto one = sss::render_labelled(sim, world, 5, 11, {.threads = 1});
+    REQUIRE(gathered.image.values.size() == one.image.values.size());
+    CHECK(std::memcmp(gathered.image.values.data(), one.image.values.data(), one.image.values.size() * sizeof(float)) == 0);
+    CHECK(gathered.labels.pings == 11u);
+    CHECK(gathered.labels.samples == one.labels.samples);
+    CHECK(gathered.labels.values == one.labels.values);
+    // Both cylinders are in view: the labels compared hold highlights of each.
+    std::size_t first_object = 0, second_object = 0;
+    for (const sss::sample_label& l : one.labels.values) {
+        first_object += l.kind == sss::sample_class::highlight && l.object == 1u;
+        second_object += l.kind == sss::sample_class::highlight && l.object == 2u;
+    }
+    CHECK(first_object > 10u);
+    CHECK(second_object > 10u);
 }
 
 int main(int argc, char** argv) {
