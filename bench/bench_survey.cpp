@@ -8,6 +8,7 @@
 // The full simulator again with the seabed's shadow edges out of the along-track check (ray_density::
 // along_split_seabed = false; by default they take part here, the columns being coarse at 100 m) gives what that
 // check costs. It also prints the scene's build time and the process's peak resident memory after the build, and
+// the cost of ground-truth labels beside the image (render_labelled, and render then label_render), and
 // the error of the full simulator, both ways, on both sides of several pings spread along the track (one line can
 // be lucky: the error varies by a factor of five from line to line), against a converged reference (the same
 // simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp), with how much the reference's last
@@ -129,6 +130,36 @@ int main(int argc, char** argv) {
     const double objects_only_1 = row("full, the seabed's edges out of the along-track check", full_objects_only);
     std::printf("full: the seabed's edges in the along-track check (the default here) cost %.2f times the time per ping\n",
                 objects_only_1 / layered_1);
+    {
+        // Ground truth beside the image (full simulator, 1 thread): render_labelled, which takes the labels' first
+        // pass from the image's own trace and traces the bare seabed only on sides an object reaches, against
+        // render followed by label_render (three traces per side).
+        const auto per_ping_s = [&](auto&& run) {
+            double best = 1e300;
+            for (int r = 0; r < reps; ++r) {
+                const auto t0 = std::chrono::steady_clock::now();
+                run();
+                best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            }
+            return best / double(pings);
+        };
+        const double together = per_ping_s([&] {
+            if (render_labelled(full_sim, sv.scene, 0, pings, {.threads = 1}).labels.pings != pings) std::abort();
+        });
+        const double apart = per_ping_s([&] {
+            if (full_sim.render(sv.scene, 0, pings, 1).pings != pings) std::abort();
+            if (label_render(full_sim, sv.scene, 0, pings, {.threads = 1}).pings != pings) std::abort();
+        });
+        std::size_t reaching = 0;
+        for (std::size_t i = 0; i < pings; ++i)
+            for (const side sd : {side::port, side::starboard}) {
+                const auto area = full_sim.side_area(full_sim.motion().pose_at(i), sd);
+                reaching += !area || std::isfinite(sv.scene.objects().top_m(area->lo, area->hi));
+            }
+        std::printf("full with labels (1 thread): render_labelled %.1f pings/s, render then label_render %.1f pings/s "
+                    "(%.2f times the time); the labels add %.0f %% to the image's time; %zu of %zu sides reach an object\n",
+                    1.0 / together, 1.0 / apart, apart / together, 100.0 * (together * layered_1 - 1.0), reaching, 2 * pings);
+    }
 
     if (!quick && error_pings > 0) {
         // Pings 150 apart (30 m of track at 0.2 m per ping), within the track the targets lie along.

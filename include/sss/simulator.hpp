@@ -242,12 +242,35 @@ public:
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
-            const beam_extent<T> ext = beam_.extent(sd);
-            const double reach_m = double(one_way_limit_s()) * double(propagation_.reach_speed_mps(p.position.z));
-            const plane_rectangle<T> r = side_reach(p, sd, ext, reach_m, !bouncing);
+            const plane_rectangle<T> r = *side_area(p, sd);
             trace_over(scene::area_view<Sc>(scene, r.lo, r.hi), scene.top_m(), p, sd, visit);
         } else {
             trace_over(scene, scene.top_m(), p, sd, visit);
+        }
+    }
+
+    /// trace over the seabed of `sc` alone, with the rays trace(sc, p, sd, visit) launches: the echo the seabed
+    /// would return along the same rays if the objects were taken away (labels/ground_truth.hpp compares the two).
+    /// The launch angles follow the whole scene's top, objects included, as in trace(sc, ...).
+    template <Scene Seabed, class Visitor>
+    void trace_seabed_alone(const scene::scene<Seabed>& sc, const pose<T>& p, side sd, Visitor&& visit) const {
+        if constexpr (AreaScene<Seabed> && ReachBoundedPropagation<P>) {
+            const plane_rectangle<T> r = *side_area(p, sd);
+            trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), sc.top_m(), p, sd, visit);
+        } else {
+            trace_over(sc.seabed(), sc.top_m(), p, sd, visit);
+        }
+    }
+
+    /// The horizontal rectangle every ray of side sd at pose p stays over while the line lasts
+    /// (sampling/reach.hpp), where the propagation bounds how far its rays reach (ReachBoundedPropagation);
+    /// std::nullopt otherwise. `trace` sees an AreaScene over this rectangle (scene/area_view.hpp).
+    [[nodiscard]] std::optional<plane_rectangle<T>> side_area(const pose<T>& p, side sd) const {
+        if constexpr (ReachBoundedPropagation<P>) {
+            const double reach_m = double(one_way_limit_s()) * double(propagation_.reach_speed_mps(p.position.z));
+            return side_reach(p, sd, beam_.extent(sd), reach_m, !bouncing);
+        } else {
+            return std::nullopt;
         }
     }
 

@@ -223,6 +223,65 @@ TEST_CASE("render_labelled is render and label_render in one trace: the same ima
                          doctest::Contains("label_params.shadow_fraction"), invalid_parameter);
 }
 
+// Straight water that does not say how far its rays reach: the simulator then traces the whole scene, and the
+// labels trace the bare seabed on every side.
+struct unbounded_straight : propagation::straight<double> {
+private:
+    using propagation::straight<double>::reach_speed_mps;
+};
+
+TEST_CASE("Labels are the same whether or not the bare seabed's pass is skipped on sides no object reaches, under a raised top") {
+    namespace sb = sss::seabed;
+    auto bed = sss_test::rough_field<double>(161, 321, 0.25, {0.0, 0.0}, 11); // 40 m x 80 m
+    const auto h = sb::seabed_height_of(bed);
+    std::vector<object<double>> objs;
+    objs.push_back(sb::lying_cylinder(sb::lying_cylinder_params<double>{.center_m = {18.0, 20.0}, .heading_deg = 60.0, .length_m = 2.0,
+                                                                        .radius_m = 0.2, .ids = {.material = 1, .object = 1, .label = 1}},
+                                      h));
+    sb::pipeline_params<double> pipe;
+    pipe.route_m = {{30.0, 54.0}, {33.0, 58.0}};
+    pipe.radius_m = 0.15;
+    pipe.ids = {.material = 1, .object = 2, .label = 2};
+    objs.push_back(sb::pipeline(pipe, h));
+    // A moored mine near the far end raises the scene's top, and with it every side's launch angles.
+    sb::tethered_mine_params<double> mine;
+    mine.anchor_m = {12.0, 70.0};
+    mine.case_height_m = 4.0;
+    mine.object_id = 3;
+    mine.class_id = 3;
+    objs.push_back(sb::tethered_mine(mine, h));
+    const double z0 = bed.seabed_height_m(8.0, 10.0);
+    const scene::scene world(std::move(bed), object_set<double>(std::move(objs)));
+    REQUIRE(world.top_m() > world.seabed().top_m() + 1.0);
+    const motion::straight_line_params<double> tow{.start_m = {8.0, 5.0}, .heading_deg = 0.0, .speed_mps = 2.5,
+                                                   .altitude_m = z0 + 9.0, .ping_interval_s = 1.0};
+    const auto sim = make_simulator(30.0, 1.0, tow);
+    using unbounded_t = simulator<scattering::lambertian<double>, unbounded_straight, beam::ideal_fan<double>, motion::straight_line<double>>;
+    static_assert(!ReachBoundedPropagation<unbounded_straight>);
+    const unbounded_t whole(sim.scattering(), unbounded_straight{}, sim.beam(), sim.motion(), sim.receiver(), sim.density());
+    const std::size_t pings = 24; // y = 5 .. 62.5 m: the mine beyond, only its top shared
+    std::size_t skipped = 0, traced = 0;
+    for (std::size_t i = 0; i < pings; ++i)
+        for (side sd : {side::port, side::starboard}) {
+            const bool skip = sss::detail::bare_pass_repeats_first(sim, world, sim.motion().pose_at(i), sd);
+            (skip ? skipped : traced) += 1;
+            CHECK_FALSE(sss::detail::bare_pass_repeats_first(whole, world, whole.motion().pose_at(i), sd));
+        }
+    CHECK(skipped > 20u); // most sides see no object ...
+    CHECK(traced >= 2u);  // ... and those that reach one of the two objects trace the bare seabed
+    const label_image fast = label_render(sim, world, 0, pings, {.threads = 1});
+    const label_image full = label_render(whole, world, 0, pings, {.threads = 1});
+    CHECK(fast.values == full.values);
+    CHECK(render_labelled(sim, world, 0, pings, {.threads = 2}).labels.values == full.values);
+    std::size_t highlights = 0, shadows = 0;
+    for (const sample_label& l : full.values) {
+        highlights += l.kind == sample_class::highlight;
+        shadows += l.kind == sample_class::shadow;
+    }
+    CHECK(highlights > 10u);
+    CHECK(shadows > 10u);
+}
+
 TEST_CASE("On rough relief every box encloses the samples its object's echo dominates, and the label image, COCO and YOLO agree") {
     const survey s = rough_survey();
     const label_image img = label_render(s.sim, s.world, 0, s.pings, {.threads = 2});

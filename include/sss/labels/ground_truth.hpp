@@ -8,11 +8,15 @@
 ///    receiver does, without the pulse's smear), kept apart by the hit it came from: the seabed (by region and
 ///    material) and each object (by id). render_labelled takes these echoes from the trace that renders the
 ///    image (simulator::ping with an observer), so image and labels cost two traces, not three;
-/// 2. through the seabed alone (`scene.seabed()`): the echo the seabed would return if no object were there.
+/// 2. through the seabed alone (`scene.seabed()`), with the rays of the first pass (`simulator::trace_seabed_alone`:
+///    the same launch angles, which follow the whole scene's top): the echo the seabed would return if no object
+///    were there.
 ///    For each such tube, the straight segment from the transducer to the seabed point it met is tested against
 ///    the objects (`scene.objects().intersect`); an object on it blocks that energy, and the blocked energy is
 ///    counted against that object. (Straight segments: exact in isovelocity water; in refracting water the shadow
-///    is the straight-ray one.)
+///    is the straight-ray one.) Where no object reaches over the side's area (`simulator::side_area`), this pass
+///    would trace the very rays and hits of the first, so it is not traced: its sums are the first pass's, bit for
+///    bit. Along a survey with sparse targets most sides are such, and labels then cost little more than the image.
 /// A sample is then, in this order:
 /// - `highlight` of object k: k returns the largest share of the sample's echo energy among objects, and at
 ///   least `highlight_fraction` of it;
@@ -90,6 +94,7 @@ template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<
     if (!(e.power > 0.0)) return;
     const hit<T>& h = e.surface;
     if (h.object == no_object) {
+        acc.first_seabed_s = std::min(acc.first_seabed_s, std::min(e.t0_s, e.t1_s));
         acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
             if (acc.add(acc.seabed, acc.seabed_best, k, share * e.power)) {
                 acc.seabed_region[k] = h.label;
@@ -109,7 +114,19 @@ inline void check_label_params(const label_params& lp) {
     sss::require(lp.shadow_fraction > 0.0 && lp.shadow_fraction <= 1.0, "label_params.shadow_fraction", "must lie in (0, 1]");
 }
 
-/// The second pass (the bare seabed, and what the objects block of it) over the first pass's `acc`, and the labels.
+/// True when the second pass would trace exactly what the first traced: both launch the same rays
+/// (simulator::trace_seabed_alone), and where no object reaches over the side's area the first pass asked the
+/// seabed alone (scene/area_view.hpp). Then nothing is blocked, and the bare seabed's echo is the scene's, sum for
+/// sum.
+template <class Sim, class Seabed>
+[[nodiscard]] bool bare_pass_repeats_first(const Sim& sim, const scene::scene<Seabed>& sc, const pose<typename Sim::value_type>& p,
+                                           side sd) {
+    const auto area = sim.side_area(p, sd);
+    return area.has_value() && !std::isfinite(sc.objects().top_m(area->lo, area->hi));
+}
+
+/// The second pass (the bare seabed, and what the objects block of it) over the first pass's `acc`, and the
+/// labels. Where the second pass would repeat the first (bare_pass_repeats_first), its sums are the first's.
 template <class Sim, class Seabed>
 [[nodiscard]] std::vector<sample_label> finish_labels(const Sim& sim, const scene::scene<Seabed>& sc,
                                                       const pose<typename Sim::value_type>& p, side sd,
@@ -117,27 +134,35 @@ template <class Sim, class Seabed>
     using T = typename Sim::value_type;
     const std::size_t n = acc.n;
     const auto& objects = sc.objects();
-    sim.trace(sc.seabed(), p, sd, [&](const tube_echo<T>& e) {
-        if (!(e.power > 0.0)) return;
-        const hit<T>& h = e.surface;
-        acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
-        std::size_t blocker = std::numeric_limits<std::size_t>::max();
-        if (!objects.empty()) {
-            const vec3<T> d = h.point - p.position;
-            const T len = glm::length(d);
-            if (len > T(0)) {
-                if (const auto o = objects.intersect(ray<T>{p.position, d / len}, len * T(0.9999))) blocker = acc.slot(o->object, o->label);
+    if (bare_pass_repeats_first(sim, sc, p, sd)) {
+        acc.bare = acc.seabed;
+        acc.bare_best = acc.seabed_best;
+        acc.bare_region = acc.seabed_region;
+        acc.bare_material = acc.seabed_material;
+        acc.first_bare_s = acc.first_seabed_s;
+    } else {
+        sim.trace_seabed_alone(sc, p, sd, [&](const tube_echo<T>& e) {
+            if (!(e.power > 0.0)) return;
+            const hit<T>& h = e.surface;
+            acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
+            std::size_t blocker = std::numeric_limits<std::size_t>::max();
+            if (!objects.empty()) {
+                const vec3<T> d = h.point - p.position;
+                const T len = glm::length(d);
+                if (len > T(0)) {
+                    if (const auto o = objects.intersect(ray<T>{p.position, d / len}, len * T(0.9999))) blocker = acc.slot(o->object, o->label);
+                }
             }
-        }
-        acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
-            const double w = share * e.power;
-            if (acc.add(acc.bare, acc.bare_best, k, w)) {
-                acc.bare_region[k] = h.label;
-                acc.bare_material[k] = h.material;
-            }
-            if (blocker != std::numeric_limits<std::size_t>::max()) acc.blocked[blocker][k] += w;
+            acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
+                const double w = share * e.power;
+                if (acc.add(acc.bare, acc.bare_best, k, w)) {
+                    acc.bare_region[k] = h.label;
+                    acc.bare_material[k] = h.material;
+                }
+                if (blocker != std::numeric_limits<std::size_t>::max()) acc.blocked[blocker][k] += w;
+            });
         });
-    });
+    }
     std::vector<sample_label> out(n);
     for (std::size_t k = 0; k < n; ++k) {
         sample_label& l = out[k];
