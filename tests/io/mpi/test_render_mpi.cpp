@@ -34,6 +34,20 @@ sss::scene::height_field<float> seabed() {
     return sss::scene::height_field<float>({.nx = n, .ny = n, .cell_m = 0.25f, .heights_m = std::move(h)});
 }
 
+/// A rolling towfish 8 m up over x = 64 m heading north, 40 m of range; material 1 (objects) 17 dB brighter than
+/// the seabed.
+auto towed_simulator() {
+    sss::motion::perturbed_params<float> tow;
+    tow.start_m = {64.0f, 20.0f};
+    tow.altitude_m = 8.0f;
+    tow.roll_deg = {2.0f, 5.0f, 0.0f};
+    sss::receiver_params rx;
+    rx.max_range_m = 40;
+    return sss::simulator<sss::scattering::lambertian<float>, sss::propagation::straight<float>, sss::beam::ideal_fan<float>,
+                          sss::motion::perturbed<float>>(sss::scattering::lambertian<float>({.mu_db = {-27.0f, -10.0f}}), {}, {},
+                                                         sss::motion::perturbed<float>(tow), rx);
+}
+
 } // namespace
 
 TEST_CASE("pings rendered on two ranks and gathered give the bytes of one process's render") {
@@ -42,15 +56,7 @@ TEST_CASE("pings rendered on two ranks and gathered give the bytes of one proces
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     CHECK(size == 2);
     const auto hf = seabed();
-    sss::motion::perturbed_params<float> tow;
-    tow.start_m = {64.0f, 20.0f};
-    tow.altitude_m = 8.0f;
-    tow.roll_deg = {2.0f, 5.0f, 0.0f};
-    sss::receiver_params rx;
-    rx.max_range_m = 40;
-    const sss::simulator<sss::scattering::lambertian<float>, sss::propagation::straight<float>, sss::beam::ideal_fan<float>,
-                         sss::motion::perturbed<float>>
-        sim({}, {}, {}, sss::motion::perturbed<float>(tow), rx);
+    const auto sim = towed_simulator();
     for (std::size_t chunk : {std::size_t(1), std::size_t(3), std::size_t(4)}) {
         const auto w = sss::mpi::render(sim, hf, 5, 11, sss::mpi::render_params{.chunk_pings = chunk, .threads = 1});
         if (rank != 0) {
@@ -83,15 +89,7 @@ TEST_CASE("waterfall and labels rendered on two ranks and gathered are one proce
                                                                           .radius_m = 0.3f, .ids = {.material = 1, .object = 2, .label = 2}},
                                          height));
     const sss::scene::scene world(std::move(hf), sss::scene::object_set<float>(std::move(objects)));
-    sss::motion::perturbed_params<float> tow;
-    tow.start_m = {64.0f, 20.0f};
-    tow.altitude_m = 8.0f;
-    tow.roll_deg = {2.0f, 5.0f, 0.0f};
-    sss::receiver_params rx;
-    rx.max_range_m = 40;
-    const sss::simulator<sss::scattering::lambertian<float>, sss::propagation::straight<float>, sss::beam::ideal_fan<float>,
-                         sss::motion::perturbed<float>>
-        sim(sss::scattering::lambertian<float>({.mu_db = {-27.0f, -10.0f}}), {}, {}, sss::motion::perturbed<float>(tow), rx);
+    const auto sim = towed_simulator();
     const auto gathered = sss::mpi::render_labelled(sim, world, 5, 11, sss::mpi::render_params{.chunk_pings = 3, .threads = 1});
     if (rank != 0) {
         CHECK(gathered.image.values.empty());
