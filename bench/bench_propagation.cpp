@@ -14,7 +14,8 @@
 // Layered waters use Francois-Garrison absorption at 300 kHz and 1 mm chords, and the launch table unless stated.
 // Then whole pings (simulator: Lambert -27 dB, 300 kHz planar array 32 x 2 tilted 15 deg to -30 dB, 40 m range,
 // 20 kHz sampling, default ray density), straight against thermocline water, with and without the launch table.
-// The two pingers are also timed over rough relief (a height field), where the straight trace itself costs more.
+// The two pingers are also timed over rough relief (a height field), where the straight trace itself costs more, and
+// so is a pinger in water whose strong gradients reach the seabed, with and without clearing chords in open water.
 // Before the benchmarks a summary prints the per-ray cost of each water and its ratio to straight rays, by its own
 // timing loop, for trace alone and for whole pings, and how far the launch table's results are from exact tracing on
 // the same rays. The machines this runs on are shared and their speed drifts, so the summary times processor time
@@ -84,6 +85,14 @@ template <class T> layered<T> fine_water() {
         c.push_back(T(1490.0 - 10.0 * std::tanh((0.1 * k - 49.0) / 3.0)));
     }
     return layered<T>(sound_speed_profile<T>(d, c), water_params<T>());
+}
+
+/// Strong gradients down to the seabed (shallow summer water): 1500 m/s to 44 m, 1490 m/s at the towfish (50 m),
+/// 1466 m/s at 62 m, 2 m below the relief's lowest point: chords of about 0.7 m where the rays meet the seabed.
+template <class T> layered<T> bottom_gradient_water(bool clear_open_water) {
+    layered_params<T> p = water_params<T>();
+    p.clear_open_water = clear_open_water;
+    return layered<T>(sound_speed_profile<T>({T(0), T(44), T(50), T(62)}, {T(1500), T(1499), T(1490), T(1466)}), p);
 }
 
 enum class water { straight, uniform, thermocline, fine, exact };
@@ -265,6 +274,19 @@ void print_summary() {
     std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray\n", "straight", 1e3 * q[0], n[0], 1e9 * q[0] / n[0]);
     std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray   x%.2f straight per ray\n", "layered, thermocline",
                 1e3 * q[1], n[1], 1e9 * q[1] / n[1], (q[1] / n[1]) / (q[0] / n[0]));
+    // Where strong gradients reach the seabed the chords are short, and layered water first clears windows of them
+    // in open water by one query (ClearanceScene, propagation/arc_intersection.hpp): against the walk chord by chord
+    // (layered_params::clear_open_water = false). Here the rays run within 3 m of the seabed all the way.
+    const auto d = make_pinger<double>(bottom_gradient_water<double>(true));
+    const auto e = make_pinger<double>(bottom_gradient_water<double>(false));
+    const auto r = best_interleaved(
+        ping_rounds / 2, [&] { sink += double(d.ping(hf, 3).starboard[100]); },
+        [&] { sink += double(e.ping(hf, 3).starboard[100]); });
+    const double nd = double(rays_per_ping(d));
+    std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray   x%.2f straight per ray\n", "layered, strong gradient to the seabed",
+                1e3 * r[0], nd, 1e9 * r[0] / nd, (r[0] / nd) / (q[0] / n[0]));
+    std::printf("  %-38s %8.3f ms  %6.0f rays  %6.1f ns/ray   x%.2f straight per ray; time cleared / chord by chord %.2f\n",
+                "  the same, chord by chord", 1e3 * r[1], nd, 1e9 * r[1] / nd, (r[1] / nd) / (q[0] / n[0]), r[0] / r[1]);
     std::printf("(checksum %g)\n\n", sink);
 }
 

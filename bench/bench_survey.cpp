@@ -7,12 +7,13 @@
 //   minimal   Lambert, straight rays, ideal fan, straight-line towfish
 // The full simulator again with the seabed's shadow edges out of the along-track check (ray_density::
 // along_split_seabed = false; by default they take part here, the columns being coarse at 100 m) gives what that
-// check costs. It also prints the scene's build time and the process's peak resident memory after the build, and
-// the cost of ground-truth labels beside the image (render_labelled, and render then label_render), and
-// the error of the full simulator, both ways, on both sides of several pings spread along the track (one line can
-// be lucky: the error varies by a factor of five from line to line), against a converged reference (the same
-// simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp), with how much the reference's last
-// doubling changed it (the reference's own error is of that order).
+// check costs, and what clearing chords in open water saves in layered water (in the survey's and in one with
+// strong gradients down to the seabed). It also prints the scene's build time and the process's peak resident memory
+// after the build, and the cost of ground-truth labels beside the image (render_labelled, and render then
+// label_render), and the error of the full simulator, both ways, on both sides of several pings spread along the
+// track (one line can be lucky: the error varies by a factor of five from line to line), against a converged
+// reference (the same simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp), with how much
+// the reference's last doubling changed it (the reference's own error is of that order).
 //   sss_bench_survey [--pings N] [--size M] [--error-pings K] [--quick]
 // --pings: pings per measurement (default 40, best of 2); --size: the seabed's side in metres (default 1024);
 // --error-pings: pings whose lines are compared with the reference (default 4, every 150 m / 0.2 m of track);
@@ -130,6 +131,31 @@ int main(int argc, char** argv) {
     const double objects_only_1 = row("full, the seabed's edges out of the along-track check", full_objects_only);
     std::printf("full: the seabed's edges in the along-track check (the default here) cost %.2f times the time per ping\n",
                 objects_only_1 / layered_1);
+    {
+        // Clearing chords in open water (layered_params::clear_open_water) against the walk chord by chord, in the
+        // survey's water and in water whose strong gradients reach the seabed (1500 m/s to 20 m, 1490 m/s at the
+        // towfish, 1470 m/s at 40.5 m: chords of about 0.7 m instead of 2 m); full simulator, the seabed's edges out
+        // of the along-track check, 1 thread.
+        const std::vector<T> depths(sv.water.profile().depths_m().begin(), sv.water.profile().depths_m().end());
+        const auto with_water = [&](const std::vector<T>& speeds, bool clear) {
+            propagation::layered_params<T> wp = sv.water.params();
+            wp.clear_open_water = clear;
+            return simulator<scattering::jackson<T>, propagation::layered<T>, beam::planar_array<T>, motion::perturbed<T>>(
+                sv.scattering,
+                propagation::layered<T>(propagation::sound_speed_profile<T>(depths, speeds), wp),
+                sv.array, sv.motion, sv.receiver, ray_density{.along_split_seabed = false});
+        };
+        const std::vector<T> survey_speeds(sv.water.profile().speeds_mps().begin(), sv.water.profile().speeds_mps().end());
+        const std::vector<T> strong{T(1500), T(1500), T(1490), T(1470)};
+        for (const auto* speeds : {&survey_speeds, &strong}) {
+            const double cleared = pings_per_s(with_water(*speeds, true), sv.scene, pings, 1, reps);
+            const double plain = pings_per_s(with_water(*speeds, false), sv.scene, pings, 1, reps);
+            std::printf("full, %s, the seabed's edges out (1 thread): chords cleared in open water %.1f pings/s, chord by "
+                        "chord %.1f pings/s (time %.2f)\n",
+                        speeds == &strong ? "strong gradients to the seabed" : "the survey's water", cleared, plain,
+                        plain / cleared);
+        }
+    }
     {
         // Ground truth beside the image (full simulator, 1 thread): render_labelled, which takes the labels' first
         // pass from the image's own trace and traces the bare seabed only on sides an object reaches, against

@@ -17,6 +17,9 @@
 #include "sss/propagation/layered.hpp"
 #include "sss/propagation/straight.hpp"
 #include "sss/scene/flat_seabed.hpp"
+#include "sss/scene/height_field.hpp"
+#include "sss/scene/object_set.hpp"
+#include "sss/scene/scene.hpp"
 #include "support/layered_oracle.hpp"
 
 using namespace sss;
@@ -497,6 +500,96 @@ TEST_CASE("chords stay within the stated sagitta tolerance of the arc, and the b
     MESSAGE(rec.chords.size() << " chords; largest arc-to-chord distance " << worst << " m (tolerance 1e-3 m)");
     CHECK(worst <= 1e-3 * (1 + 1e-6));
     CHECK(worst > 0.5e-3);
+}
+
+namespace {
+
+// The scene S without clear_length_m: the plain chord walk.
+template <class S> struct without_clearance {
+    using value_type = typename S::value_type;
+    using T = value_type;
+    const S* s;
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max) const { return s->intersect(r, t_max); }
+    [[nodiscard]] T seabed_height_m(T x, T y) const { return s->seabed_height_m(x, y); }
+    [[nodiscard]] T top_m() const { return s->top_m(); }
+};
+
+// 100 m x 100 m of rippled, bumpy seabed at 0.25 m around z = 0 (crests 0.35 m high, a 1.2 m mound), with spheres
+// floating over it and cylinders lying on it.
+template <class T> scene::scene<scene::height_field<T>> rough_scene_with_objects() {
+    const std::size_t n = 401;
+    std::vector<T> h(n * n);
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t i = 0; i < n; ++i) {
+            const double x = -50 + 0.25 * double(i), y = -50 + 0.25 * double(j);
+            h[j * n + i] = T(0.35 * std::sin(2.1 * x + 0.3 * y) + 0.2 * std::sin(0.37 * y - 0.11 * x) +
+                             1.2 * std::exp(-((x - 20) * (x - 20) + (y - 5) * (y - 5)) / 30));
+        }
+    std::vector<scene::object<T>> objs;
+    for (int k = 0; k < 12; ++k) { // in the rays' way (below): 30 to 63 m from (-45, -20), across their azimuths
+        const double az = -0.22 + 0.04 * k, range = 30 + 3 * k;
+        const T x = T(-45 + range * std::cos(az)), y = T(-20 + range * std::sin(az));
+        const scene::surface_ids ids{1, std::uint32_t(k), 1};
+        if (k % 2 == 0) {
+            objs.emplace_back(std::vector<scene::sphere<T>>{scene::sphere<T>({x, y, T(1.5 + 0.5 * (k % 3))}, T(1), ids)},
+                              std::vector<scene::cylinder<T>>{});
+        } else {
+            objs.emplace_back(std::vector<scene::sphere<T>>{},
+                              std::vector<scene::cylinder<T>>{scene::cylinder<T>({x, y - 2, T(0.6)}, {x + 1, y + 2, T(0.6)}, T(0.6), ids)});
+        }
+    }
+    return scene::scene<scene::height_field<T>>(
+        scene::height_field<T>({.nx = n, .ny = n, .cell_m = T(0.25), .origin_m = {T(-50), T(-50)}, .heights_m = h}),
+        scene::object_set<T>(std::move(objs)));
+}
+
+template <class T> void check_clearance_changes_nothing() {
+    const auto sc = rough_scene_with_objects<T>();
+    const without_clearance<scene::scene<scene::height_field<T>>> plain{&sc};
+    static_assert(ClearanceScene<scene::scene<scene::height_field<T>>> && !ClearanceScene<decltype(plain)>);
+    // Strong gradients down to the seabed, 10 m/s over 10 m then 20 m/s over 10.5 m (chords of about 0.6 m): speed
+    // falling with depth (rays bend down, each chord below its arc) and rising (rays bend up, each chord above it).
+    layered_params<T> p;
+    p.surface_z_m = T(40);
+    const std::vector<T> depths{T(0), T(20), T(30), T(40.5)};
+    for (const auto& speeds : {std::vector<T>{T(1500), T(1500), T(1490), T(1470)}, std::vector<T>{T(1470), T(1470), T(1480), T(1500)}}) {
+    const layered<T> water(sound_speed_profile<T>(depths, speeds), p);
+    std::size_t rays = 0, hits = 0, object_hits = 0, chords_with = 0, chords_without = 0;
+    for (int a = 0; a < 24; ++a)
+        for (int g = 0; g < 60; ++g) {
+            const double az = -0.25 + 0.02 * a, graze = (1.5 + 0.9 * g) * deg;
+            const ray<T> r{vec3<T>{T(-45), T(-20), T(10)},
+                           vec3<T>{T(std::cos(graze) * std::cos(az)), T(std::cos(graze) * std::sin(az)), T(-std::sin(graze))}};
+            const auto with = water.trace_path(r, sc, T(0.2));
+            const auto without = water.trace_path(r, plain, T(0.2));
+            ++rays;
+            REQUIRE(with.has_value() == without.has_value());
+            if (!with) continue;
+            ++hits;
+            object_hits += with->result.surface.object != no_object;
+            chords_with += with->chords;
+            chords_without += without->chords;
+            const path<T>& x = with->result;
+            const path<T>& y = without->result;
+            const bool same = x.surface.point == y.surface.point && x.surface.normal == y.surface.normal &&
+                              x.surface.object == y.surface.object && x.surface.distance_m == y.surface.distance_m &&
+                              x.time_s == y.time_s && x.spreading == y.spreading && x.absorption == y.absorption &&
+                              x.arrival == y.arrival;
+            if (!same) FAIL_CHECK("ray " << a << ", " << g << ": the cleared walk differs from the plain one");
+        }
+    MESSAGE(hits << " of " << rays << " rays hit (" << object_hits << " an object); scene queries on chords " << chords_with
+                 << " with clearance against " << chords_without << " without");
+    CHECK(hits > rays / 2);
+    CHECK(object_hits > 10);
+    CHECK(chords_with * 2 < chords_without); // the clearance is used
+    }
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("clearing chords in open water finds the plain chord walk's hits bit for bit, with fewer chords", T,
+                   float, double) {
+    check_clearance_changes_nothing<T>();
 }
 
 TEST_CASE("absorption integrates Francois-Garrison and Ainslie-McColm along the path") {

@@ -205,3 +205,54 @@ TEST_CASE_TEMPLATE("A copied or moved height field traces its own heights", T, f
     CHECK(c.intersect(down, T(100))->distance_m == doctest::Approx(8));
     CHECK(a.intersect(down, T(100))->distance_m == doctest::Approx(11));
 }
+
+TEST_CASE_TEMPLATE("Over a height field's clear length the surface lies more than the band below the segment, and the "
+                   "length ends where the lowered segment meets it",
+                   T, float, double) {
+    // 60 m x 60 m of bumps at 0.5 m.
+    const std::size_t n = 121;
+    std::vector<T> h(n * n);
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t i = 0; i < n; ++i)
+            h[j * n + i] = T(0.8 * std::sin(0.9 * double(i) * 0.5) * std::cos(0.4 * double(j) * 0.5) +
+                             0.3 * std::sin(2.3 * double(i + 2 * j) * 0.5));
+    const height_field<T> hf({.nx = n, .ny = n, .cell_m = T(0.5), .origin_m = {T(-30), T(-30)}, .heights_m = h});
+    static_assert(sss::ClearanceScene<height_field<T>>);
+    std::size_t partly = 0, whole = 0, none = 0;
+    for (int k = 0; k < 400; ++k) {
+        const double az = 0.0157 * k, graze = (1 + 0.2 * (k % 50)) * 3.14159265358979 / 180, band = 0.05 * (k % 7);
+        const sss::ray<T> r{vec3<T>{T(-25 + 0.1 * (k % 13)), T(-20 + 0.2 * (k % 11)), T(3.5)},
+                            vec3<T>{T(std::cos(graze) * std::cos(az)), T(std::cos(graze) * std::sin(az)), T(-std::sin(graze))}};
+        const T t_max = T(80);
+        const T d = hf.clear_length_m(r, t_max, T(band));
+        REQUIRE(d >= T(0));
+        REQUIRE(d <= t_max);
+        // Sampled every 2 cm: the lowered segment is on or above the surface (rounding aside) up to d.
+        const int steps = int(double(d) / 0.02);
+        for (int s = 0; s <= steps; ++s) {
+            const sss::vec3<T> q = r.at(T(0.02 * s));
+            if (std::abs(q.x) > T(30) || std::abs(q.y) > T(30)) break; // off the footprint: no surface
+            if (!(q.z - T(band) >= hf.seabed_height_m(q.x, q.y) - T(1e-4))) {
+                FAIL_CHECK("ray " << k << ": surface within the band at " << 0.02 * s << " m of a clear length " << d);
+                break;
+            }
+        }
+        // And it is no shorter than needed: where the lowered segment meets the surface, or the whole length.
+        const auto lowered = hf.intersect(sss::ray<T>{r.origin - vec3<T>{T(0), T(0), T(band)}, r.direction}, t_max);
+        if (lowered) {
+            CHECK(d == lowered->distance_m);
+            ++partly;
+        } else {
+            CHECK(d == t_max);
+            ++whole;
+        }
+        none += d == T(0);
+    }
+    MESSAGE(partly << " segments cleared in part, " << whole << " whole, " << none << " not at all");
+    CHECK(partly > 100);
+    CHECK(whole > 10);
+    // A segment starting within the band of the surface, or off the footprint, clears nothing.
+    const T h0 = hf.seabed_height_m(T(0), T(0));
+    CHECK(hf.clear_length_m(sss::ray<T>{vec3<T>{T(0), T(0), h0 + T(0.1)}, vec3<T>{T(1), T(0), T(0)}}, T(10), T(0.2)) == T(0));
+    CHECK(hf.clear_length_m(sss::ray<T>{vec3<T>{T(40), T(0), T(5)}, vec3<T>{T(-1), T(0), T(0)}}, T(10), T(0.2)) == T(0));
+}

@@ -165,3 +165,35 @@ TEST_CASE("Coincident and exponentially spaced objects build a valid hierarchy t
     CHECK(mismatches == 0);
     CHECK(hits > 500);
 }
+
+TEST_CASE_TEMPLATE("No object lies within the band of a segment over the object set's clear length", T, float, double) {
+    const object_set<T> set(random_objects<T>(200, 5));
+    std::mt19937_64 g(31);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::size_t short_of_end = 0, to_end = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const double az = 6.283 * u(g), graze = 0.3 * u(g), band = 0.5 * u(g);
+        const ray<T> r{vec3<T>{T(120 * u(g) - 60), T(120 * u(g) - 60), T(4 + 2 * u(g))},
+                       vec3<T>{T(std::cos(graze) * std::cos(az)), T(std::cos(graze) * std::sin(az)), T(-std::sin(graze))}};
+        const T t_max = T(40);
+        const T d = set.clear_length_m(r, t_max, T(band));
+        REQUIRE(d >= T(0));
+        REQUIRE(d <= t_max);
+        (d < t_max ? short_of_end : to_end)++;
+        // Vertical probes through the band every 5 cm up to d meet nothing.
+        for (int s = 0; s * 0.05 <= double(d); ++s) {
+            const vec3<T> q = r.at(T(0.05 * s));
+            const ray<T> probe{q + vec3<T>{T(0), T(0), T(band)}, vec3<T>{T(0), T(0), T(-1)}};
+            if (set.intersect(probe, T(2 * band))) {
+                FAIL_CHECK("ray " << k << ": an object within the band at " << 0.05 * s << " m of a clear length " << d);
+                break;
+            }
+        }
+        // The segment itself meets nothing before d.
+        if (const auto h = set.intersect(r, t_max)) CHECK(h->distance_m >= d);
+    }
+    MESSAGE(short_of_end << " segments stopped short by an object's box, " << to_end << " clear to the end");
+    CHECK(short_of_end > 100);
+    CHECK(to_end > 100);
+    CHECK(object_set<T>{}.clear_length_m(ray<T>{vec3<T>{}, vec3<T>{T(1), T(0), T(0)}}, T(7), T(1)) == T(7));
+}

@@ -25,6 +25,17 @@
 /// length are exact, not merely within tol; what tol still bounds is which facet is found: near an edge, or
 /// where the arc grazes a surface the chord passes above or below, the answer may differ by up to tol.
 /// A straight arc (kappa = 0) is one chord along the ray itself, and its hit is used as it is.
+///
+/// Clearing chords in open water. A ray crossing open water near the seabed would be handed to the scene chord
+/// by chord, each query paying its own set-up. Where the scene can say how far a thick segment runs in open water
+/// (ClearanceScene, scene/concept.hpp), a window of chords ahead is first asked about as one: the chord of the
+/// arc over the window, with a vertical band of half-height (k L^2 / 8 + tol) / cos(phi) + rounding (L the window's
+/// arc length, phi the steepest inclination on it), which holds the arc (its sagitta is at most k L^2 / 8) and every
+/// chord of the walk (within tol of the arc). The chords wholly within the cleared length, counted conservatively
+/// from the arc's horizontal progress (at most L max cos(phi)), meet nothing and are skipped. The chords traced are
+/// the plain walk's, computed the same way, so hits are the same bit for bit; only the number and kind of scene
+/// queries change (docs/design/layered.md gives what that saves, and where it does not pay). Windows steeper than
+/// about 75 degrees are not cleared.
 
 #include <algorithm>
 #include <cmath>
@@ -130,12 +141,13 @@ template <Real T> struct arc_hit {
 /// `on_hit(const hit<T>& scene_hit, const vec3<T>& point, T arc_m, const arc_offset<T>& at)`: the scene's hit on the
 /// chord, the point on the arc it refines to, its arc length from the arc's start and the arc's offset there. Returns
 /// whether there was a hit (on_hit called once) or not (not called). The arc starts at inclination phi0, given as
-/// (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to scene.intersect.
+/// (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to scene.intersect. With
+/// clear_open_water, a ClearanceScene is first asked to clear windows of chords (file comment); the hit is the same.
 /// s_end_m may be +infinity only for a straight arc (zero curvature). (The callback lets a caller build its result
 /// from the scene's hit where it lies, with no intermediate copy: a hit is about a hundred bytes.)
 template <Scene S, Real T, class OnHit>
 bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0, T kappa_per_m, T s_begin_m,
-                   T s_end_m, T tolerance_m, std::size_t& chords, OnHit&& on_hit) {
+                   T s_end_m, T tolerance_m, bool clear_open_water, std::size_t& chords, OnHit&& on_hit) {
     if (!(s_end_m > s_begin_m)) return false;
     const T sin0 = sin_phi0, cos0 = cos_phi0, kappa = kappa_per_m;
     const vec3<T> down{T(0), T(0), T(-1)};
@@ -164,12 +176,12 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
         n = pieces > T(1) ? static_cast<std::size_t>(pieces) : 1;
     }
     const T ds = n == 1 ? span : span / static_cast<T>(n);
-    vec3<T> p = s_begin_m == T(0) ? frame.start : world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
-    for (std::size_t k_chord = 0; k_chord < n; ++k_chord) {
-        const T s_lo = s_begin_m + ds * static_cast<T>(k_chord);
-        const T s_hi = k_chord + 1 == n ? s_end_m : s_begin_m + ds * static_cast<T>(k_chord + 1);
-        vec3<T> q, dir;
-        T len;
+    // Chord k spans arc lengths [s_at(k), s_at(k + 1)].
+    const auto s_at = [&](std::size_t k) { return k == n ? s_end_m : s_begin_m + ds * static_cast<T>(k); };
+    const vec3<T> p0 = s_begin_m == T(0) ? frame.start : world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
+    // Chord k's end q, direction and length from its start p.
+    const auto chord_from = [&](std::size_t k_chord, const vec3<T>& p, vec3<T>& q, vec3<T>& dir, T& len) {
+        const T s_lo = s_at(k_chord), s_hi = s_at(k_chord + 1);
         if (s_lo == T(0)) { // from the arc's start the chord runs along the mean inclination: no normalising
             T sinc_h, ch;
             const T half = kappa * s_hi * T(0.5);
@@ -184,6 +196,91 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
             len = std::sqrt(glm::dot(d, d));
             dir = d * (T(1) / len);
         }
+    };
+    // Where chord k starts: the end of chord k - 1, computed as the walk below computes it.
+    const auto start_of = [&](std::size_t k_chord) {
+        if (k_chord == 0) return p0;
+        if (s_at(k_chord - 1) == T(0)) {
+            vec3<T> q, dir;
+            T len;
+            chord_from(k_chord - 1, p0, q, dir, len);
+            return q;
+        }
+        return world(offset_along_arc(sin0, cos0, kappa, s_at(k_chord)));
+    };
+    // Chords [k, w) that surely meet nothing, by one query over the arc's chord from s_at(k) to s_at(w) with a band
+    // that holds the arc and the chords (ClearanceScene); 0 when the arc is too steep or turns too far for the bound.
+    [[maybe_unused]] const auto clear_chords = [&](std::size_t k_chord, std::size_t w) -> std::size_t {
+        if constexpr (!ClearanceScene<S>) {
+            return 0;
+        } else {
+            const T s_a = s_at(k_chord), s_b = s_at(w);
+            const T length = s_b - s_a;
+            if (!(k * length <= T(1))) return 0;
+            const arc_offset<T> oa = offset_along_arc(sin0, cos0, kappa, s_a);
+            const arc_offset<T> ob = offset_along_arc(sin0, cos0, kappa, s_b);
+            // The inclination is monotonic along an arc within one layer: its cosine is smallest at an end, largest at
+            // an end or, where the arc passes horizontal, 1.
+            const T c_lo = std::min(oa.cos_incline, ob.cos_incline);
+            if (!(c_lo >= T(0.25))) return 0;
+            const T c_hi = (oa.sin_incline < T(0)) != (ob.sin_incline < T(0)) ? T(1)
+                                                                               : std::max(oa.cos_incline, ob.cos_incline);
+            const vec3<T> a = world(oa), b = world(ob);
+            const vec3<T> d = b - a;
+            const T len = std::sqrt(glm::dot(d, d));
+            if (!(len > T(0))) return 0;
+            const vec3<T> dir = d * (T(1) / len);
+            const T scale =
+                std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y), std::abs(b.z), len});
+            const T slack = T(64) * eps * scale;
+            // Vertically, the arc lies within e / cos(chord) of this chord (e = k length^2 / 8 >= its sagitta), and
+            // a chord of the walk within tol / cos(that chord) of the arc, every inclination here with cosine >= c_lo.
+            const T band = (k * length * length * T(0.125) + tolerance_m) / c_lo + slack;
+            // A chord of the walk reaches 16 roundings past its end (below): the query reaches past the window's end by
+            // more than that horizontally (the chord's cosine is at least c_lo).
+            const T reach = len + T(128) * eps * scale;
+            const T clear = scene.clear_length_m(ray<T>{a, dir}, reach, band);
+            if (clear >= reach) return w - k_chord; // the arc's span and the chords': between the window's ends
+            // Horizontally, the arc covers at most c_hi per metre of arc; a few roundings off for where this chord and
+            // the walk's points differ.
+            const T x_clear = clear * std::sqrt(dir.x * dir.x + dir.y * dir.y) - T(4) * slack;
+            if (!(x_clear > T(0))) return 0;
+            const T whole = std::floor(x_clear / (ds * c_hi));
+            const std::size_t j = whole >= T(1) ? static_cast<std::size_t>(whole) - 1 : 0; // one fewer, for rounding
+            return std::min(j, w - k_chord - 1);
+        }
+    };
+    // The walk, chord by chord. With a ClearanceScene, a window of chords ahead (`window_chords`: as many as keep
+    // its sagitta within 2 cm, and at least 4) is first asked about as one. A clear window is skipped whole and the
+    // next one asked about; after a window that is not, the chords are traced one by one from its first chord not
+    // cleared, and the next window is asked about after four of them have met nothing (a ray that came close to the
+    // seabed usually meets it within a few chords). The chords traced, and so the hit, are those of the plain walk, bit for bit.
+    constexpr bool clearance = ClearanceScene<S>;
+    constexpr std::size_t traced_before_asking = 4;
+    [[maybe_unused]] const std::size_t window_chords =
+        clearance ? std::max<std::size_t>(4, static_cast<std::size_t>(std::min(std::sqrt(T(0.16) / k) / ds, T(1 << 20))))
+                  : 0;
+    std::size_t traced = traced_before_asking;
+    vec3<T> p = p0;
+    for (std::size_t k_chord = 0; k_chord < n;) {
+        if constexpr (clearance) {
+            if (clear_open_water && traced >= traced_before_asking && n - k_chord >= 4) {
+                const std::size_t w = std::min(n, k_chord + window_chords);
+                const std::size_t j = clear_chords(k_chord, w);
+                if (j > 0) {
+                    k_chord += j;
+                    p = start_of(k_chord);
+                }
+                if (k_chord != w) traced = 0;
+                continue;
+            }
+            ++traced;
+        }
+        const T s_lo = s_at(k_chord), s_hi = s_at(k_chord + 1);
+        vec3<T> q, dir;
+        T len;
+        chord_from(k_chord, p, q, dir, len);
+        ++k_chord;
         if (!(len > T(0))) { p = q; continue; }
         // A hit exactly on a chord joint must not slip between the two chords: reach a few roundings past the end.
         const T scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::max(std::abs(p.z), len));
@@ -233,7 +330,7 @@ template <Scene S, Real T>
                                                       T kappa_per_m, T s_begin_m, T s_end_m, T tolerance_m,
                                                       std::size_t& chords) {
     std::optional<arc_hit<T>> out;
-    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, chords,
+    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, true, chords,
                   [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at) {
                       out.emplace(h, arc_m, at);
                       out->surface.point = point;

@@ -37,6 +37,11 @@ public:
     {
         scene_->intersect_many(rays, t_max_m, hits);
     }
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const
+        requires ClearanceScene<S>
+    {
+        return scene_->clear_length_m(r, t_max_m, band_m);
+    }
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return scene_->seabed_height_m(x_m, y_m); }
     [[nodiscard]] T top_m() const noexcept { return top_; }
     [[nodiscard]] const S& whole() const noexcept { return *scene_; }
@@ -69,6 +74,12 @@ public:
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
         if (objects_near_) scene_->intersect_many(rays, t_max_m, hits);
         else intersect_all(scene_->seabed(), rays, t_max_m, hits);
+    }
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const
+        requires ClearanceScene<Seabed>
+    {
+        if (objects_near_) return scene_->clear_length_m(r, t_max_m, band_m);
+        return scene_->seabed().clear_length_m(r, t_max_m, band_m);
     }
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return scene_->seabed_height_m(x_m, y_m); }
     [[nodiscard]] T top_m() const noexcept { return top_; }

@@ -29,6 +29,15 @@
 /// rectangle. The simulator asks it for the rectangle a side's rays can reach (sampling/reach.hpp), so that one
 /// high point elsewhere in a large scene does not make every ray look for geometry from that height down
 /// (scene/area_view.hpp).
+///
+/// Optional (`ClearanceScene`): a scene that can tell how far a thick segment runs in open water also offers
+///
+/// | `s.clear_length_m(r, t_max_m, band_m)` | `T` | a length d in [0, t_max_m]: no geometry within vertical distance band_m of r's points at distances [0, d] |
+///
+/// Conservative: any d that is no longer than the true one will do (0 always does), and geometry closer than
+/// band_m to the segment's start gives 0. Layered water hands a scene curved rays as many short chords
+/// (propagation/arc_intersection.hpp); one query over a long chord, with the band covering the arc's sagitta,
+/// clears the chords a ray passes in open water without tracing each of them.
 
 #include <concepts>
 #include <cstddef>
@@ -60,6 +69,12 @@ concept BatchScene = Scene<S> && requires(const S& s, std::span<const ray<typena
 template <class S>
 concept AreaScene = Scene<S> && requires(const S& s, const vec2<typename S::value_type>& p) {
     { s.top_m(p, p) } -> std::same_as<typename S::value_type>;
+};
+
+/// A Scene that bounds how far a thick segment runs in open water (see the table above).
+template <class S>
+concept ClearanceScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t) {
+    { s.clear_length_m(r, t, t) } -> std::same_as<typename S::value_type>;
 };
 
 /// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.

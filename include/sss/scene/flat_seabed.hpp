@@ -2,6 +2,7 @@
 /// \file
 /// The flat seabed: the horizontal plane z = height_m, one material and one region.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -44,6 +45,15 @@ public:
         h.object = no_object;
         h.label = region_;
         return out;
+    }
+
+    /// How far r runs with the seabed more than band_m below it (ClearanceScene): t_max_m, where r lowered by
+    /// band_m meets the plane, or 0 where it starts on or below it.
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
+        const T above = r.origin.z - band_m - height_m_;
+        if (!(above > T(0))) return T(0);
+        if (!(r.direction.z < T(0))) return t_max_m;
+        return std::min(t_max_m, above / -r.direction.z);
     }
 
     [[nodiscard]] T seabed_height_m(T, T) const noexcept { return height_m_; }

@@ -107,6 +107,22 @@ public:
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m));
     }
+    /// How far r runs with nothing of the surface within band_m below it (ClearanceScene; above a height field
+    /// is water): where r lowered by band_m first meets the surface (t_max_m if it does not), provided the lowered
+    /// start lies over the footprint and clearly above the surface there (it then cannot come from below, and a
+    /// segment that leaves the footprint never comes back); 0 otherwise.
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
+        const ray<T> low{vec3<T>{r.origin.x, r.origin.y, r.origin.z - band_m}, r.direction};
+        const T u = (low.origin.x - grid_.origin_m.x) * grid_.inv_cell_m;
+        const T v = (low.origin.y - grid_.origin_m.y) * grid_.inv_cell_m;
+        if (!(u >= T(0) && v >= T(0) && u <= T(grid_.nx - 1) && v <= T(grid_.ny - 1))) return T(0);
+        const T h = height_at_grid(grid_, u, v);
+        const T margin = T(64) * std::numeric_limits<T>::epsilon() *
+                         (std::abs(low.origin.z) + std::abs(h) + std::abs(low.origin.x) + std::abs(low.origin.y));
+        if (!(low.origin.z > h + margin)) return T(0);
+        const auto g = trace_accelerated(grid_, pyramid_, bounds_, low, t_max_m);
+        return g ? g->distance_m : t_max_m;
+    }
     /// The same, by the reference traversal (every cell along the ray): slower, kept to check the other.
     [[nodiscard]] std::optional<hit<T>> intersect_reference(const ray<T>& r, T t_max_m) const noexcept {
         return to_hit(r, trace_reference(grid_, bounds_, r, t_max_m));

@@ -124,6 +124,33 @@ public:
     }
 
     /// The same by testing every object (each behind its own bounding box): the reference.
+    /// How far r runs with no object within vertical distance band_m of it (ClearanceScene): where it enters the
+    /// first leaf box of the hierarchy grown by band_m up and down (and a few roundings across), t_max_m if none.
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
+        if (nodes_.empty()) return t_max_m;
+        const T across = T(16) * std::numeric_limits<T>::epsilon() *
+                         std::max({std::abs(r.origin.x), std::abs(r.origin.y), std::abs(r.origin.z), t_max_m, T(1)});
+        const vec3<T> grow{across, across, band_m + across};
+        const detail::box_ray<T> br(r);
+        T t_best = t_max_m;
+        std::array<std::uint32_t, max_depth> stack;
+        std::size_t top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const detail::bvh_node<T>& n = nodes_[stack[--top]];
+            const box<T> b{n.bounds.lo - grow, n.bounds.hi + grow};
+            T t_entry;
+            if (!detail::hits_box(b, br, t_best, t_entry)) continue;
+            if (n.count > 0) {
+                t_best = std::min(t_best, t_entry);
+                continue;
+            }
+            stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+            stack[top++] = n.offset;
+        }
+        return t_best;
+    }
+
     [[nodiscard]] std::optional<hit<T>> intersect_brute_force(const ray<T>& r, T t_max_m) const noexcept {
         std::optional<hit<T>> best;
         const detail::box_ray<T> br(r);

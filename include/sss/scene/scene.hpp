@@ -55,6 +55,16 @@ public:
             if (auto o = objects_.intersect(rays[k], hits[k] ? hits[k]->distance_m : t_max_m)) hits[k] = *o;
     }
 
+    /// How far r runs with no geometry within vertical distance band_m (ClearanceScene, when the seabed is one):
+    /// the shorter of the seabed's and the objects' clear lengths.
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const
+        requires ClearanceScene<Seabed>
+    {
+        const T d = seabed_.clear_length_m(r, t_max_m, band_m);
+        if (objects_.empty() || !(d > T(0))) return d;
+        return objects_.clear_length_m(r, d, band_m);
+    }
+
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return seabed_.seabed_height_m(x_m, y_m); }
     [[nodiscard]] T top_m() const { return std::max(seabed_.top_m(), objects_.top_m()); }
     /// The same over the rectangle [lo, hi] (world x, y, m; see AreaScene): the seabed's own there when it can
