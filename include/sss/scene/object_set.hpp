@@ -123,7 +123,6 @@ public:
                                              : spheres_[best].intersect(r, t_best);
     }
 
-    /// The same by testing every object (each behind its own bounding box): the reference.
     /// How far r runs with no object within vertical distance band_m of it (ClearanceScene): where it enters the
     /// first leaf box of the hierarchy grown by band_m up and down (and a few roundings across), t_max_m if none.
     [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
@@ -151,6 +150,7 @@ public:
         return t_best;
     }
 
+    /// intersect by testing every object (each behind its own bounding box): the reference.
     [[nodiscard]] std::optional<hit<T>> intersect_brute_force(const ray<T>& r, T t_max_m) const noexcept {
         std::optional<hit<T>> best;
         const detail::box_ray<T> br(r);
