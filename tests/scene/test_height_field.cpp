@@ -255,4 +255,5 @@ TEST_CASE_TEMPLATE("Over a height field's clear length the surface lies more tha
     const T h0 = hf.seabed_height_m(T(0), T(0));
     CHECK(hf.clear_length_m(sss::ray<T>{vec3<T>{T(0), T(0), h0 + T(0.1)}, vec3<T>{T(1), T(0), T(0)}}, T(10), T(0.2)) == T(0));
     CHECK(hf.clear_length_m(sss::ray<T>{vec3<T>{T(40), T(0), T(5)}, vec3<T>{T(-1), T(0), T(0)}}, T(10), T(0.2)) == T(0));
+    CHECK(hf.clear_length_m(sss::ray<T>{vec3<T>{T(0), T(0), T(5)}, vec3<T>{T(1), T(0), T(0)}}, T(10), T(-0.2)) == T(0));
 }

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -196,4 +197,7 @@ TEST_CASE_TEMPLATE("No object lies within the band of a segment over the object 
     CHECK(short_of_end > 100);
     CHECK(to_end > 100);
     CHECK(object_set<T>{}.clear_length_m(ray<T>{vec3<T>{}, vec3<T>{T(1), T(0), T(0)}}, T(7), T(1)) == T(7));
+    // A negative or NaN band promises nothing.
+    CHECK(set.clear_length_m(ray<T>{vec3<T>{T(0), T(0), T(50)}, vec3<T>{T(1), T(0), T(0)}}, T(7), T(-1)) == T(0));
+    CHECK(set.clear_length_m(ray<T>{vec3<T>{T(0), T(0), T(50)}, vec3<T>{T(1), T(0), T(0)}}, T(7), std::numeric_limits<T>::quiet_NaN()) == T(0));
 }

@@ -51,7 +51,7 @@ public:
     /// band_m meets the plane, or 0 where it starts on or below it.
     [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
         const T above = r.origin.z - band_m - height_m_;
-        if (!(above > T(0))) return T(0);
+        if (!(band_m >= T(0)) || !(above > T(0))) return T(0);
         if (!(r.direction.z < T(0))) return t_max_m;
         return std::min(t_max_m, above / -r.direction.z);
     }

@@ -112,6 +112,7 @@ public:
     /// start lies over the footprint and clearly above the surface there (it then cannot come from below, and a
     /// segment that leaves the footprint never comes back); 0 otherwise.
     [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
+        if (!(band_m >= T(0))) return T(0); // no band (or NaN): nothing can be promised
         const ray<T> low{vec3<T>{r.origin.x, r.origin.y, r.origin.z - band_m}, r.direction};
         const T u = (low.origin.x - grid_.origin_m.x) * grid_.inv_cell_m;
         const T v = (low.origin.y - grid_.origin_m.y) * grid_.inv_cell_m;

@@ -126,6 +126,7 @@ public:
     /// How far r runs with no object within vertical distance band_m of it (ClearanceScene): where it enters the
     /// first leaf box of the hierarchy grown by band_m up and down (and a few roundings across), t_max_m if none.
     [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
+        if (!(band_m >= T(0))) return T(0); // no band (or NaN): nothing can be promised
         if (nodes_.empty()) return t_max_m;
         const T across = T(16) * std::numeric_limits<T>::epsilon() *
                          std::max({std::abs(r.origin.x), std::abs(r.origin.y), std::abs(r.origin.z), t_max_m, T(1)});
