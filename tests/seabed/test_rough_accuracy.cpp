@@ -116,7 +116,8 @@ TEST_CASE("under a beam 4 deg wide along track, rippled relief renders as the co
           "shadow edges take part in the along-track check, as they do by default with columns this coarse") {
     // The columns of a wide beam are 0.26 m apart at 30 m, 7 range samples; ripple crests 30 deg off the track move
     // about 2 samples across track from one column to the next, and each column alone puts their shadows' far edges
-    // where its centre sees them. Narrower columns over the stretch between disagreeing edges place them.
+    // where its centre sees them. Narrower columns over the stretch between disagreeing edges place them: its
+    // thirds, and the thirds' thirds where they still disagree (ray_density::along_split).
     const auto relief = sss_test::ripple_field<double>();
     const auto pose = sss_test::rough_pose<double>(false);
     auto make = [](const sss::ray_density& d) {
@@ -129,8 +130,22 @@ TEST_CASE("under a beam 4 deg wide along track, rippled relief renders as the co
     REQUIRE(ref.converged);
     const auto objects_only =
         sss_test::compare_lines(make({.along_split_seabed = false}).ping_at(relief, pose).starboard, ref.values);
-    const auto by_default = sss_test::compare_lines(make({}).ping_at(relief, pose).starboard, ref.values);
+    const auto default_line = make({}).ping_at(relief, pose).starboard;
+    const auto thirds_line = make({.along_split = 3}).ping_at(relief, pose).starboard;
+    const auto by_default = sss_test::compare_lines(default_line, ref.values);
+    const auto thirds_once = sss_test::compare_lines(thirds_line, ref.values);
+    // Narrower columns move echo in time, but share the column's solid angle exactly: the line's energy stays.
+    auto energy = [](const auto& line) {
+        double sum = 0.0;
+        for (const auto v : line) sum += double(v);
+        return sum;
+    };
+    const double ref_energy = energy(ref.values);
+    const double default_energy = energy(default_line) / ref_energy, thirds_energy = energy(thirds_line) / ref_energy;
     INFO("objects' edges only: rms " << objects_only.rms_db << " dB, 99th percentile " << objects_only.p99_db << " dB");
+    INFO("thirds not divided again: rms " << thirds_once.rms_db << " dB, 99th percentile " << thirds_once.p99_db
+                                           << " dB; energy against the reference's: default " << default_energy
+                                           << ", thirds not divided again " << thirds_energy);
     INFO("by default: rms " << by_default.rms_db << " dB, 99th percentile " << by_default.p99_db << " dB over "
                             << by_default.compared << " samples; shadow samples " << by_default.shadow_samples
                             << ", missed " << by_default.shadow_misses);
@@ -139,4 +154,9 @@ TEST_CASE("under a beam 4 deg wide along track, rippled relief renders as the co
     CHECK(by_default.rms_db <= 0.3);
     CHECK(by_default.p99_db <= 1.0);
     CHECK(by_default.shadow_misses == 0);
+    // Dividing where thirds still disagree places the crests' shadows better than thirds alone, with the same energy.
+    CHECK(thirds_once.rms_db <= 0.3);
+    CHECK(by_default.rms_db < thirds_once.rms_db);
+    CHECK(std::abs(default_energy - 1.0) < 2e-3);
+    CHECK(std::abs(thirds_energy - 1.0) < 2e-3);
 }

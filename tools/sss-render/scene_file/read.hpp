@@ -353,6 +353,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (d.run.rays_per_sample > 1024)
             r.fail("rays_per_sample", "must be <= 1024, got " + detail::table_reader::fmt(d.run.rays_per_sample));
         r.choice("seabed_edges_along", d.run.seabed_edges_along, {"auto", "on", "off"});
+        r.integer("along_split", d.run.along_split, 1);
+        if (d.run.along_split > 729) r.fail("along_split", "must be <= 729, got " + std::to_string(d.run.along_split));
         r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }

@@ -179,6 +179,7 @@ struct render {
     std::int64_t rays_along = 8;             ///< along-track columns per side, at least (the beam may ask for more)
     double rays_per_sample = 1;              ///< rays per range sample in each column
     std::string seabed_edges_along = "auto"; ///< auto, on or off: the seabed's shadow edges in the along-track check
+    std::int64_t along_split = 9;            ///< narrowest columns of that check, as a fraction of a column
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 
