@@ -2,8 +2,9 @@
 // ripples and 20 targets, Jackson medium sand at 100 kHz, three-layer water, a 100 kHz planar array, a perturbed
 // towfish, 100 m per side in 2048 samples. For ping 0's starboard line, at the default density {8, 0, 1} with the
 // refinement off (the previous tubes), on with only objects' edges in the along-track check, and on as by default
-// (the columns are coarse here, so the seabed's shadow edges take part too: ray_density::along_split_seabed), and
-// that with disagreeing stretches divided into thirds only once (ray_density::along_split = 3, not 9): rays
+// (the columns are coarse here, so the seabed's shadow edges take part too: ray_density::along_split_seabed), that
+// with disagreeing stretches divided into thirds only once (ray_density::along_split = 3, not 9), and (not with
+// --quick) down to 1/27 of a column, and 32 uniform columns without the along-track check: rays
 // per side, time per side (best of 3, in turn), and the RMS,
 // median and 99th percentile |dB| error over the samples within 40 dB of the reference's peak, and the missed shadow
 // samples, against the same simulator at {64, 0, 8} (64 times the rays, the seabed's edges in the along-track check;
@@ -62,19 +63,28 @@ int main(int argc, char** argv) {
                 ref.density.along, ref.density.per_sample, ref_s, ref.last_change_db);
     std::printf("| density | refinement | rays/side | ms/side | RMS dB | median dB | 99th pct dB | shadow missed |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
-    constexpr int variants = 4;
-    sss::ray_density dens[variants] = {{}, {}, {}, {}};
-    dens[0].refine_depth = 0;
-    dens[1].along_split_seabed = false;
-    dens[3].along_split = 3;
-    const char* names[variants] = {"off", "on, objects' edges along", "on (default: seabed's edges too, along_split 9)",
-                                   "on, along_split 3 (thirds, not divided again)"};
-    double ms[variants] = {1e300, 1e300, 1e300, 1e300};
-    std::vector<double> lines[variants];
-    std::size_t echoes[variants] = {0, 0, 0, 0};
+    struct variant {
+        const char* density;
+        const char* refinement;
+        sss::ray_density d;
+    };
+    std::vector<variant> vs = {
+        {"{8, 0, 1}", "off", {.refine_depth = 0}},
+        {"{8, 0, 1}", "on, objects' edges along", {.along_split_seabed = false}},
+        {"{8, 0, 1}", "on (default: seabed's edges too, along_split 9)", {}},
+        {"{8, 0, 1}", "on, along_split 3 (thirds, not divided again)", {.along_split = 3}},
+    };
+    if (!quick) { // the frontier beyond: finer division, and uniform columns without the along-track check
+        vs.push_back({"{8, 0, 1}", "on, along_split 27", {.along_split = 27}});
+        vs.push_back({"{32, 0, 1}", "on, along_split 1 (no along-track check)", {.along = 32, .along_split = 1}});
+    }
+    const std::size_t variants = vs.size();
+    std::vector<double> ms(variants, 1e300);
+    std::vector<std::vector<double>> lines(variants);
+    std::vector<std::size_t> echoes(variants, 0);
     for (int rep = 0; rep < 3; ++rep)
-        for (int i = 0; i < variants; ++i) {
-            const auto sim = make(dens[i]);
+        for (std::size_t i = 0; i < variants; ++i) {
+            const auto sim = make(vs[i].d);
             const auto t0 = std::chrono::steady_clock::now();
             lines[i] = sss_bench::side_line(sim, sv.scene, pose, sss::side::starboard);
             ms[i] = std::min(ms[i], 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -84,12 +94,13 @@ int main(int argc, char** argv) {
                 echoes[i] = n;
             }
         }
-    for (int i = 0; i < variants; ++i) {
+    for (std::size_t i = 0; i < variants; ++i) {
         const auto e = sss_test::compare_lines(lines[i], ref.values);
-        std::printf("| {8, 0, 1} | %s | %zu echoes | %.1f | %.3f | %.3f | %.3f | %zu of %zu |\n", names[i], echoes[i],
-                    ms[i], e.rms_db, e.median_db, e.p99_db, e.shadow_misses, e.shadow_samples);
+        std::printf("| %s | %s | %zu echoes | %.1f | %.3f | %.3f | %.3f | %zu of %zu |\n", vs[i].density, vs[i].refinement,
+                    echoes[i], ms[i], e.rms_db, e.median_db, e.p99_db, e.shadow_misses, e.shadow_samples);
     }
-    std::printf("time against off: objects' edges along %.3f, default %.3f, along_split 3 %.3f\n", ms[1] / ms[0],
-                ms[2] / ms[0], ms[3] / ms[0]);
+    std::printf("time against off:");
+    for (std::size_t i = 1; i < variants; ++i) std::printf("%s %s %s %.3f", i > 1 ? "," : "", vs[i].density, vs[i].refinement, ms[i] / ms[0]);
+    std::printf("\n");
     return 0;
 }
