@@ -40,6 +40,9 @@ struct matrix_of<type_list<Ss...>, type_list<Ps...>, type_list<Bs...>, type_list
 template <class Policy, class U> struct rebind;
 template <template <class> class Policy, class T, class U> struct rebind<Policy<T>, U> { using type = Policy<U>; };
 template <class Policy, class U> using rebind_t = typename rebind<Policy, U>::type;
+template <class Seabed, class Targets, class U> struct rebind<sss::scattering::by_material<Seabed, Targets>, U> {
+    using type = sss::scattering::by_material<rebind_t<Seabed, U>, rebind_t<Targets, U>>;
+};
 
 template <class L> struct as_tuple;
 template <class... Ts> struct as_tuple<type_list<Ts...>> { using type = std::tuple<Ts...>; };
@@ -49,6 +52,20 @@ template <class T> using propagation_policies = type_list<sss::propagation::stra
 template <class T> using beam_policies = type_list<sss::beam::ideal_fan<T>, sss::beam::planar_array<T>>;
 template <class T>
 using motion_policies = type_list<sss::motion::straight_line<T>, sss::motion::perturbed<T>, sss::motion::trajectory<T>>;
+
+// The scattering policies for objects (hard_target, and by_material, which gives the seabed's materials and the
+// objects' their own models) are not crossed with every other policy: each joins the combinations of
+// target_matrix, which together take every other family's policies at least once
+// (tests/foundation/test_policy_matrix_targets.cpp).
+template <class T> using target_scattering = sss::scattering::by_material<sss::scattering::jackson<T>, sss::scattering::hard_target<T>>;
+template <class T>
+using target_matrix = std::tuple<
+    std::tuple<sss::scattering::hard_target<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>, sss::motion::straight_line<T>>,
+    std::tuple<sss::scattering::hard_target<T>, sss::propagation::layered<T>, sss::beam::planar_array<T>, sss::motion::perturbed<T>>,
+    std::tuple<sss::scattering::hard_target<T>, sss::propagation::straight<T>, sss::beam::planar_array<T>, sss::motion::trajectory<T>>,
+    std::tuple<target_scattering<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>, sss::motion::straight_line<T>>,
+    std::tuple<target_scattering<T>, sss::propagation::layered<T>, sss::beam::planar_array<T>, sss::motion::perturbed<T>>,
+    std::tuple<target_scattering<T>, sss::propagation::straight<T>, sss::beam::planar_array<T>, sss::motion::trajectory<T>>>;
 
 template <class T>
 using policy_matrix = typename as_tuple<typename matrix_of<scattering_policies<T>, propagation_policies<T>, beam_policies<T>,
@@ -126,6 +143,22 @@ template <class T> struct matrix_policy<sss::scattering::jackson<T>> {
                                             .materials = {sss::scattering::sediment_preset<T>("medium sand")}});
     }
     static void describe(oracle_setup&, const sss::scattering::jackson<T>&) {}
+};
+template <class T> struct matrix_policy<sss::scattering::hard_target<T>> {
+    // Steel (|R| 0.94, RMS facet slope 0.1) with its diffuse part at -15 dB: the Kirchhoff highlight lies near
+    // normal incidence, so over the matrix's grazing angles the line is mostly the diffuse part.
+    static sss::scattering::hard_target<T> make() {
+        return sss::scattering::hard_target<T>({sss::scattering::hard_target_params<T>{.diffuse_db = T(-15)}});
+    }
+    static void describe(oracle_setup&, const sss::scattering::hard_target<T>&) {}
+};
+template <class T> struct matrix_policy<target_scattering<T>> {
+    // Medium sand as material 0 (the flat seabed's), a steel casing as material 1.
+    static target_scattering<T> make() {
+        return target_scattering<T>(matrix_policy<sss::scattering::jackson<T>>::make(),
+                                    matrix_policy<sss::scattering::hard_target<T>>::make());
+    }
+    static void describe(oracle_setup&, const target_scattering<T>&) {}
 };
 template <class T> struct matrix_policy<sss::beam::planar_array<T>> {
     // A 300 kHz array of 32 x 2 elements (0.5 m by 4 cm), shaded along track, tilted 15 degrees down.
