@@ -109,6 +109,7 @@
 #include "sss/io/png.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "sss/io/utm.hpp"
 #include "sss/io/xtf.hpp"
 #include "sss/io/xtf_file.hpp"
 

@@ -118,7 +118,7 @@ elif case == "outputs":
               and files_in(os.path.join(d, "tx")) == [], f"--pings beyond the trajectory is one error naming the count ({r.stderr})")
         # precision = "double": the arrays are float64, and the labels come from the double simulator too.
         geo = open(os.path.join(scenes, "georeferenced.toml")).read().replace(
-            "npy = true", "npy = true\nxtf = true\ncoco = true\nyolo = true\nlabel_images = true\nground_range = true")
+            "npy = true", "npy = true\nxtf = true\nxtf_utm_zone = 32\ncoco = true\nyolo = true\nlabel_images = true\nground_range = true")
         open(os.path.join(d, "geo.toml"), "w").write(geo)
         r = run([os.path.join(d, "geo.toml"), "-o", os.path.join(d, "geo"), "--pings", "12:20"])
         want = ["classes.txt"] + ["georeferenced" + s for s in [".json", ".npy", ".png", ".txt", ".xtf", "_coco.json", "_ground.png"]]
@@ -129,6 +129,13 @@ elif case == "outputs":
             npy = open(os.path.join(d, "geo", "georeferenced.npy"), "rb").read()
             check(b"'descr': '<f8'" in npy[:128] and b"(8, " in npy[:128], f"the double scene's .npy holds 8 pings of float64 ({npy[:128]})")
             check(len(open(os.path.join(d, "geo", "georeferenced.txt")).read().splitlines()) == 1, "the cylinder gets its YOLO box in double")
+            # Its world is UTM zone 32 (xtf_utm_zone): the XTF's navigation is latitude and longitude there, about
+            # 54.1 N and 9 E, not a plane about (0, 0) (which would put it at 4.5 E).
+            xtf = open(os.path.join(d, "geo", "georeferenced.xtf"), "rb").read()
+            nav_units = struct.unpack_from("<H", xtf, 164)[0]
+            lat, lon = struct.unpack_from("<dd", xtf, 1024 + 160)  # SensorYcoordinate, SensorXcoordinate
+            check(nav_units == 3 and 54.0 < lat < 54.3 and 9.0 < lon < 9.1,
+                  f"the UTM scene's XTF navigation is latitude and longitude in zone 32 (units {nav_units}, {lat}, {lon})")
         # ... and in layered water, the survey double exists for (UTM bathymetry, a measured profile).
         open(os.path.join(d, "geo_layered.toml"), "w").write(open(os.path.join(scenes, "georeferenced.toml")).read() +
                                                              '\n[water]\nmodel = "layered"\ndepth_m = [0, 10, 30]\nspeed_mps = [1500, 1495, 1485]\n')

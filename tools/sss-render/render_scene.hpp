@@ -235,6 +235,8 @@ template <Real T> int render_scene(const description& d, const render_request& r
                                       .sound_speed_mps = d.sea.sound_speed_mps,
                                       .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
                                                  .longitude_deg = d.out.xtf_origin_longitude_deg}};
+        if (d.out.xtf_utm_zone > 0)
+            xp.utm = sss::io::utm_zone{.zone = int(d.out.xtf_utm_zone), .south = d.out.xtf_utm_hemisphere == "south"};
         const auto widths = widths_of(beam_of<T>(d), d.sensor.depression_deg);
         xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
                           .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};

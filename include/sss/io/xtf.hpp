@@ -15,7 +15,8 @@
 /// - Time: Year ... HSeconds (UTC, 1/100 s) and JulianDay (day of the year, 1 = 1 January).
 /// - SensorSpeed in knots (1852 m per hour); heading, pitch (nose up positive), roll (starboard down positive)
 ///   in degrees; SensorXcoordinate / SensorYcoordinate: easting / northing (m) when NavUnits is 0, longitude /
-///   latitude (deg) when it is 3 (see io/geodetic.hpp for the projection this library uses).
+///   latitude (deg) when it is 3: from the world's x and y as UTM easting and northing in a given zone (io/utm.hpp), or
+///   as a local plane about a geodetic origin (io/geodetic.hpp).
 /// - Sample formats: unsigned 8-bit (SampleFormat 8, UniPolar 1), unsigned 16-bit (SampleFormat 3, UniPolar 1),
 ///   IEEE float (SampleFormat 5). Integer samples hold value x 2^Weight rounded (Weight, XTFPINGCHANHEADER
 ///   byte 58, one value per file chosen so the largest sample nearly fills the range): the reader returns
@@ -26,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,6 +40,7 @@
 #include "sss/io/detail/civil_date.hpp"
 #include "sss/io/detail/xtf_layout.hpp"
 #include "sss/io/geodetic.hpp"
+#include "sss/io/utm.hpp"
 #include "sss/io/xtf_file.hpp"
 #include "sss/receiver/image.hpp"
 
@@ -50,6 +53,9 @@ struct xtf_render_params {
     std::uint32_t first_ping_number = 1;     ///< PingNumber of ping 0
     double sound_speed_mps = 1500.0;         ///< the render's reference sound speed (m/s), > 0
     geodetic_origin origin{};                ///< latitude/longitude of world (0, 0), for NavUnits 3
+    /// For NavUnits 3: the world's x and y are UTM easting and northing (m) in this zone, converted exactly
+    /// (io/utm.hpp); `origin` is then unused. Without it, x and y are metres east and north of `origin`.
+    std::optional<utm_zone> utm{};
     xtf_header header{};
 };
 
@@ -75,7 +81,7 @@ template <Real T>
         q.time_unix_s = p.start_unix_s + double(i) * p.ping_interval_s;
         const double east = double(s.position.x), north = double(s.position.y);
         if (p.header.nav_units == xtf_nav_units::latitude_longitude) {
-            const geodetic_position g = to_geodetic(p.origin, east, north);
+            const geodetic_position g = p.utm ? utm_to_geodetic(*p.utm, east, north) : to_geodetic(p.origin, east, north);
             q.x = g.longitude_deg;
             q.y = g.latitude_deg;
         } else {

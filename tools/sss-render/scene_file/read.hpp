@@ -655,6 +655,15 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         o.boolean("xtf", d.out.xtf);
         o.in_range("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg, -89.9, 89.9);
         o.in_range("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg, -180, 180);
+        o.integer("xtf_utm_zone", d.out.xtf_utm_zone, 0);
+        if (d.out.xtf_utm_zone > 60)
+            o.fail("xtf_utm_zone", "must be a UTM zone from 1 to 60 (0: none), got " + std::to_string(d.out.xtf_utm_zone));
+        o.choice("xtf_utm_hemisphere", d.out.xtf_utm_hemisphere, {"north", "south"});
+        if (d.out.xtf_utm_zone > 0) {
+            const std::string unused = "is not used with xtf_utm_zone (the world's x and y are UTM easting and northing): leave it out";
+            if (d.out.xtf_origin_latitude_deg != 0) o.fail("xtf_origin_latitude_deg", unused);
+            if (d.out.xtf_origin_longitude_deg != 0) o.fail("xtf_origin_longitude_deg", unused);
+        }
         o.non_negative("xtf_start_unix_s", d.out.xtf_start_unix_s);
         o.boolean("coco", d.out.coco);
         o.boolean("yolo", d.out.yolo);

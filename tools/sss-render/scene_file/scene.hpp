@@ -167,6 +167,8 @@ struct output {
     bool npy = false; ///< stem.npy and its sidecar stem.json
     bool xtf = false; ///< stem.xtf: two float channels, latitude/longitude from xtf_origin_*
     double xtf_origin_latitude_deg = 0, xtf_origin_longitude_deg = 0, xtf_start_unix_s = 0;
+    std::int64_t xtf_utm_zone = 0;             ///< 1 to 60: world x, y are UTM easting, northing there; 0: a local plane
+    std::string xtf_utm_hemisphere = "north"; ///< north or south, with xtf_utm_zone
     bool coco = false;         ///< stem_coco.json: boxes (highlight and shadow) and masks of the objects
     bool yolo = false;         ///< stem.txt and classes.txt
     bool label_images = false; ///< stem_labels_class.png, stem_labels_instance.png, stem_labels_legend.json
