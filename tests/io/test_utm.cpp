@@ -92,14 +92,20 @@ TEST_CASE("the inverse undoes the forward to 0.1 mm, over a zone and 6 degrees b
     CHECK(worst_m < 1e-4);
 }
 
-TEST_CASE("a UTM zone outside 1 to 60 or a position that is not finite is named") {
+TEST_CASE("a UTM zone outside 1 to 60, or a position that is not finite or beyond the series' reach, is named") {
     CHECK_THROWS_WITH_AS((void)io::utm_to_geodetic({.zone = 0}, 5e5, 0.0), doctest::Contains("utm_zone.zone"), invalid_parameter);
     CHECK_THROWS_WITH_AS((void)io::utm_to_geodetic({.zone = 61}, 5e5, 0.0), doctest::Contains("utm_zone.zone"), invalid_parameter);
     CHECK_THROWS_WITH_AS((void)io::utm_to_geodetic({.zone = 31}, std::nan(""), 0.0), doctest::Contains("utm.easting_m"),
                          invalid_parameter);
+    CHECK_THROWS_WITH_AS((void)io::utm_to_geodetic({.zone = 31}, 1e9, 0.0), doctest::Contains("utm.easting_m"),
+                         invalid_parameter);
+    CHECK_THROWS_WITH_AS((void)io::utm_to_geodetic({.zone = 31}, 5e5, 3e7), doctest::Contains("utm.northing_m"),
+                         invalid_parameter);
     double e = 0, n = 0;
     CHECK_THROWS_WITH_AS(io::geodetic_to_utm({.zone = 31}, {91.0, 0.0}, e, n),
                          doctest::Contains("geodetic_position.latitude_deg"), invalid_parameter);
+    CHECK_THROWS_WITH_AS(io::geodetic_to_utm({.zone = 31}, {0.0, 93.0}, e, n),
+                         doctest::Contains("geodetic_position.longitude_deg"), invalid_parameter);
 }
 
 TEST_CASE("an XTF of a UTM world carries the exact latitude and longitude of each pose") {

@@ -83,11 +83,16 @@ struct kruger_series {
 
 } // namespace detail
 
-/// Latitude and longitude (WGS 84) of the UTM position (easting_m, northing_m) in zone z (see the file comment).
+/// Latitude and longitude (WGS 84) of the UTM position (easting_m, northing_m) in zone z (see the file comment),
+/// within 4000 km of the zone's central meridian.
 [[nodiscard]] inline geodetic_position utm_to_geodetic(const utm_zone& z, double easting_m, double northing_m) {
     const double lon0 = detail::utm_central_meridian_rad(z);
-    sss::require_finite(easting_m, "utm.easting_m");
-    sss::require_finite(northing_m, "utm.northing_m");
+    sss::require(std::abs(easting_m - 5e5) <= 4e6, "utm.easting_m", [&] {
+        return "must lie within 4000 km of the central meridian's 500000 m (where the series holds), got " +
+               std::to_string(easting_m);
+    });
+    sss::require(northing_m >= -1e7 && northing_m <= 2e7, "utm.northing_m",
+                 [&] { return "must lie in [-10000 km, 20000 km], got " + std::to_string(northing_m); });
     const detail::kruger_series& k = detail::wgs84_kruger();
     constexpr double k0 = 0.9996;
     const double xi = (northing_m - (z.south ? 1e7 : 0.0)) / (k0 * k.a_rect_m);
@@ -118,7 +123,8 @@ struct kruger_series {
 }
 
 /// The inverse: UTM easting and northing (m) in zone z of the geodetic position p, written into `easting_m`,
-/// `northing_m` (p's longitude may lie outside the zone: the projection extends beyond it).
+/// `northing_m` (p's longitude may lie outside the zone, up to 35 degrees from its central meridian: the projection
+/// extends beyond it).
 inline void geodetic_to_utm(const utm_zone& z, const geodetic_position& p, double& easting_m, double& northing_m) {
     const double lon0 = detail::utm_central_meridian_rad(z);
     sss::require_in_range(p.latitude_deg, -90.0, 90.0, "geodetic_position.latitude_deg");
@@ -127,6 +133,10 @@ inline void geodetic_to_utm(const utm_zone& z, const geodetic_position& p, doubl
     constexpr double k0 = 0.9996;
     const double rad = pi_v<double> / 180.0;
     const double l = std::remainder(p.longitude_deg * rad - lon0, 2.0 * pi_v<double>);
+    sss::require(std::abs(l) <= 35.0 * rad, "geodetic_position.longitude_deg", [&] {
+        return "must lie within 35 degrees of zone " + std::to_string(z.zone) + "'s central meridian (where the series holds), got " +
+               std::to_string(p.longitude_deg);
+    });
     const double tau1 = detail::conformal_tan(std::tan(p.latitude_deg * rad), k.e);
     const double xi1 = std::atan2(tau1, std::cos(l));
     const double eta1 = std::asinh(std::sin(l) / std::hypot(tau1, std::cos(l)));
