@@ -354,7 +354,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             r.fail("rays_per_sample", "must be <= 1024, got " + detail::table_reader::fmt(d.run.rays_per_sample));
         r.choice("seabed_edges_along", d.run.seabed_edges_along, {"auto", "on", "off"});
         r.integer("along_split", d.run.along_split, 1);
-        if (d.run.along_split > 729) r.fail("along_split", "must be <= 729, got " + std::to_string(d.run.along_split));
+        if (d.run.along_split > 6561) r.fail("along_split", "must be <= 6561 (3^8), got " + std::to_string(d.run.along_split));
         r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }
