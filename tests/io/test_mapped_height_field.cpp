@@ -94,6 +94,54 @@ TEST_CASE("a memory-mapped seabed renders the same pings as the same seabed in m
     CHECK(sim.render(copy, 2, 1, 1).values == sim.render(loaded, 2, 1, 1).values);
 }
 
+#if defined(__linux__)
+namespace {
+
+// A line of /proc/self/status in KiB ("VmRSS", "VmHWM"); -1 where there is none.
+double status_kib(const std::string& key) {
+    std::ifstream f("/proc/self/status");
+    std::string k;
+    while (f >> k) {
+        if (k == key + ":") {
+            double kib = -1;
+            f >> kib;
+            return kib;
+        }
+        std::getline(f, k);
+    }
+    return -1;
+}
+
+} // namespace
+
+TEST_CASE("mapping a seabed never holds its heights in memory: the peak is the pyramid and a band of rows") {
+    // 2049 x 4097 heights (32 MiB); their pyramid is a third of that. Reading the whole file into the mapping's
+    // pages would raise the peak by the file's size.
+    const sss::io::raw_grid big{.nx = 2049, .ny = 4097, .cell_m = 0.1, .origin_x_m = 0.0, .origin_y_m = 0.0};
+    sss::io::write_raw_f32_by_rows("big.raw", big, 512, [&](std::size_t iy0, std::size_t rows, std::span<float> out) {
+        for (std::size_t r = 0; r < rows; ++r)
+            for (std::size_t ix = 0; ix < big.nx; ++ix)
+                out[r * big.nx + ix] = 0.3f * std::sin(0.01f * float(ix)) * std::cos(0.002f * float(iy0 + r));
+    });
+    const double file_kib = 4.0 * double(big.nx * big.ny) / 1024.0;
+    {
+        std::ofstream reset("/proc/self/clear_refs");
+        reset << "5"; // resets the peak (VmHWM) to the present resident memory
+    }
+    const double before = status_kib("VmRSS");
+    if (status_kib("VmHWM") > before + 1024) {
+        MESSAGE("this kernel does not reset the peak resident memory; the check is skipped");
+        return;
+    }
+    const auto mapped = sss::io::map_raw_f32("big.raw");
+    const double rise = status_kib("VmHWM") - before, pyramid_kib = double(mapped.acceleration_bytes()) / 1024.0;
+    MESSAGE("peak rise " << rise / 1024 << " MiB for " << file_kib / 1024 << " MiB of heights and a "
+                         << pyramid_kib / 1024 << " MiB pyramid");
+    CHECK(rise < pyramid_kib + 0.25 * file_kib);
+    CHECK(mapped.top_m() == doctest::Approx(0.3).epsilon(1e-3));
+}
+#endif
+
 TEST_CASE("a raw file whose size disagrees with its sidecar is refused, naming the file") {
     write("short.raw", 64);
     {

@@ -2,10 +2,12 @@
 // outside the footprint, extreme heights, per-cell ids, normals, and the maximum pyramid.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sss/scene/concept.hpp"
@@ -169,27 +171,89 @@ TEST_CASE_TEMPLATE("Geometric normals are per triangle; smooth normals are conti
     CHECK(glm::length(vec3<double>(nv) - expect) < 10 * tol);
 }
 
-TEST_CASE_TEMPLATE("The maximum pyramid bounds every block and costs at most a third of the heights plus edge blocks",
+TEST_CASE_TEMPLATE("The maximum pyramid holds every block's highest vertex, its step bound is the largest neighbour "
+                   "difference, and it costs at most a third of the heights plus edge blocks",
                    T, float, double) {
-    // 37 x 23 vertices: partial blocks at the edges of every level.
-    const auto h = sample<T>(37, 23, 1.0, {0.0, 0.0},
-                             [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.7 * y) + 0.01 * x * y; });
-    const height_field<T> hf({.nx = 37, .ny = 23, .cell_m = T(1), .heights_m = h});
-    const auto& p = hf.pyramid();
-    const auto& g = hf.grid();
-    REQUIRE(p.levels() == 6); // 36 cells -> 18, 9, 5, 3, 2, 1
-    for (std::int32_t level = 1; level <= p.levels(); ++level)
-        for (std::int32_t by = 0; by < p.height(level); ++by)
-            for (std::int32_t bx = 0; bx < p.width(level); ++bx) {
-                T m = -std::numeric_limits<T>::infinity();
-                const std::int32_t x0 = bx << level, y0 = by << level;
-                for (std::int32_t y = y0; y <= std::min(y0 + (1 << level), g.ny - 1); ++y)
-                    for (std::int32_t x = x0; x <= std::min(x0 + (1 << level), g.nx - 1); ++x)
-                        m = std::max(m, g.at(x, y));
-                CHECK(p.max_m(level, bx, by) == m);
+    // Partial blocks at the edges of every level; an odd and an even number of cell rows; single-cell strips.
+    struct shape {
+        std::size_t nx, ny;
+        std::int32_t levels;
+    };
+    for (const shape sh : {shape{37, 23, 6}, shape{37, 24, 6}, shape{40, 2, 6}, shape{2, 9, 3}, shape{2, 2, 0}}) {
+        CAPTURE(sh.nx);
+        CAPTURE(sh.ny);
+        const auto h = sample<T>(sh.nx, sh.ny, 1.0, {0.0, 0.0},
+                                 [](double x, double y) { return std::sin(1.3 * x) * std::cos(0.7 * y) + 0.01 * x * y; });
+        const height_field<T> hf({.nx = sh.nx, .ny = sh.ny, .cell_m = T(1), .heights_m = h});
+        const auto& p = hf.pyramid();
+        const auto& g = hf.grid();
+        REQUIRE(p.levels() == sh.levels); // 36 cells -> 18, 9, 5, 3, 2, 1
+        for (std::int32_t level = 1; level <= p.levels(); ++level)
+            for (std::int32_t by = 0; by < p.height(level); ++by)
+                for (std::int32_t bx = 0; bx < p.width(level); ++bx) {
+                    T m = -std::numeric_limits<T>::infinity();
+                    const std::int32_t x0 = bx << level, y0 = by << level;
+                    for (std::int32_t y = y0; y <= std::min(y0 + (1 << level), g.ny - 1); ++y)
+                        for (std::int32_t x = x0; x <= std::min(x0 + (1 << level), g.nx - 1); ++x)
+                            m = std::max(m, g.at(x, y));
+                    CHECK(p.max_m(level, bx, by) == m);
+                }
+        T step = T(0);
+        for (std::int32_t y = 0; y < g.ny; ++y)
+            for (std::int32_t x = 0; x < g.nx; ++x) {
+                if (x + 1 < g.nx) step = std::max(step, std::abs(g.at(x + 1, y) - g.at(x, y)));
+                if (y + 1 < g.ny) step = std::max(step, std::abs(g.at(x, y + 1) - g.at(x, y)));
             }
-    CHECK(hf.acceleration_bytes() < hf.height_bytes() / 2);
-    CHECK(p.max_m(p.levels(), 0, 0) == hf.top_m());
+        CHECK(p.max_step_m() == step);
+        if (p.levels() > 0) CHECK(p.max_m(p.levels(), 0, 0) == hf.top_m());
+        if (sh.nx > 2 && sh.ny > 2) CHECK(hf.acceleration_bytes() < hf.height_bytes() / 2); // strips hold half
+    }
+}
+
+TEST_CASE_TEMPLATE("Building a height field over external heights never reads again what it has said it is done "
+                   "with, and says so for every row in bands",
+                   T, float, double) {
+    // 150 rows: two full bands of 64 and the rest. Whatever the field has said it is done with is overwritten with
+    // a height far above the rest until its pass ends; a second reading would show in the bounds or the pyramid.
+    const std::size_t nx = 33, ny = 150, n = nx * ny;
+    const auto h = sample<T>(nx, ny, 0.5, {0.0, 0.0}, [](double x, double y) { return std::sin(x) * std::cos(0.3 * y); });
+    const height_field<T> reference({.nx = nx, .ny = ny, .cell_m = T(0.5), .heights_m = h});
+    std::vector<T> values = h;
+    std::vector<std::pair<std::size_t, std::size_t>> bands;
+    const height_field<T> hf({.nx = nx, .ny = ny, .cell_m = T(0.5)},
+                             sss::scene::external_heights<T>{
+                                 .data = values.data(),
+                                 .read_done = [&](std::size_t first, std::size_t count) {
+                                     bands.emplace_back(first, count);
+                                     if (first + count == n)
+                                         values = h; // the pass is over; the next one reads the heights afresh
+                                     else
+                                         std::fill_n(values.begin() + std::ptrdiff_t(first), count, T(1e6));
+                                 }});
+    CHECK(hf.top_m() == reference.top_m());
+    CHECK(hf.bottom_m() == reference.bottom_m());
+    CHECK(hf.pyramid().max_step_m() == reference.pyramid().max_step_m());
+    for (std::int32_t level = 1; level <= reference.pyramid().levels(); ++level)
+        for (std::int32_t by = 0; by < reference.pyramid().height(level); ++by)
+            for (std::int32_t bx = 0; bx < reference.pyramid().width(level); ++bx)
+                CHECK(hf.pyramid().max_m(level, bx, by) == reference.pyramid().max_m(level, bx, by));
+    // Two passes (checks and bounds, then the pyramid), each told in order, whole rows, bands of >= 64 rows but the
+    // last, ending at the last vertex.
+    std::size_t passes = 0, next = 0;
+    for (const auto& [first, count] : bands) {
+        CHECK(first == next);
+        CHECK(first % nx == 0);
+        CHECK(count % nx == 0);
+        next = first + count;
+        if (next == n) {
+            ++passes;
+            next = 0;
+        } else {
+            CHECK(count >= 64 * nx);
+        }
+    }
+    CHECK(passes == 2);
+    CHECK(next == 0);
 }
 
 TEST_CASE_TEMPLATE("A copied or moved height field traces its own heights", T, float, double) {

@@ -5,9 +5,10 @@
 ///
 /// The file format is height_field_io.hpp's raw float32 + text sidecar (`path`, `path + ".txt"`).
 /// map_raw_f32(path) maps the file read-only (mmap, MAP_SHARED) and gives a height_field<float> over it: the
-/// heights are read once (the finiteness check, the bounds and the maximum pyramid), then the pages are released
-/// (madvise MADV_DONTNEED), so that only the pages under the rays of the pings being rendered come back into
-/// memory. Resident memory is then the pyramid (a third of the heights' bytes) plus those pages, whatever the
+/// heights are read in two passes of bands of rows (the finiteness check and the bounds, then the maximum pyramid),
+/// and the pages behind each pass are released as it goes (madvise MADV_DONTNEED), so that building the field
+/// holds a band of rows, not the heights, and only the pages under the rays of the pings being rendered come back
+/// into memory. Resident memory is then the pyramid (a third of the heights' bytes) plus those pages, whatever the
 /// seabed's size. The operating system reads pages on demand and may drop them again under memory pressure.
 ///
 /// write_raw_f32_by_rows(path, grid, band_rows, fill) writes an nx x ny grid in bands of band_rows rows, asking
@@ -74,6 +75,14 @@ public:
     void release_resident() const noexcept {
         if (data_) (void)::madvise(data_, size_, MADV_DONTNEED);
     }
+    /// The same for the whole pages of bytes [0, end_byte) from begin_byte's page on: a pass reading the file in
+    /// order drops what lies behind it.
+    void release_resident(std::size_t begin_byte, std::size_t end_byte) const noexcept {
+        const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+        if (!data_ || page == 0) return;
+        const std::size_t first = begin_byte / page * page, last = std::min(end_byte, size_) / page * page;
+        if (last > first) (void)::madvise(static_cast<char*>(data_) + first, last - first, MADV_DONTNEED);
+    }
 
 private:
     std::string path_;
@@ -99,7 +108,12 @@ private:
                                        .ny = g.ny,
                                        .cell_m = static_cast<float>(g.cell_m),
                                        .origin_m = {static_cast<float>(g.origin_x_m), static_cast<float>(g.origin_y_m)}},
-                                      scene::external_heights<float>{heights, file});
+                                      scene::external_heights<float>{
+                                          .data = heights,
+                                          .keeper = file,
+                                          .read_done = [f = file.get()](std::size_t first, std::size_t count) {
+                                              f->release_resident(4 * first, 4 * (first + count));
+                                          }});
         file->release_resident();
         return hf;
     } catch (const invalid_parameter& e) {

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -51,6 +52,10 @@ template <Real T> struct height_field_params {
 template <Real T> struct external_heights {
     const T* data = nullptr;
     std::shared_ptr<const void> keeper{};
+    /// Optional: called while the height field reads the heights once (checks, bounds, pyramid) with
+    /// (first, count), the values [first, first + count) that this reading will not touch again, in bands of rows
+    /// from the south. A memory map drops those pages here, so that building the field never holds the heights.
+    std::function<void(std::size_t first, std::size_t count)> read_done{};
 };
 
 template <Real T> class height_field {
@@ -71,7 +76,8 @@ public:
         sss::require(heights.data != nullptr, "height_field.heights.data", "must not be null");
         sss::require(p.heights_m.empty(), "height_field.heights_m", "must be empty when the heights are external");
         external_data_ = heights.data;
-        init(p.nx, p.ny, p.cell_m, p.origin_m, heights.data, checked_elements(p.nx, p.ny, "height_field.nx * ny"));
+        init(p.nx, p.ny, p.cell_m, p.origin_m, heights.data, checked_elements(p.nx, p.ny, "height_field.nx * ny"),
+             heights.read_done);
     }
 
     height_field(const height_field& o)
@@ -261,7 +267,9 @@ public:
 
 private:
     /// Checks the grid and builds the bounds and the pyramid over heights `values` (size of them).
-    void init(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, const T* values, std::size_t size) {
+    /// read_done (may be empty): see external_heights.
+    void init(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, const T* values, std::size_t size,
+              const std::function<void(std::size_t, std::size_t)>& read_done = {}) {
         constexpr std::size_t max_n = std::size_t(1) << 30;
         sss::require(nx >= 2 && nx <= max_n, "height_field.nx",
                      [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(nx); });
@@ -281,16 +289,29 @@ private:
             return "must be empty or hold (nx-1) * (ny-1) = " + std::to_string(cells) + " ids, got " +
                    std::to_string(regions_.size());
         });
+        // Rows already handed to read_done: it is told of bands of at least release_rows rows (a few MiB for
+        // wide grids), and of the rest at the end of each pass.
+        constexpr std::size_t release_rows = 64;
+        std::size_t released = 0;
+        const auto rows_read = [&](std::size_t rows) {
+            if (!read_done || rows < released + (rows < ny ? release_rows : 1)) return;
+            read_done(released * nx, (rows - released) * nx);
+            released = rows;
+        };
         bounds_.bottom_m = std::numeric_limits<T>::infinity();
         bounds_.top_m = -std::numeric_limits<T>::infinity();
-        for (std::size_t i = 0; i < n; ++i) {
-            const T h = values[i];
-            if (!std::isfinite(h))
-                throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
-                                        "must be finite, got " + std::to_string(h) + " at vertex (ix " +
-                                            std::to_string(i % nx) + ", iy " + std::to_string(i / nx) + ")");
-            bounds_.bottom_m = std::min(bounds_.bottom_m, h);
-            bounds_.top_m = std::max(bounds_.top_m, h);
+        for (std::size_t iy = 0; iy < ny; ++iy) {
+            for (std::size_t ix = 0; ix < nx; ++ix) {
+                const std::size_t i = iy * nx + ix;
+                const T h = values[i];
+                if (!std::isfinite(h))
+                    throw invalid_parameter("height_field.heights_m[" + std::to_string(i) + "]",
+                                            "must be finite, got " + std::to_string(h) + " at vertex (ix " +
+                                                std::to_string(ix) + ", iy " + std::to_string(iy) + ")");
+                bounds_.bottom_m = std::min(bounds_.bottom_m, h);
+                bounds_.top_m = std::max(bounds_.top_m, h);
+            }
+            rows_read(iy + 1);
         }
         grid_.heights = values;
         grid_.nx = static_cast<std::int32_t>(nx);
@@ -298,7 +319,8 @@ private:
         grid_.cell_m = cell_m;
         grid_.inv_cell_m = T(1) / cell_m;
         grid_.origin_m = origin_m;
-        pyramid_ = max_pyramid<T>(grid_);
+        released = 0; // the pyramid reads the rows again, from the south
+        pyramid_ = max_pyramid<T>(grid_, [&](std::int32_t rows) { rows_read(static_cast<std::size_t>(rows)); });
     }
 
     [[nodiscard]] const T* data() const noexcept { return external_data_ != nullptr ? external_data_ : heights_.data(); }

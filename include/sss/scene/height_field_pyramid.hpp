@@ -29,7 +29,11 @@ public:
     max_pyramid() = default;
 
     /// Builds every level from the vertex grid `g` (which must have nx, ny >= 2).
-    explicit max_pyramid(const height_grid_view<T>& g) {
+    explicit max_pyramid(const height_grid_view<T>& g) : max_pyramid(g, [](std::int32_t) {}) {}
+
+    /// The same, reading the grid's rows in order, in one pass: rows_read(y) says that rows [0, y) will not be read
+    /// again, so that heights held in a memory map can be dropped behind the pass (io/mapped_height_field.hpp).
+    template <class RowsRead> max_pyramid(const height_grid_view<T>& g, RowsRead&& rows_read) {
         std::int32_t cx = g.nx - 1, cy = g.ny - 1; // cells at level 0
         std::size_t total = 0;
         levels_ = 0;
@@ -43,9 +47,16 @@ public:
             total += static_cast<std::size_t>(cx) * static_cast<std::size_t>(cy);
         }
         data_.resize(total);
-        max_step_m_ = largest_step(g);
-        if (levels_ == 0) return;
-        build_level_one(g);
+        max_step_m_ = T(0);
+        for (std::int32_t y = 0; y < g.ny; ++y) {
+            max_step_m_ = std::max(max_step_m_, largest_step(g, y));
+            // Blocks of level one whose rows end at y (2 by + 2 = y, or the last row) are complete.
+            if (y % 2 == 1) continue; // the blocks ending at y + 1 read row y - 1 again
+            if (levels_ > 0 && y >= 2) build_level_one_row(g, y / 2 - 1);
+            rows_read(y); // later steps and blocks start at row y
+        }
+        if (levels_ > 0 && ((g.ny - 1) % 2 == 1)) build_level_one_row(g, height_[1] - 1); // the odd last block row
+        rows_read(g.ny);
         for (std::int32_t level = 2; level <= levels_; ++level) build_from_children(level);
     }
 
@@ -76,32 +87,27 @@ public:
     [[nodiscard]] std::size_t bytes() const noexcept { return data_.size() * sizeof(T); }
 
 private:
-    static T largest_step(const height_grid_view<T>& g) noexcept {
-        T m = T(0);
-        for (std::int32_t y = 0; y < g.ny; ++y) {
-            const T* row = g.heights + static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx);
-            const T* up = y + 1 < g.ny ? row + g.nx : row;
-            T r = T(0);
-            for (std::int32_t x = 0; x + 1 < g.nx; ++x)
-                r = std::max(r, std::max(std::abs(row[x + 1] - row[x]), std::abs(up[x] - row[x])));
-            r = std::max(r, std::abs(up[g.nx - 1] - row[g.nx - 1]));
-            m = std::max(m, r);
-        }
-        return m;
+    /// Largest step from row y's vertices to their neighbours along +x and to row y + 1.
+    static T largest_step(const height_grid_view<T>& g, std::int32_t y) noexcept {
+        const T* row = g.heights + static_cast<std::size_t>(y) * static_cast<std::size_t>(g.nx);
+        const T* up = y + 1 < g.ny ? row + g.nx : row;
+        T r = T(0);
+        for (std::int32_t x = 0; x + 1 < g.nx; ++x)
+            r = std::max(r, std::max(std::abs(row[x + 1] - row[x]), std::abs(up[x] - row[x])));
+        return std::max(r, std::abs(up[g.nx - 1] - row[g.nx - 1]));
     }
 
-    void build_level_one(const height_grid_view<T>& g) {
-        const std::int32_t w = width_[1], h = height_[1];
-        T* out = data_.data() + offset_[1];
-        for (std::int32_t by = 0; by < h; ++by) {
-            const std::int32_t y0 = 2 * by, y1 = std::min(2 * by + 2, g.ny - 1);
-            for (std::int32_t bx = 0; bx < w; ++bx) {
-                const std::int32_t x0 = 2 * bx, x1 = std::min(2 * bx + 2, g.nx - 1);
-                T m = g.at(x0, y0);
-                for (std::int32_t y = y0; y <= y1; ++y)
-                    for (std::int32_t x = x0; x <= x1; ++x) m = std::max(m, g.at(x, y));
-                out[static_cast<std::size_t>(by) * static_cast<std::size_t>(w) + static_cast<std::size_t>(bx)] = m;
-            }
+    /// Row `by` of level one: the highest of the vertices y in [2 by, min(2 by + 2, ny - 1)] of each block.
+    void build_level_one_row(const height_grid_view<T>& g, std::int32_t by) {
+        const std::int32_t w = width_[1];
+        T* out = data_.data() + offset_[1] + static_cast<std::size_t>(by) * static_cast<std::size_t>(w);
+        const std::int32_t y0 = 2 * by, y1 = std::min(2 * by + 2, g.ny - 1);
+        for (std::int32_t bx = 0; bx < w; ++bx) {
+            const std::int32_t x0 = 2 * bx, x1 = std::min(2 * bx + 2, g.nx - 1);
+            T m = g.at(x0, y0);
+            for (std::int32_t y = y0; y <= y1; ++y)
+                for (std::int32_t x = x0; x <= x1; ++x) m = std::max(m, g.at(x, y));
+            out[static_cast<std::size_t>(bx)] = m;
         }
     }
 
