@@ -104,6 +104,8 @@ template <Real T> struct tube_echo {
     double t1_s{};       ///< two-way time at the other end (s)
     double power{};      ///< echo power (relative to the source level reference)
     hit<T> surface{};    ///< what the (first) end of the tube met: material, object, label
+    vec3<T> launch{};    ///< unit launch direction (world) of the first end's ray, which leaves the pose's position
+    T first_leg_s{};     ///< that ray's one-way time (s) to the first surface it met: `surface`, or a bounce's point
 };
 
 /// The echo observer of simulator::ping that does nothing: ping(scene, index) is ping(scene, index, no_echo_observer{}).
@@ -408,6 +410,13 @@ private:
         double gain = 0.0;    ///< sigma x loss / sin(angle to the facet): the echo per radian, beam pattern aside
         hit<T> surface{}; ///< where the echo comes from
         hit<T> via{};     ///< for a bounced path: where it bounced
+        vec3<T> launch{}; ///< the launched ray's unit direction (world)
+        T leg_s{};        ///< one-way time (s) from the transducer to the first surface (surface, or via)
+
+        /// The echo piece of this end's ray, spread over two-way times [t, t1].
+        [[nodiscard]] tube_echo<T> piece(double t1, double power) const noexcept {
+            return {t, t1, power, surface, launch, leg_s};
+        }
     };
 
     /// What every column of one side of one ping shares.
@@ -587,7 +596,8 @@ private:
                 continue;
             }
             ray_end bounce;
-            const ray_end cur = echo(scene, sd, along, e, s.paths[k++], f.t_max_one_way, column_sr, bounce);
+            const ray_end cur = echo(scene, sd, along, e, s.rays[k].direction, s.paths[k], f.t_max_one_way, column_sr, bounce);
+            ++k;
             if (in_run) {
                 if (record) record->interval = i - 1;
                 refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
@@ -747,7 +757,9 @@ private:
             ray_end prev, prev_bounce;
             for (std::size_t k = k0; k <= k1 + 1; ++k) {
                 ray_end bounce;
-                const ray_end cur = echo(scene, f.sd, along, angles[k], s.paths[q++], f.t_max_one_way, column_sr, bounce);
+                const ray_end cur = echo(scene, f.sd, along, angles[k], s.rays[q].direction, s.paths[q], f.t_max_one_way,
+                                         column_sr, bounce);
+                ++q;
                 if (k > k0) {
                     if (record) record->interval = k - 1;
                     refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
@@ -818,8 +830,8 @@ private:
 
     /// Two rays on either side of an edge: each keeps its half of the step as a point.
     template <class Visitor> static void emit_ends(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
-        if (a.valid) visit(tube_echo<T>{a.t, a.t, 0.5 * a.power_per_rad * de, a.surface});
-        if (b.valid) visit(tube_echo<T>{b.t, b.t, 0.5 * b.power_per_rad * de, b.surface});
+        if (a.valid) visit(a.piece(a.t, 0.5 * a.power_per_rad * de));
+        if (b.valid) visit(b.piece(b.t, 0.5 * b.power_per_rad * de));
     }
 
     /// The energy between two adjacent rays: a tube spread over their times when both ends meet the same surface
@@ -827,10 +839,10 @@ private:
     template <class Visitor> static void emit_tube(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
         const bool joined = a.valid && b.valid && same_surface(a.surface, b.surface) && same_surface(a.via, b.via);
         if (joined) {
-            visit(tube_echo<T>{a.t, b.t, 0.5 * (a.power_per_rad + b.power_per_rad) * de, a.surface});
+            visit(a.piece(b.t, 0.5 * (a.power_per_rad + b.power_per_rad) * de));
         } else {
-            if (a.valid) visit(tube_echo<T>{a.t, a.t, 0.5 * a.power_per_rad * de, a.surface});
-            if (b.valid) visit(tube_echo<T>{b.t, b.t, 0.5 * b.power_per_rad * de, b.surface});
+            if (a.valid) visit(a.piece(a.t, 0.5 * a.power_per_rad * de));
+            if (b.valid) visit(b.piece(b.t, 0.5 * b.power_per_rad * de));
         }
     }
 
@@ -840,16 +852,18 @@ private:
     [[nodiscard]] ray_end shoot(const Sc& scene, const pose<T>& p, side sd, T along, T e, T t_max_one_way,
                                 double column_sr, ray_end& bounce) const {
         const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
-        return echo(scene, sd, along, e, propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way),
+        return echo(scene, sd, along, e, dir, propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way),
                     t_max_one_way, column_sr, bounce);
     }
 
     /// The echo of the ray launched at (along, e) that followed `traced` (none: it met nothing).
     template <Scene Sc>
-    [[nodiscard]] ray_end echo(const Sc& scene, side sd, T along, T e, const std::optional<path<T>>& traced,
-                               T t_max_one_way, double column_sr, ray_end& bounce) const {
+    [[nodiscard]] ray_end echo(const Sc& scene, side sd, T along, T e, const vec3<T>& launch,
+                               const std::optional<path<T>>& traced, T t_max_one_way, double column_sr,
+                               ray_end& bounce) const {
         ray_end r;
         r.e = bounce.e = double(e);
+        r.launch = bounce.launch = launch;
         if (!traced) return r;
         const hit<T>& h = traced->surface;
         const T sin_facet = -glm::dot(traced->arrival, h.normal);
@@ -861,6 +875,7 @@ private:
         const double loss = double(traced->spreading) * double(traced->absorption) * double(traced->absorption);
         r.valid = true;
         r.t = 2.0 * double(traced->time_s);
+        r.leg_s = traced->time_s;
         r.gain = sigma * loss / double(sin_facet);
         r.power_per_rad = w * r.gain;
         r.stretch = detail::time_stretch(r.t, double(sin_facet));
@@ -896,6 +911,7 @@ private:
             weight * sigma * reflection * reflection * absorption * absorption / (legs * legs) / double(sin_facet);
         out.surface = h2;
         out.via = h;
+        out.leg_s = first.time_s;
     }
 
     template <Scene Sc, class Observer>

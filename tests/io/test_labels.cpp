@@ -1,6 +1,6 @@
 // Ground-truth labels: the shadows they mark agree with the geometry of the shadow to within one sample (a cylinder
-// lying on a flat seabed, a sphere in the water column); on rough relief with a lying cylinder, a tethered mine
-// and a pipeline span, every box encloses the samples its object's echo dominates; the label image, the COCO file
+// lying on a flat seabed, a sphere in the water column, the same sphere in refracting water); on rough relief with a
+// lying cylinder, a tethered mine and a pipeline span, every box encloses the samples its object's echo dominates; the label image, the COCO file
 // and the YOLO file agree; the COCO file has every field the format requires, consistent; an image without an
 // object gets empty label files.
 #include <doctest/doctest.h>
@@ -184,6 +184,77 @@ TEST_CASE("A sphere in the water column: its highlight before the first bottom r
     for (std::size_t k = first_sh; k <= last_sh; ++k) CHECK(l[k].kind == sample_class::shadow);
     // Between the sphere's echo and the seabed: water column.
     CHECK(l[std::size_t(sample_of(H)) - 2].kind == sample_class::water_column);
+}
+
+TEST_CASE("In refracting water a sphere's shadow lies between the landings of its tangent bent rays, not its straight ones") {
+    // Sound slows by 60 m/s over the 10 m between the towfish (depth 20 m) and the seabed (depth 30 m): the rays
+    // bend down with a radius of about 250 m, and sag 0.3 to 0.5 m below their chords over the 30 m to the shadow.
+    using layered_sim = simulator<scattering::lambertian<double>, propagation::layered<double>, beam::ideal_fan<double>,
+                                  motion::straight_line<double>>;
+    const propagation::layered<double> water(propagation::sound_speed_profile<double>({0, 20, 30, 100}, {1500, 1500, 1440, 1440}),
+                                             {.surface_z_m = H + 20.0});
+    receiver_params rp;
+    rp.sample_rate_hz = fs_hz;
+    rp.max_range_m = 45.0;
+    rp.pulse.length_s = 100e-6;
+    beam::ideal_fan_params<double> fan;
+    fan.along_width_deg = 1.0;
+    fan.vertical_width_deg = 90.0;
+    fan.depression_deg = 45.0;
+    const layered_sim sim(scattering::lambertian<double>({.mu_db = {-27.0, -10.0}}), water, beam::ideal_fan<double>(fan),
+                          motion::straight_line<double>(motion::straight_line_params<double>{}), rp,
+                          ray_density{.along = 4, .across = 0, .per_sample = 4.0});
+    const double a = 0.5, x0 = 12.0, cz = 6.0;
+    std::vector<object<double>> objs{object<double>({sphere<double>({x0, 0, cz}, a, {1, 8, 4})}, {})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+    const scene::flat_seabed<double> bare(0.0, 0, 2);
+    const auto l = label_line(sim, sc, towfish(), side::starboard);
+
+    // The oracle: bent rays in the plane of the sphere's centre, launched at depression e from the towfish. Those
+    // that meet the sphere before the seabed span [e_near, e_far]; their two-way times to the bare seabed bound the
+    // shadow.
+    const double t_max = 1.0;
+    const auto ray_at = [&](double e) { return ray<double>{vec3<double>{0, 0, H}, vec3<double>{std::cos(e), 0.0, -std::sin(e)}}; };
+    const auto blocked = [&](double e) {
+        const auto p = water.trace(ray_at(e), sc, t_max);
+        return p && p->surface.object == 8u;
+    };
+    const double e_centre = std::atan2(H - cz, x0);
+    REQUIRE(blocked(e_centre + 0.01));
+    const auto edge = [&](double inside, double outside) { // bisection to 1e-12 rad
+        for (int i = 0; i < 60; ++i) {
+            const double mid = 0.5 * (inside + outside);
+            (blocked(mid) ? inside : outside) = mid;
+        }
+        return 0.5 * (inside + outside);
+    };
+    const double e_far = edge(e_centre + 0.01, e_centre - 0.2), e_near = edge(e_centre + 0.01, e_centre + 0.2);
+    const auto sample_of_launch = [&](double e) { return 2.0 * water.trace(ray_at(e), bare, t_max)->time_s / dt_s; };
+    const double k1 = sample_of_launch(e_near), k2 = sample_of_launch(e_far);
+    // Where straight segments would put it: the seabed points whose straight line to the towfish grazes the sphere,
+    // at the two-way time of the bent ray that lands there.
+    const auto sample_of_landing = [&](double x_m) {
+        double lo = 0.05, hi = 1.5; // depression: landing range falls as it rises
+        for (int i = 0; i < 60; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (water.trace(ray_at(mid), bare, t_max)->surface.point.x > x_m ? lo : hi) = mid;
+        }
+        return sample_of_launch(0.5 * (lo + hi));
+    };
+    const double s1 = sample_of_landing(H / std::tan(tangent_depression(x0, cz, a, +1)));
+    const double s2 = sample_of_landing(H / std::tan(tangent_depression(x0, cz, a, -1)));
+
+    std::size_t first_sh = l.size(), last_sh = 0;
+    for (std::size_t k = 0; k < l.size(); ++k)
+        if (l[k].kind == sample_class::shadow) first_sh = std::min(first_sh, k), last_sh = k;
+    MESSAGE("shadow " << first_sh << "-" << last_sh << "; bent rays " << k1 << "-" << k2 << "; straight segments " << s1 << "-"
+                      << s2);
+    REQUIRE(first_sh < l.size());
+    // The straight segments' shadow lies several samples away: the check below tells the two apart.
+    CHECK(std::abs(s2 - k2) > 4.0);
+    CHECK(std::abs(double(first_sh) - k1) <= 1.0);
+    CHECK(std::abs(double(last_sh + 1) - k2) <= 1.0);
+    for (std::size_t k = first_sh; k <= last_sh; ++k) CHECK(l[k].kind == sample_class::shadow);
 }
 
 TEST_CASE("render_labelled is render and label_render in one trace: the same image and labels to the bit, on any number of threads") {

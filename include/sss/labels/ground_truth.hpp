@@ -11,10 +11,12 @@
 /// 2. through the seabed alone (`scene.seabed()`), with the rays of the first pass (`simulator::trace_seabed_alone`:
 ///    the same launch angles, which follow the whole scene's top): the echo the seabed would return if no object
 ///    were there.
-///    For each such tube, the straight segment from the transducer to the seabed point it met is tested against
-///    the objects (`scene.objects().intersect`); an object on it blocks that energy, and the blocked energy is
-///    counted against that object. (Straight segments: exact in isovelocity water; in refracting water the shadow
-///    is the straight-ray one.) Where no object reaches over the side's area (`simulator::side_area`), this pass
+///    For each such tube, the ray of its first end (`tube_echo::launch`) is traced again through the objects alone,
+///    by the simulator's own propagation, up to the time it took to meet the seabed (`tube_echo::first_leg_s`): an
+///    object it meets first blocks that energy, and the blocked energy is counted against that object. So shadows
+///    follow the rays as they bend in refracting water, and are the straight-segment ones in isovelocity water.
+///    (A bounced path is tested on its first leg, up to the bounce.) Where no object reaches over the side's area
+///    (`simulator::side_area`), this pass
 ///    would trace the very rays and hits of the first, so it is not traced: its sums are the first pass's, bit for
 ///    bit. Along a survey with sparse targets most sides are such, and labels then cost little more than the image.
 /// A sample is then, in this order:
@@ -34,10 +36,9 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
@@ -88,6 +89,22 @@ struct label_params {
 namespace sss {
 
 namespace detail {
+
+/// The objects of a scene as a Scene of their own, without a seabed: the labels' second pass traces the bare
+/// seabed's rays through them to find what blocks each ray (file comment).
+template <Real T> struct objects_alone {
+    using value_type = T;
+    const scene::object_set<T>* objects = nullptr;
+
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
+        return objects->intersect(r, t_max_m);
+    }
+    [[nodiscard]] T seabed_height_m(T, T) const noexcept { return -std::numeric_limits<T>::infinity(); }
+    [[nodiscard]] T top_m() const noexcept { return objects->top_m(); }
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
+        return objects->clear_length_m(r, t_max_m, band_m);
+    }
+};
 
 /// The first pass (file comment): one piece of the scene's echo, kept apart by the hit it came from.
 template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<T>& e) {
@@ -146,12 +163,12 @@ template <class Sim, class Seabed>
             const hit<T>& h = e.surface;
             acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
             std::size_t blocker = std::numeric_limits<std::size_t>::max();
-            if (!objects.empty()) {
-                const vec3<T> d = h.point - p.position;
-                const T len = glm::length(d);
-                if (len > T(0)) {
-                    if (const auto o = objects.intersect(ray<T>{p.position, d / len}, len * T(0.9999))) blocker = acc.slot(o->object, o->label);
-                }
+            if (!objects.empty() && e.first_leg_s > T(0)) {
+                // Short of the seabed by a ten-thousandth, so that an object resting on it does not block its own
+                // contact point.
+                if (const auto o = sim.propagation().trace(ray<T>{p.position, e.launch}, objects_alone<T>{&objects},
+                                                           e.first_leg_s * T(0.9999)))
+                    blocker = acc.slot(o->surface.object, o->surface.label);
             }
             acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
                 const double w = share * e.power;
