@@ -30,6 +30,7 @@
 #include <sss/seabed/power_law_spectrum.hpp>
 #include <sss/seabed/ripples.hpp>
 #include <sss/seabed/targets.hpp>
+#include <sss/simulator.hpp>
 
 namespace sss_bench {
 
