@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstddef>
 #include <fstream>
 #include <iterator>
@@ -123,6 +124,12 @@ TEST_CASE("mapping a seabed never holds its heights in memory: the peak is the p
             for (std::size_t ix = 0; ix < big.nx; ++ix)
                 out[r * big.nx + ix] = 0.3f * std::sin(0.01f * float(ix)) * std::cos(0.002f * float(iy0 + r));
     });
+    struct remove_at_end {
+        ~remove_at_end() {
+            std::remove("big.raw");
+            std::remove("big.raw.txt");
+        }
+    } remove_files;
     const double file_kib = 4.0 * double(big.nx * big.ny) / 1024.0;
     {
         std::ofstream reset("/proc/self/clear_refs");

@@ -164,3 +164,37 @@ TEST_CASE("a sphere above a flat seabed returns a second echo at the seabed-boun
     const auto k = static_cast<std::size_t>(t_bounce / plain.dt_s()) + 1;
     CHECK(b.starboard[k] > a.starboard[k]);
 }
+
+TEST_CASE("every echo piece carries its ray: the launch direction and the time to the first surface, the bounce point "
+          "for a bounced path") {
+    // The sphere above the seabed of the test above, with the bounce on. Straight water at 1500 m/s: a direct piece's
+    // ray reaches its surface at launch * c * first_leg_s from the transducer; a bounced piece's ray reaches its
+    // bounce point there (on the seabed, z = 0, or on the sphere), before the piece's own, later, surface.
+    using namespace sss::scene;
+    std::vector<object<double>> objs{object<double>({sphere<double>({20.0, 0.0, 3.0}, 1.0, {0, 5, 3})}, {})};
+    const scene sc(flat_seabed<double>(0.0), object_set<double>(std::move(objs)));
+    sss::receiver_params rx;
+    rx.max_range_m = 40;
+    const sss::beam::ideal_fan<double> fan({.along_width_deg = 1.0, .vertical_width_deg = 80.0, .depression_deg = 40.0});
+    const sss::motion::straight_line<double> still({.start_m = {0.0, 0.0}, .heading_deg = 0.0, .speed_mps = 0.0, .altitude_m = 10.0, .ping_interval_s = 0.1});
+    const sim_t<bouncing_d> bouncing(bouncing_d(sand()), {}, fan, still, rx);
+    const auto pose = bouncing.motion().pose_at(0);
+    const double c = 1500.0;
+    std::size_t direct = 0, bounced = 0;
+    bouncing.trace(sc, pose, sss::side::starboard, [&](const sss::tube_echo<double>& t) {
+        REQUIRE(std::abs(glm::length(t.launch) - 1.0) < 1e-12);
+        const glm::dvec3 end = pose.position + t.launch * (c * t.first_leg_s);
+        if (std::abs(t.t0_s - 2.0 * t.first_leg_s) < 1e-12) { // direct: out to the surface and back
+            ++direct;
+            CHECK(glm::length(end - t.surface.point) < 1e-9 * c * t.first_leg_s);
+        } else { // bounced: the first leg ends on the seabed or on the sphere, and is the shorter part of the time
+            ++bounced;
+            const bool on_seabed = std::abs(end.z) < 1e-9;
+            const bool on_sphere = std::abs(glm::length(end - glm::dvec3{20.0, 0.0, 3.0}) - 1.0) < 1e-9;
+            CHECK((on_seabed || on_sphere));
+            CHECK(t.first_leg_s < 0.5 * t.t0_s);
+        }
+    });
+    CHECK(direct > 100);
+    CHECK(bounced > 10);
+}

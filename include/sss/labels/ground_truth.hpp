@@ -95,12 +95,13 @@ namespace detail {
 template <Real T> struct objects_alone {
     using value_type = T;
     const scene::object_set<T>* objects = nullptr;
+    T top = -std::numeric_limits<T>::infinity(); ///< world z above which no object the rays can reach rises (m)
 
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         return objects->intersect(r, t_max_m);
     }
     [[nodiscard]] T seabed_height_m(T, T) const noexcept { return -std::numeric_limits<T>::infinity(); }
-    [[nodiscard]] T top_m() const noexcept { return objects->top_m(); }
+    [[nodiscard]] T top_m() const noexcept { return top; }
     [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max_m, T band_m) const noexcept {
         return objects->clear_length_m(r, t_max_m, band_m);
     }
@@ -158,17 +159,33 @@ template <class Sim, class Seabed>
         acc.bare_material = acc.seabed_material;
         acc.first_bare_s = acc.first_seabed_s;
     } else {
+        // The objects as the side's rays see them: with the top of those over the side's area, as in the first pass.
+        const auto area = sim.side_area(p, sd);
+        const T area_top = area ? objects.top_m(area->lo, area->hi) : objects.top_m();
+        const objects_alone<T> blockers{&objects, std::isfinite(area_top) ? area_top : objects.top_m()};
+        constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+        // A bounced piece's ray is its direct piece's, just traced: its blocker is remembered.
+        vec3<T> last_launch{};
+        T last_leg_s = T(-1);
+        std::size_t last_blocker = none;
         sim.trace_seabed_alone(sc, p, sd, [&](const tube_echo<T>& e) {
             if (!(e.power > 0.0)) return;
             const hit<T>& h = e.surface;
             acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
-            std::size_t blocker = std::numeric_limits<std::size_t>::max();
+            std::size_t blocker = none;
             if (!objects.empty() && e.first_leg_s > T(0)) {
-                // Short of the seabed by a ten-thousandth, so that an object resting on it does not block its own
-                // contact point.
-                if (const auto o = sim.propagation().trace(ray<T>{p.position, e.launch}, objects_alone<T>{&objects},
-                                                           e.first_leg_s * T(0.9999)))
-                    blocker = acc.slot(o->surface.object, o->surface.label);
+                if (e.launch == last_launch && e.first_leg_s == last_leg_s) {
+                    blocker = last_blocker;
+                } else {
+                    // Short of the seabed by a ten-thousandth, so that an object resting on it does not block its
+                    // own contact point.
+                    if (const auto o = sim.propagation().trace(ray<T>{p.position, e.launch}, blockers,
+                                                               e.first_leg_s * T(0.9999)))
+                        blocker = acc.slot(o->surface.object, o->surface.label);
+                    last_launch = e.launch;
+                    last_leg_s = e.first_leg_s;
+                    last_blocker = blocker;
+                }
             }
             acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
                 const double w = share * e.power;
@@ -176,7 +193,7 @@ template <class Sim, class Seabed>
                     acc.bare_region[k] = h.label;
                     acc.bare_material[k] = h.material;
                 }
-                if (blocker != std::numeric_limits<std::size_t>::max()) acc.blocked[blocker][k] += w;
+                if (blocker != none) acc.blocked[blocker][k] += w;
             });
         });
     }

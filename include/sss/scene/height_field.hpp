@@ -52,9 +52,11 @@ template <Real T> struct height_field_params {
 template <Real T> struct external_heights {
     const T* data = nullptr;
     std::shared_ptr<const void> keeper{};
-    /// Optional: called while the height field reads the heights once (checks, bounds, pyramid) with
-    /// (first, count), the values [first, first + count) that this reading will not touch again, in bands of rows
-    /// from the south. A memory map drops those pages here, so that building the field never holds the heights.
+    /// Optional, a hint: the constructor reads the heights in two passes from the south row (the checks and bounds,
+    /// then the pyramid), and calls read_done(first, count) in each pass with bands of rows [first, first + count)
+    /// that this pass will not read again. The heights must stay readable (the next pass and the rays read them);
+    /// a memory map drops the bands' pages from resident memory here, so that building the field never holds the
+    /// heights.
     std::function<void(std::size_t first, std::size_t count)> read_done{};
 };
 
@@ -69,8 +71,9 @@ public:
     }
 
     /// The same over heights held elsewhere (`heights.data`, nx * ny values, kept alive by `heights.keeper`), e.g.
-    /// a memory-mapped file: nothing is copied; the heights are read once here (checks, bounds, pyramid) and then
-    /// as rays need them. `p.heights_m` must be empty; heights_m() is empty for such a field, heights() views them.
+    /// a memory-mapped file: nothing is copied; the heights are read here in two passes of row bands (checks and
+    /// bounds, then the pyramid; see external_heights::read_done) and then as rays need them. `p.heights_m` must be
+    /// empty; heights_m() is empty for such a field, heights() views them.
     height_field(height_field_params<T> p, external_heights<T> heights)
         : external_(std::move(heights.keeper)), materials_(std::move(p.materials)), regions_(std::move(p.regions)) {
         sss::require(heights.data != nullptr, "height_field.heights.data", "must not be null");
