@@ -151,6 +151,27 @@ elif case == "outputs":
         r = run([small, "-o", os.path.join(d, "c"), "--pings", "9:3"])
         check(r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1, f"an empty --pings range is one error line ({r.stderr})")
         check(files_in(os.path.join(d, "c")) == [], "a failing command line writes nothing")
+        for bad in ["-1:4", "0:1e3", "0x1:4", "0:+3", "0:10000001"]:
+            r = run([small, "-o", os.path.join(d, "c"), "--pings", bad])
+            check(r.returncode == 1 and "--pings" in r.stderr and files_in(os.path.join(d, "c")) == [],
+                  f"--pings {bad} is refused, naming --pings ({r.returncode}, {r.stderr})")
+        # A final name that is a directory: one error before any file is renamed, so what was there stays as it was.
+        k = os.path.join(d, "k")
+        os.makedirs(os.path.join(k, "small.npy"))
+        open(os.path.join(k, "small.png"), "wb").write(b"old")
+        r = run([small, "-o", k, "--pings", "0:2"])
+        check(r.returncode == 1 and "small.npy: an output would replace this directory" in r.stderr
+              and open(os.path.join(k, "small.png"), "rb").read() == b"old" and files_in(k) == ["small.npy", "small.png"],
+              f"an output named like a directory changes nothing ({files_in(k)}, {r.stderr})")
+        # Levels that overflow single precision: an error naming the keys, and no file.
+        loud = os.path.join(d, "loud.toml")
+        open(loud, "w").write(open(small).read().replace("[sonar]", "[receiver]\ntvg = true\ntvg_gain_db = 300\n\n[sonar]\nsource_level_db = 300"))
+        r = run([loud, "-o", os.path.join(d, "l"), "--pings", "0:2"])
+        check(r.returncode == 1 and "not finite" in r.stderr and "sonar.source_level_db" in r.stderr and files_in(os.path.join(d, "l")) == [],
+              f"a render that overflows is an error, not a file of infinities ({r.stderr})")
+        # The scene path is a directory.
+        r = run([d, "-o", os.path.join(d, "m")])
+        check(r.returncode == 1 and "is a directory, not a scene file" in r.stderr, f"a directory is not a scene ({r.stderr})")
 
 elif case == "interrupt":
     with tempfile.TemporaryDirectory() as d:

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "sss/io/height_field_io.hpp"
+#include "sss/io/sound_speed_profile.hpp"
+#include "sss/io/trajectory_csv.hpp"
 
 namespace fs = std::filesystem;
 using sss::vec2;
@@ -315,4 +317,29 @@ TEST_CASE("A writer that cannot create its file throws naming it and leaves noth
     CHECK(e.file() == path);
     CHECK_FALSE(fs::exists(path));
     CHECK_FALSE(fs::exists(path + ".tmp"));
+}
+
+TEST_CASE("Every reader refuses a directory by naming it, and a grid whose cell is an invalid parameter names the file "
+          "once") {
+    scratch_dir d;
+    const std::string dir = d.file("a_directory.asc");
+    fs::create_directories(dir);
+    fs::create_directories(d.file("raw.raw"));
+    sss::io::write_raw_sidecar(d.file("raw.raw"), {.nx = 2, .ny = 2, .cell_m = 1.0, .origin_x_m = 0.0, .origin_y_m = 0.0});
+    const auto says_directory = [&](const sss::file_error& e, const std::string& path) {
+        INFO(e.what());
+        CHECK(e.file() == path);
+        CHECK(contains(e.what(), "is a directory, not a file"));
+    };
+    says_directory(error_of([&] { (void)sss::io::read_esri_ascii<float>(dir); }), dir);
+    says_directory(error_of([&] { (void)sss::io::read_pgm16<float>(dir, 1.0f, {0.0f, 0.0f}, {.scale_m = 1.0f}); }), dir);
+    says_directory(error_of([&] { (void)sss::io::read_raw_f32<float>(d.file("raw.raw")); }), d.file("raw.raw"));
+    says_directory(error_of([&] { (void)sss::io::read_sound_speed_csv<float>(dir); }), dir);
+    says_directory(error_of([&] { (void)sss::io::read_trajectory_csv<float>(dir); }), dir);
+    // A cell size that underflows float: the grid's own check, inside the file's message, with one "sss: ".
+    write_text(d.file("tiny.asc"), "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1e-300\n1 2\n3 4\n");
+    const auto e = error_of([&] { (void)sss::io::read_esri_ascii<float>(d.file("tiny.asc")); });
+    INFO(e.what());
+    CHECK(contains(e.what(), "height_field.cell_m"));
+    CHECK(std::string(e.what()).find("sss: ", 1) == std::string::npos);
 }

@@ -345,3 +345,22 @@ TEST_CASE("Corrupted XTF bytes read as a file or give a file_error, never anythi
     CHECK(other == 0u);
     CHECK(rejected > 100u);
 }
+
+TEST_CASE("A ping time the header's calendar cannot hold (before the year 1 or after 9999) is refused by name") {
+    const render r = small_render();
+    xtf_file f = io::make_xtf<double>(r.w, r.poses, params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m));
+    // The last second of 9999 still encodes, with its date.
+    f.pings[0].time_unix_s = 253402300799.0;
+    const auto bytes = io::encode_xtf(f);
+    const auto back = io::parse_xtf(bytes, "year9999.xtf");
+    CHECK(back.pings[0].time_unix_s == doctest::Approx(253402300799.0));
+    for (const double t : {253402300800.0, 1e300, -62135596801.0}) {
+        f.pings[0].time_unix_s = t;
+        try {
+            (void)io::encode_xtf(f);
+            FAIL("no error for " << t);
+        } catch (const invalid_parameter& e) {
+            CHECK(e.parameter() == "xtf_ping.time_unix_s");
+        }
+    }
+}

@@ -11,9 +11,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -21,18 +23,35 @@ namespace {
 
 namespace sf = sss::scene_file;
 
-/// "A:B" -> [A, B); "A:" -> [A, pings).
+/// "A:B" -> [A, B); "A:" -> [A, pings). A and B are whole numbers (digits only); at most sf::max_pings pings.
 std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t pings) {
     const auto colon = s.find(':');
     if (colon == std::string::npos) throw CLI::ValidationError("--pings", "expects A:B (first ping, one past the last)");
-    try {
-        const std::size_t a = colon ? std::stoul(s.substr(0, colon)) : 0;
-        const std::size_t b = colon + 1 < s.size() ? std::stoul(s.substr(colon + 1)) : pings;
-        if (b <= a) throw CLI::ValidationError("--pings", "'" + s + "' is empty: B must exceed A");
-        return {a, b};
-    } catch (const std::logic_error&) {
-        throw CLI::ValidationError("--pings", "'" + s + "' is not A:B with whole numbers");
+    const auto whole = [&](const std::string& t) {
+        if (t.empty() || t.size() > 18 || !std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            throw CLI::ValidationError("--pings", "'" + s + "' is not A:B with whole numbers");
+        return static_cast<std::size_t>(std::stoull(t));
+    };
+    const std::size_t a = colon ? whole(s.substr(0, colon)) : 0;
+    const std::size_t b = colon + 1 < s.size() ? whole(s.substr(colon + 1)) : pings;
+    if (b <= a) throw CLI::ValidationError("--pings", "'" + s + "' is empty: B must exceed A");
+    if (b - a > std::size_t(sf::max_pings))
+        throw CLI::ValidationError("--pings", "'" + s + "' asks for " + std::to_string(b - a) + " pings; at most " +
+                                                  std::to_string(sf::max_pings) + " in one run: render ranges");
+    return {a, b};
+}
+
+/// A message as one printable line: control characters (a NUL or a newline read from a broken file) as '?', and
+/// at most 2000 bytes, so that a binary or enormous field cannot flood the terminal.
+std::string printable(std::string m) {
+    for (char& c : m)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    if (m.size() > 2000) {
+        std::size_t cut = 2000;
+        while (cut > 0 && (static_cast<unsigned char>(m[cut]) & 0xC0) == 0x80) --cut; // not inside a UTF-8 character
+        m = m.substr(0, cut) + " [...]";
     }
+    return m;
 }
 
 } // namespace
@@ -46,14 +65,15 @@ int main(int argc, char** argv) {
     app.add_option("scene", scene_path, "the scene file (TOML)")->required();
     app.add_option("-o,--output", out_dir, "directory the outputs go to (created if missing)");
     app.add_option("--pings", pings_arg, "pings A:B to render (default 0:render.pings)");
-    app.add_option("--threads", threads, "worker threads (default render.threads; 0 every core)");
+    app.add_option("--threads", threads, "worker threads (default render.threads; 0 every core)")
+        ->check(CLI::Range(0u, unsigned(sf::max_threads)));
     app.add_option("--seed", seed, "replaces seabed.seed (roughness and ripples)")->check(CLI::NonNegativeNumber);
     app.add_flag("--dry-run", dry_run, "validate, print the resolved scene as TOML and the coverage problems; render nothing");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);
-        std::fprintf(stderr, "sss-render: %s\n", e.what());
+        std::fprintf(stderr, "sss-render: %s\n", printable(e.what()).c_str());
         return 2;
     }
 
@@ -70,16 +90,22 @@ int main(int argc, char** argv) {
         // The scalar of the world and the simulators (each compiled in its own translation unit).
         return d.run.precision == "double" ? sf::render_scene<double>(d, request) : sf::render_scene<float>(d, request);
     } catch (const sf::interrupted_error& e) {
-        std::fprintf(stderr, "\nsss-render: %s\n", e.what());
+        std::fprintf(stderr, "\nsss-render: %s\n", printable(e.what()).c_str());
         return 130;
     } catch (const sss::scene_file::scene_error& e) {
-        std::fprintf(stderr, "sss-render: %s\n", e.what());
+        std::fprintf(stderr, "sss-render: %s\n", printable(e.what()).c_str());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "sss-render: %s\n",
+                     printable(scene_path + ": out of memory: the scene needs more than this machine can give (the seabed: "
+                                            "seabed.nx x seabed.ny; the image: the pings x sonar.max_range_m x "
+                                            "sonar.sample_rate_hz)").c_str());
         return 1;
     } catch (const std::exception& e) {
         // The library's own messages name the parameter or the file; the scene file is named here.
         std::string what = e.what();
         if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
-        std::fprintf(stderr, "sss-render: %s: %s\n", scene_path.c_str(), what.c_str());
+        std::fprintf(stderr, "sss-render: %s\n", printable(scene_path + ": " + what).c_str());
         return 1;
     }
 }

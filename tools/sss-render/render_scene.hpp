@@ -108,8 +108,20 @@ public:
         for (const char* s : suffixes) files_.emplace_back(dir_ / (tmp + s), dir_ / (stem + s));
         return (dir_ / tmp).string();
     }
+    /// Renames every file to its final name. Before the first rename, every final name is checked: none may be an
+    /// existing directory or name two outputs, so that those failures leave the old files as they were.
     std::vector<std::string> commit() {
         if (interrupted.load()) throw interrupted_error{};
+        for (std::size_t i = 0; i < files_.size(); ++i) {
+            const auto& final = files_[i].second;
+            std::error_code ec;
+            if (std::filesystem::is_directory(final, ec))
+                throw scene_error(final.string() + ": an output would replace this directory: remove it or choose "
+                                                   "another output.stem or -o");
+            for (std::size_t j = 0; j < i; ++j)
+                if (files_[j].second == final)
+                    throw scene_error(final.string() + ": two outputs would have this name: choose another output.stem");
+        }
         std::vector<std::string> names;
         for (const auto& [tmp, final] : files_) {
             std::filesystem::rename(tmp, final);
@@ -152,22 +164,63 @@ inline double white_level_db(const std::vector<double>& v) {
     return 10.0 * std::log10(*at);
 }
 
+/// This machine's memory (bytes); 0 where it cannot tell.
+inline double physical_memory_bytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
+}
+
+/// What the run would hold in memory at once, roughly (bytes): the synthesised seabed with its pyramid and
+/// synthesis buffers, the image with its labels, and what the outputs derive from it. A scene error naming the
+/// keys that set each part where the whole exceeds the machine's memory, before anything is built.
+template <Real T> void check_memory(const description& d, const render_request& r, std::size_t count) {
+    const double total = physical_memory_bytes();
+    if (!(total > 0)) return;
+    const double samples = std::ceil(2.0 * d.sensor.max_range_m / d.sea.sound_speed_mps * d.sensor.sample_rate_hz);
+    const double values = double(count) * 2.0 * samples;
+    const bool labels = d.out.coco || d.out.yolo || d.out.label_images;
+    const double seabed = d.bed.file.empty() ? 2.5 * double(d.bed.nx) * double(d.bed.ny) * sizeof(T) : 0.0;
+    const double image = values * (double(sizeof(T)) + (labels ? double(sizeof(sss::sample_label)) : 0.0) +
+                                   (d.out.png || d.out.ground_range ? 9.0 : 0.0));
+    const double ground = d.out.ground_range ? double(count) * 2.0 * std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m) *
+                                                   (9.0 + (labels ? double(sizeof(sss::sample_label)) : 0.0))
+                                             : 0.0;
+    if (seabed + image + ground <= total) return;
+    const auto gib = [](double b) { return detail::fmt(std::round(b / double(1 << 30) * 10.0) / 10.0) + " GiB"; };
+    throw scene_error(r.scene_path + ": the run needs about " + gib(seabed + image + ground) + " of memory, more than this machine's " +
+                      gib(total) + ": the seabed " + gib(seabed) + " (seabed.nx x seabed.ny), the image " + gib(image) + " (" +
+                      std::to_string(count) + " pings from " + r.pings_asked + " x 2 x " + detail::fmt(samples) +
+                      " samples from sonar.max_range_m and sonar.sample_rate_hz)" +
+                      (d.out.ground_range ? ", the ground-range image " + gib(ground) + " (output.ground_range_cell_m)" : std::string()));
+}
+
 } // namespace detail
 
 template <Real T> int render_scene(const description& d, const render_request& r) {
     const std::size_t count = r.last - r.first;
+    detail::check_memory<T>(d, r, count);
     const extent e = d.bed.file.empty() ? extent_of(d) : extent_of(load_seabed<T>(d));
     // The track at the scene's altitude (a trajectory: its own z), for the ping count and the coverage.
     const scene_motion<T> track = motion_of(d, T(d.tow.altitude_m));
     if (const auto beyond = pings_beyond(d, track, r.last, r.pings_asked); !beyond.empty())
         throw scene_error(r.scene_path + ": " + beyond);
     const auto problems = swath_problems(d, e, track, r.first, count);
+    check_sound_speed_file(d);
     if (r.dry_run) {
         std::fputs(to_toml(d).c_str(), stdout);
         for (const auto& p : problems) std::fprintf(stderr, "sss-render: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
         return 0;
     }
     for (const auto& p : problems) std::fprintf(stderr, "sss-render: warning: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
+    // The output directory, made and checked before the render rather than after it.
+    {
+        std::error_code ec;
+        if (r.out_dir.empty()) throw scene_error("-o: the output directory must not be empty");
+        std::filesystem::create_directories(r.out_dir, ec);
+        if (ec || !std::filesystem::is_directory(r.out_dir, ec))
+            throw scene_error(r.out_dir + ": cannot be the output directory (" + (ec ? ec.message() : "not a directory") + ")");
+        if (access(r.out_dir.c_str(), W_OK) != 0) throw scene_error(r.out_dir + ": the output directory is not writable");
+    }
     std::signal(SIGINT, sss_render_on_sigint);
 
     const auto t0 = std::chrono::steady_clock::now();
@@ -188,8 +241,11 @@ template <Real T> int render_scene(const description& d, const render_request& r
         return detail::render(sim, w, r.first, count, unsigned(d.run.threads), want_labels ? &labels : nullptr);
     });
     const auto t2 = std::chrono::steady_clock::now();
+    if (const auto bad = std::count_if(image.values.begin(), image.values.end(), [](T v) { return !std::isfinite(v); }); bad > 0)
+        throw scene_error(r.scene_path + ": " + std::to_string(bad) + " samples of the render are not finite: the levels overflow " +
+                          (std::is_same_v<T, float> ? "single precision" : "double precision") +
+                          "; lower sonar.source_level_db or receiver.tvg_gain_db (or set render.precision = \"double\")");
 
-    std::filesystem::create_directories(r.out_dir);
     detail::output_set files(r.out_dir);
     const std::string& stem = d.out.stem;
     // Each ping's altitude above the seabed under the towfish (XTF, ground range), and the ground-range cells per

@@ -53,6 +53,13 @@ private:
     std::size_t byte_offset_;
 };
 
+/// The message of e without its leading "sss: ", to be wrapped in another error's message (a file_error naming the
+/// file whose content was an invalid parameter).
+[[nodiscard]] inline std::string_view message_body(const error& e) noexcept {
+    const std::string_view m = e.what();
+    return m.starts_with("sss: ") ? m.substr(5) : m;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Validation helpers. Each throws invalid_parameter naming the parameter; the message is composed
 // only when the check fails, so a passing check costs a comparison (they are used on hot paths too).

@@ -183,7 +183,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     try {
         return scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = static_cast<T>(*cellsize), .origin_m = origin, .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
-        throw fail(0, e.what());
+        throw fail(0, std::string(message_body(e)));
     }
 }
 
@@ -344,7 +344,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
                                        .origin_m = vec2<T>{static_cast<T>(g.origin_x_m), static_cast<T>(g.origin_y_m)},
                                        .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
-        throw file_error(side_path, 0, e.what());
+        throw file_error(side_path, 0, message_body(e));
     }
 }
 

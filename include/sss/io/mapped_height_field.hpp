@@ -117,7 +117,7 @@ private:
         file->release_resident();
         return hf;
     } catch (const invalid_parameter& e) {
-        throw file_error(path, 0, e.what());
+        throw file_error(path, 0, message_body(e));
     }
 }
 

@@ -38,6 +38,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 #include "sss/core/constants.hpp"
@@ -143,6 +144,8 @@ template <Real T>
 
 /// Reads trajectory samples from a CSV file. Throws sss::file_error when it cannot be opened or is malformed.
 template <Real T> [[nodiscard]] motion::trajectory_samples<T> read_trajectory_csv(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) throw file_error(file.string(), 0, "is a directory, not a file");
     std::ifstream in(file);
     if (!in) throw file_error(file.string(), 0, "cannot open for reading");
     return read_trajectory_csv<T>(in, file.string());

@@ -144,7 +144,11 @@ template <Real T>
         put_le<std::uint8_t>(q, 2, 0);
         put_le<std::uint16_t>(q, 4, 2);
         put_le<std::uint32_t>(q, 10, static_cast<std::uint32_t>(bytes));
-        require_finite(p.time_unix_s, "xtf_ping.time_unix_s");
+        // Years 1 to 9999, as the header's year field and the civil calendar hold them.
+        sss::require(p.time_unix_s >= -62135596800.0 && p.time_unix_s < 253402300800.0, "xtf_ping.time_unix_s", [&] {
+            return "must lie in years 1 to 9999 (-62135596800 to 253402300800 s since 1970), got " +
+                   std::to_string(p.time_unix_s);
+        });
         const long long cs = std::llround(p.time_unix_s * 100.0);
         const long long days = (cs >= 0 ? cs : cs - 8639999) / 8640000;
         const long long in_day = cs - days * 8640000;

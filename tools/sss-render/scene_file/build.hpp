@@ -349,13 +349,39 @@ template <Real T, class Scattering, class Propagation>
 using simulator_of = sss::simulator<Scattering, Propagation, scene_beam<T>, scene_motion<T>, receiver_stages>;
 template <Real T> using jackson_scattering = sss::scattering::by_material<typename policy<T>::jackson, sss::scattering::hard_target<T>>;
 
+/// The sound-speed file of a layered scene (water.svp_file), read and held to the scene's own rule for its knots:
+/// every speed in [1300, 1700] m/s. Its errors name the key and the file.
+template <Real T> [[nodiscard]] sss::propagation::sound_speed_profile<T> load_sound_speed_file(const description& d) {
+    std::optional<sss::propagation::sound_speed_profile<T>> profile;
+    try {
+        profile.emplace(sss::io::read_sound_speed_csv<T>(d.sea.svp_file));
+    } catch (const sss::error& e) {
+        std::string what = e.what();
+        if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
+        throw scene_error(d.path + ": water.svp_file: " + what);
+    }
+    for (std::size_t i = 0; i < profile->speeds_mps().size(); ++i) {
+        const double c = double(profile->speeds_mps()[i]);
+        if (!(c >= 1300 && c <= 1700))
+            throw scene_error(d.path + ": water.svp_file: " + d.sea.svp_file + ": knot " + std::to_string(i + 1) + " (depth " +
+                              detail::fmt(double(profile->depths_m()[i])) + " m): speed " + detail::fmt(c) +
+                              " m/s is outside [1300, 1700] m/s");
+    }
+    return std::move(*profile);
+}
+
+/// The checks of load_sound_speed_file, for --dry-run; nothing without a file.
+inline void check_sound_speed_file(const description& d) {
+    if (d.sea.model == "layered" && !d.sea.svp_file.empty()) (void)load_sound_speed_file<double>(d);
+}
+
 /// The layered water of scene d: its profile, the surface ping0_z + towfish_depth_m above, its absorption.
 template <Real T>
 [[nodiscard]] sss::propagation::layered<T> layered_water(const description& d, const world<T>& w, const scene_motion<T>& tow) {
     auto profile = d.sea.svp_file.empty()
                        ? sss::propagation::sound_speed_profile<T>(std::vector<T>(d.sea.depth_m.begin(), d.sea.depth_m.end()),
                                                                   std::vector<T>(d.sea.speed_mps.begin(), d.sea.speed_mps.end()))
-                       : sss::io::read_sound_speed_csv<T>(d.sea.svp_file);
+                       : load_sound_speed_file<T>(d);
     return sss::propagation::layered<T>(
         std::move(profile),
         {.surface_z_m = ping0_z(d, w, tow) + T(d.sea.towfish_depth_m), .frequency_hz = T(d.sensor.frequency_hz),

@@ -24,14 +24,17 @@
 #pragma pop_macro("NDEBUG")
 
 #include <algorithm>
-#include <fstream>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace sss::scene_file {
@@ -160,32 +163,66 @@ public:
         return t_.get(key);
     }
 
+    /// A finite number, within the bound its unit allows (unit_bound).
     void number(std::string_view key, double& v) {
         if (const auto* n = node(key)) {
             if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
                 if (!std::isfinite(*d)) fail(key, "must be a finite number");
+                if (const auto b = unit_bound(key); b.limit > 0 && !(std::abs(*d) <= b.limit))
+                    fail(key, "must lie within +-" + fmt(b.limit) + " " + b.unit + ", got " + fmt(*d));
                 v = *d;
             } else
                 fail(key, std::string("must be a number, not ") + type_name(*n));
         }
     }
+    /// A number > 0, and at least its unit's least value (unit_bound).
     void positive(std::string_view key, double& v) {
         number(key, v);
         if (!(v > 0)) fail(key, "must be > 0, got " + fmt(v));
+        not_vanishing(key, v, false);
+    }
+    /// What a key's unit allows, from its name: the largest magnitude, and the least value a quantity that must
+    /// be > 0 may take (smaller ones vanish in single precision or in the renderer's arithmetic). Lengths (`_m`):
+    /// within 1e8 m (beyond any survey, UTM's 1e7 m northings included), at least 1e-9 m; levels (`_db`): within
+    /// 300 dB (10^30 in power, within single precision with room for the echoes); angles (`_deg`): within 1e6
+    /// degrees; times (`_s`): within 1e12 s, at least 1e-9 s; speeds (`_mps`): within 1e5 m/s, at least 1e-6 m/s;
+    /// frequencies (`_hz`): within 1e10 Hz, at least 1e-6 Hz. Other keys keep their own checks.
+    struct bound {
+        double limit = 0; ///< largest magnitude; 0: none
+        double least = 0; ///< least value of a quantity > 0
+        const char* unit = "";
+    };
+    [[nodiscard]] static bound unit_bound(std::string_view key) {
+        if (key.ends_with("_m")) return {1e8, 1e-9, "m"};
+        if (key.ends_with("_db")) return {300, 0, "dB"};
+        if (key.ends_with("_deg")) return {1e6, 0, "degrees"};
+        if (key.ends_with("_mps")) return {1e5, 1e-6, "m/s"};
+        if (key.ends_with("_hz")) return {1e10, 1e-6, "Hz"};
+        if (key.ends_with("_s")) return {1e12, 1e-9, "s"};
+        return {};
     }
     void non_negative(std::string_view key, double& v) {
         number(key, v);
         if (!(v >= 0)) fail(key, "must be >= 0, got " + fmt(v));
+        if (v > 0) not_vanishing(key, v, true);
+    }
+    /// A value > 0 that would vanish in the renderer's arithmetic (below its unit's least value) is an error.
+    void not_vanishing(std::string_view key, double v, bool zero_allowed) const {
+        if (const auto b = unit_bound(key); v < b.least)
+            fail(key, std::string(zero_allowed ? "must be 0 or at least " : "must be at least ") + fmt(b.least) + " " + b.unit +
+                          ", got " + fmt(v));
     }
     void in_range(std::string_view key, double& v, double lo, double hi) {
         number(key, v);
         if (!(v >= lo && v <= hi)) fail(key, "must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(v));
     }
-    void integer(std::string_view key, std::int64_t& v, std::int64_t lo = std::numeric_limits<std::int64_t>::min()) {
+    void integer(std::string_view key, std::int64_t& v, std::int64_t lo = std::numeric_limits<std::int64_t>::min(),
+                 std::int64_t hi = std::numeric_limits<std::int64_t>::max()) {
         if (const auto* n = node(key)) {
             if (!n->is_integer()) fail(key, std::string("must be an integer, not ") + type_name(*n));
             v = n->value<std::int64_t>().value();
             if (v < lo) fail(key, "must be >= " + std::to_string(lo) + ", got " + std::to_string(v));
+            if (v > hi) fail(key, "must be <= " + std::to_string(hi) + ", got " + std::to_string(v));
         }
     }
     void boolean(std::string_view key, bool& v) {
@@ -214,7 +251,11 @@ public:
         const auto* a = n.as_array();
         if (!a || a->size() != 2 || !all_numbers(*a))
             fail_at(n.source(), key, "must be a pair of numbers [x_m, y_m]");
-        return {a->get(0)->value<double>().value(), a->get(1)->value<double>().value()};
+        const xy v{a->get(0)->value<double>().value(), a->get(1)->value<double>().value()};
+        if (!std::isfinite(v[0]) || !std::isfinite(v[1])) fail_at(n.source(), key, "must be a pair of finite numbers");
+        if (const auto b = unit_bound(key); b.limit > 0 && !(std::abs(v[0]) <= b.limit && std::abs(v[1]) <= b.limit))
+            fail_at(n.source(), key, "must lie within +-" + fmt(b.limit) + " " + b.unit);
+        return v;
     }
     /// The sub-table at key (absent: an empty table).
     [[nodiscard]] table_reader sub(std::string_view key) {
@@ -307,7 +348,8 @@ inline void read_array_axis(table_reader& t, const std::string& axis, array_axis
         double sum = 0;
         for (const auto& e : *list) {
             const auto v = e.value<double>();
-            if (!e.is_number() || !v || !std::isfinite(*v) || *v < 0) t.fail(shading, "each weight must be a finite number >= 0");
+            if (!e.is_number() || !v || !std::isfinite(*v) || *v < 0 || *v > 1e30)
+                t.fail(shading, "each weight must be a number in [0, 1e30]");
             a.shading.push_back(*v);
             sum += *v;
         }
@@ -345,8 +387,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
 
     {
         auto r = top.sub("render");
-        r.integer("pings", d.run.pings, 1);
-        r.integer("threads", d.run.threads, 0);
+        r.integer("pings", d.run.pings, 1, max_pings);
+        r.integer("threads", d.run.threads, 0, max_threads);
         r.integer("rays_along", d.run.rays_along, 1);
         if (d.run.rays_along > 4096) r.fail("rays_along", "must be <= 4096, got " + std::to_string(d.run.rays_along));
         r.positive("rays_per_sample", d.run.rays_per_sample);
@@ -467,7 +509,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
     for (auto& ot : top.tables("object")) {
         object o;
         ot.choice("type", o.type, {"lying_cylinder", "tethered_mine", "pipeline", "sphere", "cylinder"});
-        ot.integer("class_id", o.class_id, 1);
+        ot.integer("class_id", o.class_id, 1, std::numeric_limits<std::uint32_t>::max());
         o.class_name = o.type;
         ot.string("class_name", o.class_name);
         if (o.class_name.empty()) ot.fail("class_name", "must not be empty");
@@ -487,7 +529,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             ot.number("end0_height_m", o.end0_height_m);
             ot.number("end1_height_m", o.end1_height_m);
             ot.positive("radius_m", o.radius_m);
-            if (o.center_m == o.end_m && o.end0_height_m == o.end1_height_m) ot.fail("end_m", "the cylinder's ends coincide");
+            if (std::hypot(o.end_m[0] - o.center_m[0], o.end_m[1] - o.center_m[1], o.end1_height_m - o.end0_height_m) < 1e-6)
+                ot.fail("end_m", "the cylinder's ends coincide (closer than 1e-6 m)");
         } else if (o.type == "tethered_mine") {
             ot.point("anchor_m", o.anchor_m);
             ot.choice("case_shape", o.case_shape, {"sphere", "cylinder"});
@@ -500,7 +543,12 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             if (const auto* n = ot.node("route_m")) {
                 const auto* a = n->as_array();
                 if (!a || a->size() < 2) ot.fail("route_m", "must be an array of at least two [x_m, y_m] points");
-                for (const auto& e : *a) o.route_m.push_back(ot.point_of(e, "route_m"));
+                for (const auto& e : *a) {
+                    o.route_m.push_back(ot.point_of(e, "route_m"));
+                    const std::size_t k = o.route_m.size() - 1;
+                    if (k > 0 && std::hypot(o.route_m[k][0] - o.route_m[k - 1][0], o.route_m[k][1] - o.route_m[k - 1][1]) < 1e-6)
+                        ot.fail_at(e.source(), "route_m", "point " + std::to_string(k) + " lies on the point before it (closer than 1e-6 m)");
+                }
             } else
                 ot.fail("type", "a pipeline needs route_m");
             ot.positive("radius_m", o.radius_m);
@@ -523,8 +571,11 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                     if (!a || a->empty()) w.fail(key, "must be a non-empty array of numbers");
                     v.clear();
                     for (const auto& e : *a) {
-                        if (!e.is_number()) w.fail(key, "must be a non-empty array of numbers");
-                        v.push_back(e.value<double>().value());
+                        const double x = e.is_number() ? e.value<double>().value() : 0.0;
+                        if (!e.is_number() || !std::isfinite(x)) w.fail(key, "must be a non-empty array of finite numbers");
+                        if (const auto b = detail::table_reader::unit_bound(key); b.limit > 0 && !(std::abs(x) <= b.limit))
+                            w.fail(key, "each value must lie within +-" + detail::table_reader::fmt(b.limit) + " " + b.unit);
+                        v.push_back(x);
                     }
                 }
             };
@@ -534,7 +585,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                 w.fail("speed_mps", "needs one speed per depth (" + std::to_string(o.depth_m.size()) + " depths, " +
                                         std::to_string(o.speed_mps.size()) + " speeds)");
             for (std::size_t i = 0; i < o.depth_m.size(); ++i) {
-                if (i > 0 && !(o.depth_m[i] > o.depth_m[i - 1])) w.fail("depth_m", "must increase strictly");
+                // Strictly in the render's own precision too: knots that coincide in float are one knot.
+                if (i > 0 && (!(o.depth_m[i] > o.depth_m[i - 1]) ||
+                              (d.run.precision == "float" && !(float(o.depth_m[i]) > float(o.depth_m[i - 1])))))
+                    w.fail("depth_m", "must increase strictly (in the render's precision)");
                 if (!(o.speed_mps[i] >= 1300 && o.speed_mps[i] <= 1700)) w.fail("speed_mps", "each speed must be in [1300, 1700]");
             }
             w.non_negative("towfish_depth_m", o.towfish_depth_m);
@@ -555,17 +609,18 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         s.in_range("along_width_deg", o.along_width_deg, 1e-6, 179.999);
         s.in_range("vertical_width_deg", o.vertical_width_deg, 1e-6, 180);
         s.in_range("depression_deg", o.depression_deg, -90, 90);
-        s.positive("sample_rate_hz", o.sample_rate_hz);
+        s.in_range("sample_rate_hz", o.sample_rate_hz, 1, 1e9);
         s.positive("max_range_m", o.max_range_m);
-        s.number("source_level_db", o.source_level_db);
+        s.in_range("source_level_db", o.source_level_db, -300, 300);
         s.positive("pulse_length_s", o.pulse_length_s);
+        if (o.pulse_length_s > 1) s.fail("pulse_length_s", "must be at most 1 s, got " + detail::table_reader::fmt(o.pulse_length_s));
         s.choice("pulse_shape", o.pulse_shape, {"rectangular", "hann", "lfm"});
         s.non_negative("pulse_bandwidth_hz", o.pulse_bandwidth_hz);
         if (o.pulse_shape == "lfm" && o.pulse_bandwidth_hz * o.pulse_length_s < 1)
             s.fail("pulse_bandwidth_hz", "an lfm pulse needs pulse_bandwidth_hz x pulse_length_s >= 1");
         if (o.beam == "planar_array") {
             s.number("beam_threshold_db", o.beam_threshold_db);
-            if (!(o.beam_threshold_db < 0))
+            if (!(o.beam_threshold_db <= -1e-6))
                 s.fail("beam_threshold_db", "must be < 0 dB, got " + detail::table_reader::fmt(o.beam_threshold_db));
             detail::read_array_layout(s.sub("transmit"), o.transmit);
             if (s.table().get("receive")) detail::read_array_layout(s.sub("receive"), o.receive.emplace());
@@ -608,7 +663,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         const auto wobble = [&](std::string_view key, oscillation& w, double limit) {
             auto t = m.sub(key);
             t.number("amplitude", w.amplitude);
-            if (limit > 0 && !(std::abs(w.amplitude) < limit))
+            if (limit == 0) limit = detail::table_reader::unit_bound(key).limit; // the table's unit: sway_m, yaw_deg
+            if (!(std::abs(w.amplitude) < limit))
                 t.fail("amplitude", "must be below " + detail::table_reader::fmt(limit) + " in magnitude");
             t.positive("period_s", w.period_s);
             t.number("phase_deg", w.phase_deg);
@@ -632,20 +688,22 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.boolean("noise", o.noise);
         r.in_range("sea_state", o.sea_state, 0, 6);
         r.non_negative("directivity_index_db", o.directivity_index_db);
-        r.number("noise_source_level_db", o.noise_source_level_db);
+        r.in_range("noise_source_level_db", o.noise_source_level_db, -300, 300);
         r.boolean("volume", o.volume);
         r.number("sv_db", o.sv_db);
         r.positive("psi_sr", o.psi_sr);
         r.boolean("tvg", o.tvg);
-        r.number("tvg_spreading_n", o.tvg_spreading_n);
-        r.number("tvg_gain_db", o.tvg_gain_db);
+        r.in_range("tvg_spreading_n", o.tvg_spreading_n, -100, 100);
+        r.in_range("tvg_gain_db", o.tvg_gain_db, -300, 300);
         r.finish();
     }
     {
         auto o = top.sub("output");
         o.string("stem", d.out.stem);
-        if (d.out.stem.empty() || d.out.stem.find('/') != std::string::npos)
-            o.fail("stem", "must be a non-empty file name without '/'");
+        if (d.out.stem.size() > 200) o.fail("stem", "must be at most 200 bytes (file names hold 255 with the suffixes)");
+        if (d.out.stem.empty() || d.out.stem.find('/') != std::string::npos ||
+            std::any_of(d.out.stem.begin(), d.out.stem.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+            o.fail("stem", "must be a non-empty file name without '/' or control characters");
         o.boolean("png", d.out.png);
         o.positive("png_dynamic_range_db", d.out.png_dynamic_range_db);
         o.choice("png_scale", d.out.png_scale, {"db", "quantised"});
@@ -653,7 +711,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         o.positive("ground_range_cell_m", d.out.ground_range_cell_m);
         o.boolean("npy", d.out.npy);
         o.boolean("xtf", d.out.xtf);
-        o.in_range("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg, -89.9, 89.9);
+        o.in_range("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg, -89, 89); // the local projection's reach
         o.in_range("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg, -180, 180);
         o.integer("xtf_utm_zone", d.out.xtf_utm_zone, 0);
         if (d.out.xtf_utm_zone > 60)
@@ -664,10 +722,12 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             if (d.out.xtf_origin_latitude_deg != 0) o.fail("xtf_origin_latitude_deg", unused);
             if (d.out.xtf_origin_longitude_deg != 0) o.fail("xtf_origin_longitude_deg", unused);
         }
-        o.non_negative("xtf_start_unix_s", d.out.xtf_start_unix_s);
+        o.in_range("xtf_start_unix_s", d.out.xtf_start_unix_s, 0, 253402300799); // to the end of the year 9999
         o.boolean("coco", d.out.coco);
         o.boolean("yolo", d.out.yolo);
         o.boolean("label_images", d.out.label_images);
+        if (d.out.yolo && d.out.stem == "classes")
+            o.fail("stem", "'classes' would write both the boxes and the class list of yolo = true to classes.txt: choose another");
         o.finish();
     }
     top.finish();
@@ -676,6 +736,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
 
 /// The scene in file `path`.
 [[nodiscard]] inline description parse_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw scene_error(path + ": is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw scene_error(path + ": cannot open the scene file");
     std::ostringstream s;

@@ -14,6 +14,12 @@ namespace sss::scene_file {
 
 using xy = std::array<double, 2>;
 
+/// Most pings one run renders (`render.pings`, `--pings`): a day and more at 10 pings/s; a longer survey is
+/// rendered in ping ranges.
+inline constexpr std::int64_t max_pings = 10'000'000;
+/// Most worker threads (`render.threads`, `--threads`).
+inline constexpr std::int64_t max_threads = 1024;
+
 struct ripples {
     double wavelength_m = 0.5, height_m = 0.05, crest_heading_deg = 90, symmetry_index = 1;
     double sinuosity_m = 0, sinuosity_wavelength_m = 0, perturbation_m = 0, height_variation = 0;

@@ -6,6 +6,7 @@
 #include "scene.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -20,9 +21,17 @@ inline std::string num(double v) {
     if (s.find_first_of(".eEn") == std::string::npos) s += ".0"; // stays a TOML float
     return s;
 }
+/// A TOML basic string: quotes and backslashes escaped, control characters as \uXXXX (TOML allows none raw).
 inline std::string quoted(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "\\u%04X", unsigned(u));
+            out += buf;
+            continue;
+        }
         if (c == '"' || c == '\\') out += '\\';
         out += c;
     }

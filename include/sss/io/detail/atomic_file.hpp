@@ -20,6 +20,8 @@ namespace sss::detail {
 
 /// The whole file as bytes; file_error when it cannot be read.
 [[nodiscard]] inline std::string read_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw file_error(path, 0, "is a directory, not a file");
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw file_error(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
     std::string data;

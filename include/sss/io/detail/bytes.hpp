@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -74,6 +76,8 @@ inline void write_file_atomically(const std::string& path, std::string_view text
 
 /// The whole content of a binary file; file_error if it cannot be read.
 [[nodiscard]] inline std::vector<std::uint8_t> read_file_bytes(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw file_error(path, 0, "is a directory, not a file");
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (f == nullptr) throw file_error(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
     std::vector<std::uint8_t> bytes;

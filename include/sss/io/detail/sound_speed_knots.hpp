@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -86,6 +87,8 @@ template <Real T> struct knot_list {
 }
 
 [[nodiscard]] inline std::ifstream open_for_reading(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw file_error(path.string(), 0, "is a directory, not a file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw file_error(path.string(), 0, "cannot open for reading");
     return in;
