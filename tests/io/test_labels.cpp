@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sss/io/labels.hpp"
+#include "sss/propagation/layered.hpp"
 #include "sss/scene/flat_seabed.hpp"
 #include "sss/scene/height_field.hpp"
 #include "sss/scene/scene.hpp"
