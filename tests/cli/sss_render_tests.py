@@ -155,6 +155,12 @@ elif case == "outputs":
             r = run([small, "-o", os.path.join(d, "c"), "--pings", bad])
             check(r.returncode == 1 and "--pings" in r.stderr and files_in(os.path.join(d, "c")) == [],
                   f"--pings {bad} is refused, naming --pings ({r.returncode}, {r.stderr})")
+        for bad in ["-5", "99999999999999999999", "9223372036854775808", "1e3", ""]:
+            r = run([small, "-o", os.path.join(d, "c"), "--seed", bad])
+            check(r.returncode == 1 and "--seed" in r.stderr and files_in(os.path.join(d, "c")) == [],
+                  f"--seed {bad!r} is refused, naming --seed, not clamped ({r.returncode}, {r.stderr})")
+        r = run([small, "--dry-run", "--seed", "0009223372036854775807"])
+        check(r.returncode == 0 and "seed = 9223372036854775807" in r.stdout, f"--seed takes 2^63 - 1 ({r.stderr})")
         # A final name that is a directory: one error before any file is renamed, so what was there stays as it was.
         k = os.path.join(d, "k")
         os.makedirs(os.path.join(k, "small.npy"))

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
 #include <utility>
@@ -41,6 +42,17 @@ std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t
     return {a, b};
 }
 
+/// --seed S: digits only, 0 to 2^63 - 1 (a larger value is an error, not clamped).
+std::int64_t seed_of(const std::string& s) {
+    const std::string max = std::to_string(std::numeric_limits<std::int64_t>::max());
+    const std::size_t lead = std::min(s.find_first_not_of('0'), s.empty() ? 0 : s.size() - 1); // keep one digit
+    const std::string digits = s.substr(lead);
+    if (s.empty() || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+        digits.size() > max.size() || (digits.size() == max.size() && digits > max))
+        throw CLI::ValidationError("--seed", "'" + s + "' is not a whole number from 0 to " + max);
+    return std::stoll(digits);
+}
+
 /// A message as one printable line: control characters (a NUL or a newline read from a broken file) as '?', and
 /// at most 2000 bytes, so that a binary or enormous field cannot flood the terminal.
 std::string printable(std::string m) {
@@ -60,14 +72,14 @@ int main(int argc, char** argv) {
     CLI::App app{"sss-render: renders a sidescan sonar scene file (TOML) to images and arrays"};
     std::string scene_path, out_dir = ".", pings_arg;
     unsigned threads = 0;
-    std::int64_t seed = -1;
+    std::string seed_arg;
     bool dry_run = false;
     app.add_option("scene", scene_path, "the scene file (TOML)")->required();
     app.add_option("-o,--output", out_dir, "directory the outputs go to (created if missing)");
     app.add_option("--pings", pings_arg, "pings A:B to render (default 0:render.pings)");
     app.add_option("--threads", threads, "worker threads (default render.threads; 0 every core)")
         ->check(CLI::Range(0u, unsigned(sf::max_threads)));
-    app.add_option("--seed", seed, "replaces seabed.seed (roughness and ripples)")->check(CLI::NonNegativeNumber);
+    app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples): a whole number from 0 to 2^63 - 1");
     app.add_flag("--dry-run", dry_run, "validate, print the resolved scene as TOML and the coverage problems; render nothing");
     try {
         app.parse(argc, argv);
@@ -79,7 +91,7 @@ int main(int argc, char** argv) {
 
     try {
         sf::description d = sf::parse_file(scene_path);
-        if (seed >= 0) d.bed.seed = seed;
+        if (app.count("--seed")) d.bed.seed = seed_of(seed_arg);
         if (app.count("--threads")) d.run.threads = threads;
         const auto [first, last] = pings_arg.empty() ? std::pair<std::size_t, std::size_t>{0, std::size_t(d.run.pings)}
                                                      : ping_range(pings_arg, std::size_t(d.run.pings));

@@ -469,6 +469,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             if (p.type == "trench") {
                 st.point("start_m", p.start_m);
                 st.point("end_m", p.end_m);
+                if (std::hypot(p.end_m[0] - p.start_m[0], p.end_m[1] - p.start_m[1]) < 1e-6)
+                    st.fail("end_m", "the trench's ends coincide (closer than 1e-6 m)");
                 st.positive("width_m", p.width_m);
                 st.non_negative("floor_width_m", p.floor_width_m);
                 if (!(p.floor_width_m < p.width_m)) st.fail("floor_width_m", "must be below width_m");
