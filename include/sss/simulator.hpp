@@ -18,7 +18,9 @@
 /// (receiver/time_sampler.hpp). Where two adjacent rays are not neighbours on one surface (an occlusion, an
 /// object's silhouette) or the surface's echo changes too fast between them (rough facets), the launch angle
 /// between them is bisected until the edge is located to 1/16 of a sample (sampling/detail/tube_refinement.hpp):
-/// each side of an edge then keeps its energy up to it, and shadows stay empty. Where a column's objects' edges
+/// each side of an edge then keeps its energy up to it, and shadows stay empty (with a GuidedPropagation each new
+/// ray is traced beside the steeper of the two, whose first hit it cannot meet anything of the seabed before:
+/// scene/height_field_beside.hpp; the same hits, sooner). Where a column's objects' edges
 /// disagree with a neighbour's (an edge crossing the beam obliquely), the launch angles between the disagreeing
 /// edges are traced again as narrower columns, in thirds where they still disagree (ray_density.along_split; the
 /// seabed's own shadow edges too with ray_density.along_split_seabed). On an open flat seabed nothing is refined
@@ -615,7 +617,8 @@ private:
                 const double e = prev.e - step;
                 if (e < double(f.ext.depression_min_rad)) break;
                 ray_end bounce;
-                const ray_end cur = shoot(scene, p, sd, along, static_cast<T>(e), f.t_max_one_way, column_sr, bounce);
+                const ray_end cur = shoot(scene, p, sd, along, static_cast<T>(e), f.t_max_one_way, column_sr, bounce,
+                                          prev.valid ? &prev : nullptr);
                 emit_tube(prev, cur, step, visit);
                 if constexpr (bouncing) emit_tube(prev_bounce, bounce, step, visit);
                 if (!cur.valid && !bounce.valid) break;
@@ -819,7 +822,8 @@ private:
         }
         --budget;
         ray_end m_bounce;
-        const ray_end m = shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce);
+        const ray_end m =
+            shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce, steeper(a, b));
         refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit);
         refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit);
     }
@@ -846,14 +850,31 @@ private:
         }
     }
 
+    /// Of two traced ends, the valid one whose ray descends faster (world frame): the guide for a ray launched
+    /// between them (GuidedPropagation); null when neither is valid.
+    [[nodiscard]] static const ray_end* steeper(const ray_end& a, const ray_end& b) noexcept {
+        if (!a.valid || !b.valid) return a.valid ? &a : (b.valid ? &b : nullptr);
+        const auto tau = [](const vec3<T>& d) { return -d.z / std::sqrt(d.x * d.x + d.y * d.y); };
+        return tau(a.launch) >= tau(b.launch) ? &a : &b;
+    }
+
     /// One ray: its two-way time and return power per radian of depression, or invalid if it meets nothing.
     /// With the specular bounce on, `bounce` receives the echo of the bounced path (else it stays invalid).
+    /// `guide`, a valid end traced from the same pose, tells a GuidedPropagation where that ray met its first
+    /// surface (the result is the same, sooner).
     template <Scene Sc>
     [[nodiscard]] ray_end shoot(const Sc& scene, const pose<T>& p, side sd, T along, T e, T t_max_one_way,
-                                double column_sr, ray_end& bounce) const {
+                                double column_sr, ray_end& bounce, const ray_end* guide = nullptr) const {
         const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
-        return echo(scene, sd, along, e, dir, propagation_.trace(ray<T>{p.position, dir}, scene, t_max_one_way),
-                    t_max_one_way, column_sr, bounce);
+        const ray<T> r{p.position, dir};
+        if constexpr (GuidedPropagation<P, Sc>) {
+            if (guide)
+                return echo(scene, sd, along, e, dir,
+                            propagation_.trace_beside(r, scene, t_max_one_way, guide->launch, guide->leg_s),
+                            t_max_one_way, column_sr, bounce);
+        }
+        return echo(scene, sd, along, e, dir, propagation_.trace(r, scene, t_max_one_way), t_max_one_way, column_sr,
+                    bounce);
     }
 
     /// The echo of the ray launched at (along, e) that followed `traced` (none: it met nothing).

@@ -6,11 +6,14 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -354,6 +357,61 @@ TEST_CASE("Labels are the same whether or not the bare seabed's pass is skipped 
     }
     CHECK(highlights > 10u);
     CHECK(shadows > 10u);
+}
+
+// Straight water that counts the rays it traces.
+struct counted_straight : propagation::straight<double> {
+    std::atomic<std::size_t>* rays = nullptr;
+    template <Scene S> std::optional<path<double>> trace(const ray<double>& r, const S& s, double t) const {
+        ++*rays;
+        return propagation::straight<double>::trace(r, s, t);
+    }
+    template <Scene S>
+    void trace_many(std::span<const ray<double>> rs, const S& s, double t, std::span<std::optional<path<double>>> out) const {
+        *rays += rs.size();
+        propagation::straight<double>::trace_many(rs, s, t, out);
+    }
+    template <Scene S>
+    std::optional<path<double>> trace_beside(const ray<double>& r, const S& s, double t, const vec3<double>& a, double a_leg_s) const {
+        ++*rays;
+        return propagation::straight<double>::trace_beside(r, s, t, a, a_leg_s);
+    }
+};
+
+TEST_CASE("The bare seabed is traced again only on sides where a ray met an object, not wherever an object is near") {
+    // A sphere of radius 0.2 m 1 m above a flat seabed, 20 m to starboard: on the track (filling the 1 degree beam), or
+    // 0.5 m ahead of it, inside the rectangle the starboard rays can reach (+-0.56 m along track) but outside the beam
+    // (+-0.19 m at its range).
+    const sim_t plain = make_simulator(30.0, 1.0);
+    std::atomic<std::size_t> rays{0};
+    counted_straight water;
+    water.rays = &rays;
+    const simulator<scattering::lambertian<double>, counted_straight, beam::ideal_fan<double>, motion::straight_line<double>> sim(
+        plain.scattering(), water, plain.beam(), plain.motion(), plain.receiver(), plain.density());
+    for (const double ahead_m : {0.5, 0.0}) {
+        std::vector<object<double>> objs{object<double>({sphere<double>(vec3<double>{20.0, ahead_m, 1.0}, 0.2, {1, 1, 1})}, {})};
+        const scene::scene world(scene::flat_seabed<double>(0.0), object_set<double>(std::move(objs)));
+        REQUIRE_FALSE(sss::detail::bare_pass_repeats_first(sim, world, sim.motion().pose_at(0), side::starboard));
+        rays = 0;
+        (void)sim.ping(world, 0);
+        const std::size_t image_rays = rays.exchange(0);
+        const label_image labels = label_render(sim, world, 0, 1, {.threads = 1});
+        const std::size_t label_rays = rays.load();
+        std::size_t highlights = 0, shadows = 0;
+        for (const sample_label& l : labels.values) {
+            highlights += l.kind == sample_class::highlight;
+            shadows += l.kind == sample_class::shadow;
+        }
+        INFO("sphere " << ahead_m << " m ahead: " << image_rays << " rays for the image, " << label_rays << " for the labels");
+        if (ahead_m > 0.0) { // unseen: the labels trace what the image traces, and mark nothing
+            CHECK(label_rays == image_rays);
+            CHECK(highlights + shadows == 0u);
+        } else { // seen: the bare seabed and each of its rays through the objects alone are traced too
+            CHECK(label_rays > image_rays);
+            CHECK(highlights > 0u);
+            CHECK(shadows > 0u);
+        }
+    }
 }
 
 TEST_CASE("On rough relief every box encloses the samples its object's echo dominates, and the label image, COCO and YOLO agree") {

@@ -2,7 +2,11 @@
 
 #include <doctest/doctest.h>
 
+#include <atomic>
 #include <cmath>
+#include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "support/compare.hpp"
@@ -57,6 +61,28 @@ TEST_CASE_TEMPLATE("a flat height field matches the quadrature oracle as closely
 }
 
 namespace {
+/// A scene with every optional method of `Inner` but the guide (GuidedScene), or with it and a count of its calls.
+template <class Inner, bool guided> struct guide_probe {
+    using value_type = typename Inner::value_type;
+    using T = value_type;
+    const Inner* inner;
+    std::atomic<long>* guided_calls = nullptr;
+    [[nodiscard]] std::optional<sss::hit<T>> intersect(const sss::ray<T>& r, T t) const { return inner->intersect(r, t); }
+    void intersect_many(std::span<const sss::ray<T>> rays, T t, std::span<std::optional<sss::hit<T>>> hits) const {
+        inner->intersect_many(rays, t, hits);
+    }
+    [[nodiscard]] T clear_length_m(const sss::ray<T>& r, T t, T band) const { return inner->clear_length_m(r, t, band); }
+    [[nodiscard]] std::optional<sss::hit<T>> intersect_beside(const sss::ray<T>& r, T t, const sss::ray<T>& a, T a_clear) const
+        requires guided
+    {
+        guided_calls->fetch_add(1, std::memory_order_relaxed);
+        return inner->intersect_beside(r, t, a, a_clear);
+    }
+    [[nodiscard]] T seabed_height_m(T x, T y) const { return inner->seabed_height_m(x, y); }
+    [[nodiscard]] T top_m() const { return inner->top_m(); }
+    [[nodiscard]] T top_m(const sss::vec2<T>& lo, const sss::vec2<T>& hi) const { return inner->top_m(lo, hi); }
+};
+
 /// The same scene without its batch method: the simulator then traces every ray alone.
 template <class Inner> struct one_ray_at_a_time {
     using value_type = typename Inner::value_type;
@@ -113,4 +139,50 @@ TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are
             CHECK(std::abs(total_a - total_b) <= 1e-4 * total_b);
         }
     }
+}
+
+TEST_CASE_TEMPLATE("Refinement rays guided by their steeper neighbours give the same lines, bit for bit, over relief "
+                   "with objects",
+                   T, float, double) {
+    sss::receiver_params rx;
+    rx.max_range_m = 40.0;
+    sss::motion::perturbed_params<T> tow;
+    tow.start_m = {T(1.7), T(-3.1)};
+    tow.heading_deg = T(-21);
+    tow.altitude_m = T(9);
+    tow.roll_deg = {T(4), T(6), T(90)};
+    tow.pitch_deg = {T(2), T(4), T(90)};
+    const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
+                         sss::motion::perturbed<T>>
+        sim({}, {}, {}, sss::motion::perturbed<T>{tow}, rx);
+    // Ripples across the track (their lee sides shadowed at low grazing) and a trench, a lying cylinder and a sphere
+    // above the seabed: edges everywhere for the refinement to bisect.
+    const std::size_t n = 241;
+    std::vector<T> h(n * n);
+    for (std::size_t iy = 0; iy < n; ++iy)
+        for (std::size_t ix = 0; ix < n; ++ix) {
+            const double x = -46 + 0.4 * double(ix), y = -50 + 0.4 * double(iy);
+            double z = 0.35 * std::sin(1.1 * x + 0.2 * y) + 0.5 * std::sin(0.07 * y);
+            if (std::abs(x + 22) < 1.2) z -= 1.0;
+            h[iy * n + ix] = T(z);
+        }
+    using sss::scene::cylinder;
+    using sss::scene::object;
+    using sss::scene::sphere;
+    std::vector<object<T>> objs{object<T>({}, {cylinder<T>(sss::vec3<T>{T(15), T(-8), T(0.9)}, sss::vec3<T>{T(17), T(4), T(0.9)}, T(0.5), {1, 2, 3})}),
+                                object<T>({sphere<T>(sss::vec3<T>{T(-12), T(2), T(3)}, T(0.6), {2, 3, 4})}, {})};
+    const sss::scene::scene sc(sss::scene::height_field<T>({.nx = n, .ny = n, .cell_m = T(0.4), .origin_m = {T(-46), T(-50)}, .heights_m = std::move(h)}),
+                               sss::scene::object_set<T>(std::move(objs)));
+    using Sc = std::remove_cvref_t<decltype(sc)>;
+    static_assert(sss::GuidedScene<Sc> && sss::GuidedPropagation<sss::propagation::straight<T>, Sc>);
+    static_assert(!sss::GuidedScene<guide_probe<Sc, false>> && sss::GuidedScene<guide_probe<Sc, true>>);
+    std::atomic<long> calls{0};
+    for (std::size_t i = 0; i < 4; ++i) {
+        const auto guided = sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
+        const auto plain = sim.ping(guide_probe<Sc, false>{&sc}, 3 * i);
+        CHECK(guided.port == plain.port);
+        CHECK(guided.starboard == plain.starboard);
+    }
+    MESSAGE(calls.load() << " refinement rays guided");
+    CHECK(calls.load() > 1000);
 }

@@ -18,7 +18,9 @@
 ///    (A bounced path is tested on its first leg, up to the bounce.) Where no object reaches over the side's area
 ///    (`simulator::side_area`), this pass
 ///    would trace the very rays and hits of the first, so it is not traced: its sums are the first pass's, bit for
-///    bit. Along a survey with sparse targets most sides are such, and labels then cost little more than the image.
+///    bit. Nor is it where objects reach over the area but no ray of the first pass met one (behind the beam, beyond
+///    the range, between the rays): the objects block nothing there that the image shows. Along a survey with sparse
+///    targets most sides are such, and labels then cost little more than the image.
 /// A sample is then, in this order:
 /// - `highlight` of object k: k returns the largest share of the sample's echo energy among objects, and at
 ///   least `highlight_fraction` of it;
@@ -109,6 +111,7 @@ template <Real T> struct objects_alone {
 
 /// The first pass (file comment): one piece of the scene's echo, kept apart by the hit it came from.
 template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<T>& e) {
+    if (e.surface.object != no_object) acc.met_object = true; // even without echo power: a dark object casts shadows
     if (!(e.power > 0.0)) return;
     const hit<T>& h = e.surface;
     if (h.object == no_object) {
@@ -135,7 +138,7 @@ inline void check_label_params(const label_params& lp) {
 /// True when the second pass would trace exactly what the first traced: both launch the same rays
 /// (simulator::trace_seabed_alone), and where no object reaches over the side's area the first pass asked the
 /// seabed alone (scene/area_view.hpp). Then nothing is blocked, and the bare seabed's echo is the scene's, sum for
-/// sum.
+/// sum. (finish_labels also takes the first pass's sums where objects reach over the area but no ray met one.)
 template <class Sim, class Seabed>
 [[nodiscard]] bool bare_pass_repeats_first(const Sim& sim, const scene::scene<Seabed>& sc, const pose<typename Sim::value_type>& p,
                                            side sd) {
@@ -152,7 +155,10 @@ template <class Sim, class Seabed>
     using T = typename Sim::value_type;
     const std::size_t n = acc.n;
     const auto& objects = sc.objects();
-    if (bare_pass_repeats_first(sim, sc, p, sd)) {
+    // No ray of the first pass met an object: every ray reached the seabed (or nothing) as if the objects were not
+    // there, so the bare seabed's echo is the scene's (the second pass would differ only where its own refinement
+    // met an object the first pass's rays all missed, which no image shows either).
+    if (!acc.met_object || bare_pass_repeats_first(sim, sc, p, sd)) {
         acc.bare = acc.seabed;
         acc.bare_best = acc.seabed_best;
         acc.bare_region = acc.seabed_region;

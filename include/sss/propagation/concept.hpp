@@ -35,6 +35,14 @@
 ///
 /// The simulator then knows the rectangle a side's rays can reach (sampling/reach.hpp) and shows the scene's
 /// geometry over it only (scene/area_view.hpp).
+///
+/// Optional (`GuidedPropagation`): a policy that can use what a neighbouring ray found also offers
+///
+/// | `p.trace_beside(r, scene, t_max_s, a_launch, a_leg_s)` | `std::optional<path<T>>` | p.trace(r, scene, t_max_s), bit for bit |
+///
+/// given that the ray launched from r's origin along the unit direction `a_launch` (a `vec3<T>`) met nothing of the
+/// scene for one-way time a_leg_s (s). The simulator's refinement passes the steeper of the two rays it traces a
+/// new one between (straight rays hand it to a GuidedScene: scene/concept.hpp).
 
 #include <concepts>
 #include <cstddef>
@@ -77,6 +85,15 @@ template <class P>
 concept ReachBoundedPropagation = Propagation<P> && requires(const P& p, typename P::value_type z) {
     { p.reach_speed_mps(z) } -> std::same_as<typename P::value_type>;
 };
+
+/// A Propagation policy that takes a neighbouring ray's clear time as a guide over scene type `Sc` (see the table
+/// above).
+template <class P, class Sc>
+concept GuidedPropagation = Propagation<P> && Scene<Sc> &&
+    requires(const P& p, const ray<typename P::value_type>& r, const Sc& s, typename P::value_type t,
+             const vec3<typename P::value_type>& d) {
+        { p.trace_beside(r, s, t, d, t) } -> std::same_as<std::optional<path<typename P::value_type>>>;
+    };
 
 /// paths[k] = p.trace(rays[k], scene, t_max_s) for every k, through the policy's batch method when it has one.
 /// `paths` must hold at least rays.size() slots.

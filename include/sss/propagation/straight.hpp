@@ -43,11 +43,21 @@ public:
 
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace(const ray<T>& r, const S& scene, T t_max_s) const {
-        const auto h = scene.intersect(r, t_max_s * p_.sound_speed_mps);
-        if (!h) return std::nullopt;
-        const T range_m = h->distance_m;
-        return path<T>{*h, range_m / p_.sound_speed_mps, T(1) / (range_m * range_m), std::exp(-loss_per_m_ * range_m),
-                       r.direction};
+        return to_path(r, scene.intersect(r, t_max_s * p_.sound_speed_mps));
+    }
+
+    /// trace(r, scene, t_max_s), bit for bit, given that the ray from r's origin along a_launch met nothing for
+    /// one-way time a_leg_s (s) (GuidedPropagation): a GuidedScene is told that it met nothing for distances below
+    /// c a_leg_s, less 1e-4 of it for the rounding of the time; any other scene is asked as by trace.
+    template <Scene S>
+    [[nodiscard]] std::optional<path<T>> trace_beside(const ray<T>& r, const S& scene, T t_max_s, const vec3<T>& a_launch,
+                                                      T a_leg_s) const {
+        if constexpr (GuidedScene<S>) {
+            const T clear_m = a_leg_s * p_.sound_speed_mps * T(0.9999);
+            return to_path(r, scene.intersect_beside(r, t_max_s * p_.sound_speed_mps, ray<T>{r.origin, a_launch}, clear_m));
+        } else {
+            return trace(r, scene, t_max_s);
+        }
     }
 
     /// paths[k] = trace(rays[k], scene, t_max_s) for every k, the scene's hits found together (sss::intersect_all),
@@ -59,18 +69,18 @@ public:
                                  std::to_string(paths.size()); });
         std::vector<std::optional<hit<T>>> hits(rays.size());
         intersect_all(scene, rays, t_max_s * p_.sound_speed_mps, std::span<std::optional<hit<T>>>(hits));
-        for (std::size_t k = 0; k < rays.size(); ++k) {
-            if (!hits[k]) {
-                paths[k].reset();
-                continue;
-            }
-            const T range_m = hits[k]->distance_m;
-            paths[k].emplace(path<T>{*hits[k], range_m / p_.sound_speed_mps, T(1) / (range_m * range_m),
-                                     std::exp(-loss_per_m_ * range_m), rays[k].direction});
-        }
+        for (std::size_t k = 0; k < rays.size(); ++k) paths[k] = to_path(rays[k], hits[k]);
     }
 
 private:
+    /// The path to hit h of ray r (none without a hit).
+    [[nodiscard]] std::optional<path<T>> to_path(const ray<T>& r, const std::optional<hit<T>>& h) const {
+        if (!h) return std::nullopt;
+        const T range_m = h->distance_m;
+        return path<T>{*h, range_m / p_.sound_speed_mps, T(1) / (range_m * range_m), std::exp(-loss_per_m_ * range_m),
+                       r.direction};
+    }
+
     straight_params<T> p_;
     T loss_per_m_{};
 };

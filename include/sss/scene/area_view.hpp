@@ -32,6 +32,11 @@ public:
     area_view(const S& scene, const vec2<T>& lo, const vec2<T>& hi) : scene_(&scene), top_(bounded_top(scene, lo, hi)) {}
 
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const { return scene_->intersect(r, t_max_m); }
+    [[nodiscard]] std::optional<hit<T>> intersect_beside(const ray<T>& r, T t_max_m, const ray<T>& a, T a_clear_m) const
+        requires GuidedScene<S>
+    {
+        return scene_->intersect_beside(r, t_max_m, a, a_clear_m);
+    }
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const
         requires BatchScene<S>
     {
@@ -70,6 +75,12 @@ public:
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const {
         if (objects_near_) return scene_->intersect(r, t_max_m);
         return scene_->seabed().intersect(r, t_max_m);
+    }
+    [[nodiscard]] std::optional<hit<T>> intersect_beside(const ray<T>& r, T t_max_m, const ray<T>& a, T a_clear_m) const
+        requires GuidedScene<Seabed>
+    {
+        if (objects_near_) return scene_->intersect_beside(r, t_max_m, a, a_clear_m);
+        return scene_->seabed().intersect_beside(r, t_max_m, a, a_clear_m);
     }
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
         if (objects_near_) scene_->intersect_many(rays, t_max_m, hits);

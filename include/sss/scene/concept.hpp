@@ -38,6 +38,14 @@
 /// band_m to the segment's start gives 0. Layered water hands a scene curved rays as many short chords
 /// (propagation/arc_intersection.hpp); one query over a long chord, with the band covering the arc's sagitta,
 /// clears the chords a ray passes in open water without tracing each of them.
+///
+/// Optional (`GuidedScene`): a scene that can use what a neighbouring ray found also offers
+///
+/// | `s.intersect_beside(r, t_max_m, a, a_clear_m)` | `std::optional<hit<T>>` | s.intersect(r, t_max_m), bit for bit |
+///
+/// given that ray `a` (a `ray<T>` from r's origin) met nothing for distances below a_clear_m (m). The simulator's
+/// refinement traces a ray between two it has traced (sampling/detail/tube_refinement.hpp) and passes the steeper
+/// of them: a height field starts the new ray's walk about where the neighbour's ended (height_field_beside.hpp).
 
 #include <concepts>
 #include <cstddef>
@@ -75,6 +83,12 @@ concept AreaScene = Scene<S> && requires(const S& s, const vec2<typename S::valu
 template <class S>
 concept ClearanceScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t) {
     { s.clear_length_m(r, t, t) } -> std::same_as<typename S::value_type>;
+};
+
+/// A Scene that takes a neighbouring ray's clear distance as a guide (see the table above).
+template <class S>
+concept GuidedScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t) {
+    { s.intersect_beside(r, t, r, t) } -> std::same_as<std::optional<hit<typename S::value_type>>>;
 };
 
 /// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.

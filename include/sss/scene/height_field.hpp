@@ -27,6 +27,7 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/concept.hpp"
+#include "sss/scene/height_field_beside.hpp"
 #include "sss/scene/height_field_fan.hpp"
 #include "sss/scene/height_field_wedge.hpp"
 #include "sss/scene/height_field_pyramid.hpp"
@@ -115,6 +116,14 @@ public:
     /// the water the ray came from; see height_field_tracer.hpp for the rules on rays from below.
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m));
+    }
+    /// intersect(r, t_max_m), bit for bit, given that ray `neighbour` from the same origin met nothing of the surface
+    /// for distances below neighbour_clear_m (m) (GuidedScene): where the neighbour is steeper by enough, r's walk
+    /// starts about where the neighbour's ended (height_field_beside.hpp) instead of from the top down.
+    [[nodiscard]] std::optional<hit<T>> intersect_beside(const ray<T>& r, T t_max_m, const ray<T>& neighbour,
+                                                         T neighbour_clear_m) const noexcept {
+        const T s_clear = clear_beside_m(grid_, pyramid_, bounds_, r, neighbour, neighbour_clear_m);
+        return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m, s_clear));
     }
     /// How far r runs with nothing of the surface within band_m below it (ClearanceScene; above a height field
     /// is water): where r lowered by band_m first meets the surface (t_max_m if it does not), provided the lowered

@@ -71,9 +71,16 @@ trace_reference(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>&
 /// jumps resume at crossings that are breakpoints of the reference walk too, evaluated by the same
 /// formulas, so both traversals return the same hit to the last bit, in float and in double (they could
 /// differ only for a ray passing within rounding of a skipped block's highest vertex).
+///
+/// A caller that knows the ray stays above the surface for every distance below `s_clear_m` (m; see
+/// clear_beside_m) lets the walk resume at the entry crossing of the cell holding that distance, as it does where
+/// the ray comes down to top_m: the hit is the same to the last bit, since the walk evaluates f at the same
+/// breakpoints from there on and the reference walk finds no sign change before. With the guarantee broken, a hit
+/// before s_clear_m is missed.
 template <Real T>
 [[nodiscard]] std::optional<grid_hit<T>> trace_accelerated(const height_grid_view<T>& g, const max_pyramid<T>& p,
-                                                           height_bounds<T> hb, const ray<T>& r, T t_max_m) noexcept {
+                                                           height_bounds<T> hb, const ray<T>& r, T t_max_m,
+                                                           T s_clear_m = T(0)) noexcept {
     detail::grid_ray<T> q;
     if (!detail::setup_ray(g, hb, r, t_max_m, q)) return std::nullopt;
     constexpr T inf = std::numeric_limits<T>::infinity();
@@ -85,12 +92,22 @@ template <Real T>
     bool f_known = false; // w.f holds f at w.s
 
     // Nothing lies above top_m: a ray that does not come down to it misses, and one that does skips to
-    // the cell where it does, resuming at that cell's entry crossing (a breakpoint of the reference walk
-    // too, so both walks evaluate f at the same places).
+    // the cell where it does (or to where the caller knows it clear, if that is further), resuming at that
+    // cell's entry crossing (a breakpoint of the reference walk too, so both walks evaluate f at the same places).
     const T z_top = hb.top_m + q.z_margin;
+    T s_skip = T(0);
     if (q.z0 + q.dz * q.s_lo > z_top) {
         if (!(q.z0 + q.dz * q.s_hi <= z_top)) return std::nullopt;
-        const T s_top = (q.z0 - z_top) / -q.dz;
+        s_skip = (q.z0 - z_top) / -q.dz;
+    }
+    bool guided = false; // resuming where the caller's knowledge ends: the hit is usually a cell or two on
+    if (s_clear_m > s_skip) {
+        if (!(s_clear_m < q.s_hi)) return std::nullopt; // above the surface all along what is left of it
+        s_skip = s_clear_m;
+        guided = true;
+    }
+    if (s_skip > q.s_lo) {
+        const T s_top = s_skip;
         const detail::walk_state<T> c = detail::start_at(g, q, s_top);
         const T s_in_u = q.su > 0 ? detail::cross_u(q, c.ix) : (q.su < 0 ? detail::cross_u(q, c.ix + 1) : -inf);
         const T s_in_v = q.sv > 0 ? detail::cross_v(q, c.iy) : (q.sv < 0 ? detail::cross_v(q, c.iy + 1) : -inf);
@@ -107,9 +124,12 @@ template <Real T>
     const std::int32_t top_level = p.levels();
     // Start at the level whose blocks match the length of the ray's path over the grid (in cells).
     const T path_cells = (std::abs(q.du) + std::abs(q.dv)) * (q.s_hi - w.s);
+    // Where the caller's knowledge ends the ray is usually about to meet the surface: start at the lowest level,
+    // and climb as blocks are skipped.
     std::int32_t level = top_level;
     if (path_cells < static_cast<T>(std::int32_t(1) << std::min<std::int32_t>(top_level, 30)))
         level = static_cast<std::int32_t>(std::bit_width(static_cast<std::uint32_t>(path_cells)));
+    if (guided) level = std::min(level, std::int32_t(1));
     grid_hit<T> out;
 
     const std::int32_t pu = q.su > 0 ? 1 : 0, pv = q.sv > 0 ? 1 : 0;

@@ -43,6 +43,17 @@ public:
         return h;
     }
 
+    /// intersect(r, t_max_m), bit for bit, with the seabed guided by what ray `a` from the same origin found: it met
+    /// nothing for distances below a_clear_m (m) (GuidedScene, when the seabed is one).
+    [[nodiscard]] std::optional<hit<T>> intersect_beside(const ray<T>& r, T t_max_m, const ray<T>& a, T a_clear_m) const
+        requires GuidedScene<Seabed>
+    {
+        std::optional<hit<T>> h = seabed_.intersect_beside(r, t_max_m, a, a_clear_m);
+        if (objects_.empty()) return h;
+        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
+        return h;
+    }
+
     /// hits[k] = intersect(rays[k], t_max_m) for every k: the seabed's hits together (sss::intersect_all, so a
     /// seabed that shares work among rays does), then the objects ray by ray up to each seabed hit.
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {

@@ -26,6 +26,7 @@ struct label_accumulator {
     std::vector<std::vector<std::uint32_t>> echo_material;
     double first_bare_s = std::numeric_limits<double>::infinity();
     double first_seabed_s = std::numeric_limits<double>::infinity(); ///< the scene's first seabed echo (s)
+    bool met_object = false; ///< some ray of the scene's pass met an object (with or without echo power)
 
     explicit label_accumulator(std::size_t samples, double dt_s)
         : n(samples), dt(dt_s), seabed(samples), bare(samples), seabed_best(samples), seabed_region(samples),

@@ -1,0 +1,95 @@
+#pragma once
+/// \file
+/// How far a ray surely stays above a height field, from what a steeper neighbour found: the wedge sweep's chain
+/// (height_field_wedge.hpp) for one ray at a time, as the simulator's refinement traces a ray between two it has
+/// traced already (sampling/detail/tube_refinement.hpp).
+///
+/// Rays a and r leave one origin; a descends faster, tau_a > tau_r (tau = tan(depression), height lost per metre
+/// of horizontal travel), and its heading is turned from r's by an angle theta. a is known above the surface out to
+/// horizontal distance rho_a (its first hit: before it, the surface lies below it). At horizontal distance rho <=
+/// rho_a, r lies (tau_a - tau_r) rho above a, and the points under the two rays are at most rho theta apart, so the
+/// surface under r is at most L rho theta higher than under a, L = sqrt(2) max_step / cell the triangulated surface's
+/// largest slope (max_pyramid::max_step_m). Hence r stays above the surface out to rho_a wherever
+///     (tau_a - tau_r - L theta) rho > rounding,
+/// that is, beyond rho_min = rounding / (tau_a - tau_r - L theta). Nearer the origin, r must lie above the highest
+/// vertex within rho_min of it (from the maximum pyramid, over a square at least that wide): then the origin lies
+/// clearly above the surface, so a cannot have started inside the sediment either. One more condition
+/// keeps the argument exact: a's path up to rho_a lies over the grid's footprint (the surface under it is defined
+/// there; a path that leaves the footprint is not covered).
+///
+/// trace_accelerated then starts r's walk at the entry crossing of the cell holding that distance: the same hit to
+/// the last bit, in a few cells instead of a walk from the top down.
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "sss/core/ray.hpp"
+#include "sss/scene/grid_hit.hpp"
+#include "sss/scene/height_field_pyramid.hpp"
+#include "sss/scene/height_grid.hpp"
+
+namespace sss::scene {
+
+/// The highest vertex (m) within radius_cells of grid point (u, v) (a point of the footprint), or higher: the
+/// maximum pyramid's blocks, at most two per axis, over the cells of the square around it; the top where that
+/// square is too large or the grid has no pyramid.
+template <Real T>
+[[nodiscard]] T highest_near(const height_grid_view<T>& g, const max_pyramid<T>& p, height_bounds<T> hb, T u, T v,
+                             T radius_cells) noexcept {
+    const T reach = radius_cells + T(1);
+    if (!(reach < T(1 << 20)) || p.levels() < 1) return hb.top_m;
+    const auto cell = [](T x, std::int32_t last) {
+        return static_cast<std::int32_t>(std::clamp(std::floor(x), T(0), static_cast<T>(last)));
+    };
+    const std::int32_t x0 = cell(u - reach, g.nx - 2), x1 = cell(u + reach, g.nx - 2);
+    const std::int32_t y0 = cell(v - reach, g.ny - 2), y1 = cell(v + reach, g.ny - 2);
+    const std::int32_t span = std::max(x1 - x0, y1 - y0);
+    const std::int32_t level =
+        std::min(p.levels(), std::max<std::int32_t>(1, static_cast<std::int32_t>(std::bit_width(static_cast<std::uint32_t>(span)))));
+    T top = -std::numeric_limits<T>::infinity();
+    for (std::int32_t by = y0 >> level; by <= (y1 >> level); ++by)
+        for (std::int32_t bx = x0 >> level; bx <= (x1 >> level); ++bx) top = std::max(top, p.max_m(level, bx, by));
+    return top;
+}
+
+/// Distance (m) along r below which r surely stays above the height field (g, its pyramid p and bounds hb), given
+/// that ray `a` from the same origin met nothing of it for distances below a_clear_m (m): the file comment's
+/// chain. 0 where it does not apply (different origins, a not steeper by enough, a heading turned too far, an
+/// origin below the top, a's path off the footprint, near-vertical or non-finite rays).
+template <Real T>
+[[nodiscard]] T clear_beside_m(const height_grid_view<T>& g, const max_pyramid<T>& p, height_bounds<T> hb,
+                               const ray<T>& r, const ray<T>& a, T a_clear_m) noexcept {
+    if (!(r.origin == a.origin) || !(a_clear_m > T(0)) || !std::isfinite(a_clear_m)) return T(0);
+    const T hr = std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
+    const T ha = std::sqrt(a.direction.x * a.direction.x + a.direction.y * a.direction.y);
+    // Within 0.06 degrees of vertical headings mean little (the wedge sweep's limit).
+    if (!(hr >= T(1e-3)) || !(ha >= T(1e-3))) return T(0);
+    const T tau_r = -r.direction.z / hr, tau_a = -a.direction.z / ha;
+    if (!std::isfinite(tau_r) || !std::isfinite(tau_a) || !(tau_r > T(0)) || !(tau_a > tau_r)) return T(0);
+    const T z0 = r.origin.z;
+    // a's path out to its clear point over the footprint (a segment between two points of a rectangle).
+    const T rho_a = a_clear_m * ha; // horizontal distance (m)
+    const T u0 = (r.origin.x - g.origin_m.x) * g.inv_cell_m, v0 = (r.origin.y - g.origin_m.y) * g.inv_cell_m;
+    const T ua = u0 + a.direction.x * a_clear_m * g.inv_cell_m, va = v0 + a.direction.y * a_clear_m * g.inv_cell_m;
+    const T nu = static_cast<T>(g.nx - 1), nv = static_cast<T>(g.ny - 1);
+    if (!(u0 >= T(0) && v0 >= T(0) && u0 <= nu && v0 <= nv && ua >= T(0) && va >= T(0) && ua <= nu && va <= nv))
+        return T(0);
+    // The turn between the headings: its sine, widened for the angle itself (1.001) and rounding.
+    const T eps = std::numeric_limits<T>::epsilon();
+    const T hxr = r.direction.x / hr, hyr = r.direction.y / hr, hxa = a.direction.x / ha, hya = a.direction.y / ha;
+    if (!(hxr * hxa + hyr * hya > T(0.5))) return T(0);
+    const T turn = T(1.001) * std::abs(hxa * hyr - hya * hxr) + T(8) * eps;
+    const T lipschitz = p.max_step_m() * T(1.41421357) * g.inv_cell_m;
+    const T gain = (tau_a - tau_r) - lipschitz * turn; // height r gains over a per metre of horizontal travel
+    // Rounding of f = z - h, at a's points (its first hit) and at r's: a few roundings of the terms' magnitudes.
+    const T err = T(16) * eps * (T(1) + std::abs(z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m) + tau_a * rho_a);
+    if (!(gain > T(0))) return T(0);
+    const T rho_min = err / gain; // beyond it r is above a by more than rounding
+    if (!(z0 - tau_r * rho_min > highest_near(g, p, hb, u0, v0, rho_min * g.inv_cell_m) + err)) return T(0);
+    return rho_a / hr;
+}
+
+} // namespace sss::scene

@@ -1,0 +1,126 @@
+// A ray traced beside a steeper neighbour from the same origin (height_field_beside.hpp, intersect_beside): its walk
+// starts about where the neighbour's first hit is, and it gets the single-ray tracer's hit to the last bit.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "sss/core/pose.hpp"
+#include "sss/scene/height_field.hpp"
+#include "sss/scene/height_field_beside.hpp"
+#include "support/grid_relief.hpp"
+
+using sss::ray;
+using sss::vec3;
+using sss::scene::height_field;
+using sss_test::rng;
+using sss_test::rough_field;
+
+namespace {
+
+constexpr double deg = 3.141592653589793 / 180;
+
+// The unit direction of a sidescan beam's ray at along-track angle `along` and depression e from a towfish with the
+// given attitude: body direction (sin a, s cos a cos e, cos a sin e) (FRD).
+vec3<double> beam_ray(const sss::pose<double>& p, int side, double along, double e) {
+    return glm::normalize(p.to_world(vec3<double>{std::sin(along), side * std::cos(along) * std::cos(e),
+                                                  std::cos(along) * std::sin(e)}));
+}
+
+template <class T> bool same_hit(const std::optional<sss::hit<T>>& a, const std::optional<sss::hit<T>>& b) {
+    if (bool(a) != bool(b)) return false;
+    if (!a) return true;
+    return a->distance_m == b->distance_m && a->point == b->point && a->normal == b->normal &&
+           a->shading_normal == b->shading_normal && a->label == b->label && a->material == b->material;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("A ray traced beside a steeper neighbour's first hit gets the plain tracer's hit to the last bit", T,
+                   float, double) {
+    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
+    rng gen{41};
+    long compared = 0, guided = 0, hits = 0;
+    for (int p = 0; p < 16; ++p) {
+        // Towfish over the footprint from 1 m to 15 m above the top, a few among the hills (under the top) and a few
+        // outside the footprint; any heading, roll and pitch up to 20 deg.
+        const bool outside = p % 8 == 7;
+        const vec3<double> fish{outside ? -25.0 : gen.uniform(0, 80), gen.uniform(15, 75),
+                                double(hf.top_m()) + (p % 8 == 3 ? -0.3 : gen.uniform(1, 15))};
+        const auto pose = sss::make_pose(0.0, fish, gen.uniform(-20, 20) * deg, gen.uniform(-20, 20) * deg,
+                                         gen.uniform(0, 360) * deg);
+        for (int side : {-1, 1})
+            for (int a = 0; a < 3; ++a) {
+                const double along = (-1.5 + 1.5 * a) * deg;
+                // Neighbours as a refinement meets them: a ray and the midpoint between it and the next one, ever
+                // closer (down to 2^-12 of the spacing, the refinement's deepest); and, across
+                // columns, rays whose headings differ by far more than their depressions.
+                for (int i = 0; i < 300; ++i) {
+                    const double e = 80 * deg - i * 0.27 * deg;
+                    const double de = 0.27 * deg * std::ldexp(1.0, -int(gen.next() % 13));
+                    const double other_along = gen.uniform() < 0.2 ? along + gen.uniform(-0.5, 0.5) * deg : along;
+                    const ray<T> steep{vec3<T>(fish), vec3<T>(beam_ray(pose, side, along, e))};
+                    const ray<T> r{vec3<T>(fish), vec3<T>(beam_ray(pose, side, other_along, e - de))};
+                    const T t_max = T(gen.uniform() < 0.2 ? gen.uniform(5, 40) : 150);
+                    const auto first = hf.intersect(steep, T(150));
+                    const auto want = hf.intersect(r, t_max);
+                    const T clear = first ? first->distance_m : T(150);
+                    if (sss::scene::clear_beside_m(hf.grid(), hf.pyramid(),
+                                                   sss::scene::height_bounds<T>{hf.bottom_m(), hf.top_m()}, r, steep,
+                                                   clear) > T(0))
+                        ++guided;
+                    ++compared;
+                    hits += want.has_value();
+                    REQUIRE(same_hit(hf.intersect_beside(r, t_max, steep, clear), want));
+                    // The wrong way round (the shallower ray as the guide) is refused, not trusted.
+                    if (want)
+                        REQUIRE(same_hit(hf.intersect_beside(steep, T(150), r, want->distance_m), first));
+                }
+            }
+    }
+    MESSAGE(compared << " rays, " << hits << " hits, " << guided << " guided");
+    CHECK(hits > compared / 2);
+    CHECK(guided > compared / 20);
+}
+
+TEST_CASE_TEMPLATE("The clear distance beside a neighbour is never past the ray's own first hit, and is 0 where the "
+                   "neighbour cannot vouch for it",
+                   T, float, double) {
+    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
+    const sss::scene::height_bounds<T> hb{hf.bottom_m(), hf.top_m()};
+    const vec3<double> fish{40, 40, double(hf.top_m()) + 8};
+    const auto pose = sss::make_pose(0.0, fish, 0.0, 0.0, 0.0);
+    const auto clear = [&](const ray<T>& r, const ray<T>& a, T a_clear) {
+        return sss::scene::clear_beside_m(hf.grid(), hf.pyramid(), hb, r, a, a_clear);
+    };
+    long vouched = 0;
+    for (int i = 0; i < 160; ++i) {
+        const double e = 60 * deg - i * 0.25 * deg;
+        const ray<T> a{vec3<T>(fish), vec3<T>(beam_ray(pose, 1, 0.0, e))};
+        const ray<T> r{vec3<T>(fish), vec3<T>(beam_ray(pose, 1, 0.0, e - 0.01 * deg))};
+        const auto ha = hf.intersect(a, T(200));
+        const auto hr = hf.intersect(r, T(200));
+        REQUIRE(ha);
+        REQUIRE(hr);
+        const T s = clear(r, a, ha->distance_m);
+        CHECK(s <= hr->distance_m);
+        vouched += s > T(0);
+        // A shallower guide, another origin, a guide turned 2 degrees away, one whose path leaves the footprint:
+        // nothing is vouched for.
+        CHECK(clear(a, r, hr->distance_m) == T(0));
+        ray<T> moved = a;
+        moved.origin.x += T(0.5);
+        CHECK(clear(r, moved, ha->distance_m) == T(0));
+        const ray<T> turned{vec3<T>(fish), vec3<T>(beam_ray(pose, 1, 2 * deg, e))};
+        CHECK(clear(r, turned, ha->distance_m) == T(0));
+        CHECK(clear(r, a, T(1000)) == T(0));
+    }
+    MESSAGE(vouched << " of 160 vouched for");
+    CHECK(vouched > 120);
+    // From under the surface (inside the sediment) nothing is vouched for.
+    const vec3<double> buried{40, 40, double(hf.seabed_height_m(T(40), T(40))) - 0.2};
+    const ray<T> a{vec3<T>(buried), vec3<T>(beam_ray(pose, 1, 0.0, 30 * deg))};
+    const ray<T> r{vec3<T>(buried), vec3<T>(beam_ray(pose, 1, 0.0, 29 * deg))};
+    CHECK(clear(r, a, T(5)) == T(0));
+}
