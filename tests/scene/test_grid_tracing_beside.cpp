@@ -118,6 +118,29 @@ TEST_CASE_TEMPLATE("The clear distance beside a neighbour is never past the ray'
     }
     MESSAGE(vouched << " of 160 vouched for");
     CHECK(vouched > 120);
+    // Headings 50 degrees apart over a plane rising 0.1 m per metre along x and y: the points under the two rays at
+    // horizontal distance rho are 2 rho sin(25 deg) apart, more than rho sin(50 deg), and a guide steeper by just
+    // over the slope times the latter would vouch for a ray past its own hit. Such a turn is refused.
+    {
+        const std::size_t n = 1001;
+        std::vector<T> plane(n * n);
+        for (std::size_t iy = 0; iy < n; ++iy)
+            for (std::size_t ix = 0; ix < n; ++ix) plane[iy * n + ix] = T(0.01 * double(ix + iy));
+        const height_field<T> slope({.nx = n, .ny = n, .cell_m = T(0.1), .origin_m = {T(0), T(0)}, .heights_m = std::move(plane)});
+        const auto toward = [](double heading_deg, double tau) {
+            const double h = heading_deg * deg;
+            return vec3<T>(glm::normalize(vec3<double>{std::sin(h), std::cos(h), -tau}));
+        };
+        const double lip = std::sqrt(2.0) * 0.1;
+        const vec3<T> o{T(50), T(50), T(12)};
+        const ray<T> r2{o, toward(-20, 0.3)}, a2{o, toward(-70, 0.3 + 0.8 * lip)};
+        const auto ha2 = slope.intersect(a2, T(100));
+        REQUIRE(ha2);
+        const T a_clear = ha2->distance_m * T(0.9999);
+        CHECK(sss::scene::clear_beside_m(slope.grid(), slope.pyramid(), {slope.bottom_m(), slope.top_m()}, r2, a2, a_clear) ==
+              T(0));
+        CHECK(same_hit(slope.intersect_beside(r2, T(100), a2, a_clear), slope.intersect(r2, T(100))));
+    }
     // From under the surface (inside the sediment) nothing is vouched for.
     const vec3<double> buried{40, 40, double(hf.seabed_height_m(T(40), T(40))) - 0.2};
     const ray<T> a{vec3<T>(buried), vec3<T>(beam_ray(pose, 1, 0.0, 30 * deg))};

@@ -41,8 +41,9 @@
 /// | `p.trace_beside(r, scene, t_max_s, a_launch, a_leg_s)` | `std::optional<path<T>>` | p.trace(r, scene, t_max_s), bit for bit |
 ///
 /// given that the ray launched from r's origin along the unit direction `a_launch` (a `vec3<T>`) met nothing of the
-/// scene for one-way time a_leg_s (s). The simulator's refinement passes the steeper of the two rays it traces a
-/// new one between (straight rays hand it to a GuidedScene: scene/concept.hpp).
+/// scene for one-way time a_leg_s (s), save what the scene's guided query leaves out (scene/concept.hpp). The
+/// simulator's refinement passes the steeper of the two rays it traces a new one between (straight rays hand it to a
+/// GuidedScene).
 
 #include <concepts>
 #include <cstddef>

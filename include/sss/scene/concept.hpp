@@ -43,7 +43,8 @@
 ///
 /// | `s.intersect_beside(r, t_max_m, a, a_clear_m)` | `std::optional<hit<T>>` | s.intersect(r, t_max_m), bit for bit |
 ///
-/// given that ray `a` (a `ray<T>` from r's origin) met nothing for distances below a_clear_m (m). The simulator's
+/// given that ray `a` (a `ray<T>` from r's origin) met nothing for distances below a_clear_m (m), save a hit of
+/// rounding alone that the exact geometry does not have (height_field_beside.hpp says when). The simulator's
 /// refinement traces a ray between two it has traced (sampling/detail/tube_refinement.hpp) and passes the steeper
 /// of them: a height field starts the new ray's walk about where the neighbour's ended (height_field_beside.hpp).
 

@@ -119,7 +119,8 @@ public:
     }
     /// intersect(r, t_max_m), bit for bit, given that ray `neighbour` from the same origin met nothing of the surface
     /// for distances below neighbour_clear_m (m) (GuidedScene): where the neighbour is steeper by enough, r's walk
-    /// starts about where the neighbour's ended (height_field_beside.hpp) instead of from the top down.
+    /// starts about where the neighbour's ended (height_field_beside.hpp) instead of from the top down. The one
+    /// exception, a hit of rounding alone before the neighbour's, is in that file's comment.
     [[nodiscard]] std::optional<hit<T>> intersect_beside(const ray<T>& r, T t_max_m, const ray<T>& neighbour,
                                                          T neighbour_clear_m) const noexcept {
         const T s_clear = clear_beside_m(grid_, pyramid_, bounds_, r, neighbour, neighbour_clear_m);
