@@ -23,8 +23,8 @@
 /// surface is steep it may read a height off by that times the steepest step between vertices: up to a millimetre
 /// for a float ray 4000 cells from the corner passing a step of 2 m. A plain walk that stops before the guide's hit
 /// because of that alone (the ray truly above the surface there) is not repeated: the guided walk passes the point,
-/// as the exact geometry does. Bounding that rounding with the grid's steepest step would refuse nearly every guide
-/// on a large float grid with one steep feature (on the survey of bench/bench_survey.cpp, 86 % of them).
+/// as the exact geometry does. Bounding that rounding with the grid's steepest step would refuse most guides on a
+/// large float grid with one steep feature (on the survey of bench/bench_survey.cpp, 86 % of them).
 
 #include <algorithm>
 #include <bit>

@@ -73,10 +73,10 @@ trace_reference(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>&
 /// differ only for a ray passing within rounding of a skipped block's highest vertex).
 ///
 /// A caller that knows the ray stays above the surface for every distance below `s_clear_m` (m; see
-/// clear_beside_m) lets the walk resume at the entry crossing of the cell holding that distance, as it does where
-/// the ray comes down to top_m: the hit is the same to the last bit, since the walk evaluates f at the same
-/// breakpoints from there on and the reference walk finds no sign change before. With the guarantee broken, a hit
-/// before s_clear_m is missed.
+/// clear_beside_m, and its file comment for the one way rounding can still differ) lets the walk resume at the
+/// entry crossing of the cell holding that distance, as it does where the ray comes down to top_m: the hit is the
+/// same to the last bit, since the walk evaluates f at the same breakpoints from there on and the reference walk
+/// finds no sign change before. With the guarantee broken, a hit before s_clear_m is missed.
 template <Real T>
 [[nodiscard]] std::optional<grid_hit<T>> trace_accelerated(const height_grid_view<T>& g, const max_pyramid<T>& p,
                                                            height_bounds<T> hb, const ray<T>& r, T t_max_m,
