@@ -93,10 +93,9 @@ template <class Inner> struct one_ray_at_a_time {
     [[nodiscard]] value_type seabed_height_m(value_type x, value_type y) const { return inner->seabed_height_m(x, y); }
     [[nodiscard]] value_type top_m() const { return inner->top_m(); }
 };
-} // namespace
-
-TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are traced together or ray by ray", T, float,
-                   double) {
+/// Lambert, straight rays and an ideal fan on a towfish heading -21 deg at 9 m, rolling and pitching a few degrees:
+/// rays cross a grid obliquely, in columns that are not vertical planes.
+template <class T> auto rolling_towfish() {
     sss::receiver_params rx;
     rx.max_range_m = 40.0;
     sss::motion::perturbed_params<T> tow;
@@ -105,9 +104,14 @@ TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are
     tow.altitude_m = T(9);
     tow.roll_deg = {T(4), T(6), T(90)};
     tow.pitch_deg = {T(2), T(4), T(90)};
-    const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
-                         sss::motion::perturbed<T>>
-        sim({}, {}, {}, sss::motion::perturbed<T>{tow}, rx);
+    return sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
+                          sss::motion::perturbed<T>>({}, {}, {}, sss::motion::perturbed<T>{tow}, rx);
+}
+} // namespace
+
+TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are traced together or ray by ray", T, float,
+                   double) {
+    const auto sim = rolling_towfish<T>();
     const std::size_t n = 241;
     std::vector<T> h(n * n);
     for (std::size_t iy = 0; iy < n; ++iy)
@@ -144,17 +148,7 @@ TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are
 TEST_CASE_TEMPLATE("Refinement rays guided by their steeper neighbours give the same lines, bit for bit, over relief "
                    "with objects",
                    T, float, double) {
-    sss::receiver_params rx;
-    rx.max_range_m = 40.0;
-    sss::motion::perturbed_params<T> tow;
-    tow.start_m = {T(1.7), T(-3.1)};
-    tow.heading_deg = T(-21);
-    tow.altitude_m = T(9);
-    tow.roll_deg = {T(4), T(6), T(90)};
-    tow.pitch_deg = {T(2), T(4), T(90)};
-    const sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
-                         sss::motion::perturbed<T>>
-        sim({}, {}, {}, sss::motion::perturbed<T>{tow}, rx);
+    const auto sim = rolling_towfish<T>();
     // Ripples across the track (their lee sides shadowed at low grazing) and a trench, a lying cylinder and a sphere
     // above the seabed: edges everywhere for the refinement to bisect.
     const std::size_t n = 241;
