@@ -86,6 +86,10 @@ TEST_CASE("A bad row fails with sss::file_error naming the file and its line") {
         {"# only x and y\ntime,x,y\n", 2, "missing column 'z'"},
         {"x,y,z\n", 1, "one of 'time' or 'ping'"},
         {"ping,time,x,y,z\n1,0,0,0,5\n2,0,0,1,5\n", 3, "time must strictly increase"},
+        // A towfish on its side or nose down: roll and pitch within 90 deg of level, after wrapping.
+        {"time,x,y,z,roll\n0,0,0,5,359\n1,0,1,5,95\n", 3, "column 'roll': '95' is 90 deg or more from level"},
+        {"time,x,y,z,pitch_deg\n0,0,0,5,-90\n1,0,1,5,0\n", 2, "column 'pitch': '-90' is 90 deg or more"},
+        {"time,x,y,z,roll_rad\n0,0,0,5,0.1\n1,0,1,5,3.1\n", 3, "column 'roll': '3.1' is 90 deg or more"},
     };
     for (const bad_case& c : cases) {
         CAPTURE(c.text);
@@ -95,6 +99,10 @@ TEST_CASE("A bad row fails with sss::file_error naming the file and its line") {
         CHECK(std::string(e.what()).find("survey.csv:" + std::to_string(c.line)) != std::string::npos);
         CHECK(std::string(e.what()).find(c.why) != std::string::npos);
     }
+    // Angles that wrap to within 90 deg of level load: a roll of 359 deg is -1 deg, a pitch of 6 rad about -16 deg.
+    std::istringstream wrapped("time,x,y,z,roll,pitch_rad\n0,0,0,5,359,6\n1,0,1,5,-270.5,0\n");
+    const auto w = sss::io::read_trajectory_csv<double>(wrapped, "wrapped.csv");
+    CHECK(w.roll_rad.size() == 2);
     // Faults not tied to one line: line 0.
     CHECK(error_of("# nothing here\n").line() == 0);
     CHECK(std::string(error_of("time,x,y,z\n0,0,0,5\n").what()).find("at least 2 samples") != std::string::npos);

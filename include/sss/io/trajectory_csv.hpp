@@ -23,8 +23,8 @@
 ///
 /// x, y, z and at least one of time and ping are required; angles are in degrees unless the name ends in
 /// `_rad`. Unknown or repeated columns are errors (a misspelt column would otherwise be silently dropped).
-/// Every data row holds one finite number per column, and the key (ping if present, else time) and the time
-/// strictly increase. Any fault throws sss::file_error naming the file and the line; nothing is returned
+/// Every data row holds one finite number per column, roll and pitch lie within 90 degrees of level (after wrapping
+/// to (-180, 180] degrees), and the key (ping if present, else time) and the time strictly increase. Any fault throws sss::file_error naming the file and the line; nothing is returned
 /// partially loaded.
 
 #include <array>
@@ -105,6 +105,18 @@ template <Real T>
                 throw sss::detail::error_at(name, line_no, fields[i].column,
                                             "column '" + std::string(d::column_name(columns[i].which)) + "': '" +
                                                 std::string(fields[i].text) + "' is not a finite number");
+            // Roll and pitch within 90 degrees of level once wrapped to (-180, 180] (a roll of 359 is -1): past that
+            // the towfish would fly on its side or nose down, and its heading would lose its meaning.
+            if (columns[i].which == d::column::roll || columns[i].which == d::column::pitch) {
+                const double deg = radians[static_cast<std::size_t>(columns[i].which)] ? *v * 180.0 / pi_v<double> : *v;
+                const double wrapped = deg - 360.0 * std::ceil((deg - 180.0) / 360.0);
+                if (!(std::abs(wrapped) < 90.0))
+                    throw sss::detail::error_at(name, line_no, fields[i].column,
+                                                "column '" + std::string(d::column_name(columns[i].which)) + "': '" +
+                                                    std::string(fields[i].text) +
+                                                    "' is 90 deg or more from level (roll and pitch must lie within 90 "
+                                                    "deg of it, wrapped to (-180, 180] deg)");
+            }
             data[static_cast<std::size_t>(columns[i].which)].push_back(*v);
         }
         for (std::size_t c : {key, time}) {
