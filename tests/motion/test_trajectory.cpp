@@ -187,14 +187,14 @@ TEST_CASE("Angles are interpolated along the shortest arc") {
     s.time_s = {0.0, 1.0, 2.0};
     s.position_m = {{0, 0, 5}, {0, 1, 5}, {0, 2, 5}};
     s.yaw_rad = {sss::deg_to_rad(350.0), sss::deg_to_rad(10.0), sss::deg_to_rad(30.0)};
-    s.roll_rad = {sss::deg_to_rad(-179.0), sss::deg_to_rad(179.0), sss::deg_to_rad(177.0)};
+    s.roll_rad = {sss::deg_to_rad(359.0), sss::deg_to_rad(1.0), sss::deg_to_rad(3.0)}; // a recorder's 0..360 roll
     trajectory_params<double> p;
     p.method = interpolation::linear;
     p.ping_interval_s = 0.5;
     const trajectory<double> traj(s, p);
     const auto q = traj.pose_at(1); // t = 0.5
     CHECK(std::abs(angle_diff(q.yaw_rad, 0.0)) < 1e-12);
-    CHECK(std::abs(angle_diff(q.roll_rad, pi)) < 1e-12);
+    CHECK(std::abs(angle_diff(q.roll_rad, 0.0)) < 1e-12);
     p.method = interpolation::cubic;
     const trajectory<double> cubic(s, p);
     CHECK(std::abs(angle_diff(cubic.pose_at(1).yaw_rad, 0.0)) < sss::deg_to_rad(1.0));
@@ -264,6 +264,15 @@ TEST_CASE("Malformed samples are rejected, naming the field") {
     s.heave_m = {0.0, std::nan(""), 0.0};
     CHECK(name_of(s) == "trajectory.heave_m");
     s.heave_m.clear();
+    // Roll and pitch within 90 deg of level, modulo a turn: on its side or nose down is refused, 359 deg is -1 deg.
+    s.roll_rad = {0.0, sss::deg_to_rad(95.0), 0.0};
+    CHECK(name_of(s) == "trajectory.roll_rad");
+    s.roll_rad = {sss::deg_to_rad(359.0), sss::deg_to_rad(-271.0), 0.0};
+    CHECK(name_of(s) == "(none)");
+    s.roll_rad.clear();
+    s.pitch_rad = {0.0, 0.0, -0.5 * pi};
+    CHECK(name_of(s) == "trajectory.pitch_rad");
+    s.pitch_rad.clear();
     s.position_m.pop_back();
     CHECK(name_of(s) == "trajectory.position_m");
     s.position_m.push_back({0, 2, 5});

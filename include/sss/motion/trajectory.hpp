@@ -56,8 +56,8 @@ template <Real T> struct trajectory_samples {
     std::vector<double> time_s{};      ///< sample times (s), strictly increasing
     std::vector<double> ping{};        ///< sample ping numbers, strictly increasing (then the key)
     std::vector<vec3<T>> position_m{}; ///< world position (m): x east, y north, z up
-    std::vector<T> roll_rad{};         ///< roll, starboard down positive (rad)
-    std::vector<T> pitch_rad{};        ///< pitch, bow up positive (rad)
+    std::vector<T> roll_rad{};         ///< roll, starboard down positive (rad), within pi/2 of level (modulo 2 pi)
+    std::vector<T> pitch_rad{};        ///< pitch, bow up positive (rad), within pi/2 of level (modulo 2 pi)
     std::vector<T> yaw_rad{};          ///< heading, clockwise from north (rad)
     std::vector<T> heave_m{};          ///< vertical offset added to z (m), positive up
     std::vector<T> sway_m{};           ///< offset along the horizontal starboard direction (m)
@@ -99,6 +99,8 @@ public:
         }
         require_channel(s.roll_rad, n, "trajectory.roll_rad");
         require_channel(s.pitch_rad, n, "trajectory.pitch_rad");
+        require_near_level(s.roll_rad, "trajectory.roll_rad");
+        require_near_level(s.pitch_rad, "trajectory.pitch_rad");
         require_channel(s.yaw_rad, n, "trajectory.yaw_rad");
         require_channel(s.heave_m, n, "trajectory.heave_m");
         require_channel(s.sway_m, n, "trajectory.sway_m");
@@ -204,6 +206,13 @@ private:
         require_size(v.size(), n, name);
         for (std::size_t i = 0; i < n; ++i)
             sss::require(std::isfinite(v[i]), name, [&] { return "sample " + std::to_string(i) + " is not finite"; });
+    }
+    /// Roll and pitch within 90 degrees of level once wrapped to [-pi, pi] (as perturbed's amplitudes): past that the
+    /// towfish flies on its side or nose down and its heading loses its meaning.
+    template <class V> static void require_near_level(const std::vector<V>& v, const char* name) {
+        for (std::size_t i = 0; i < v.size(); ++i)
+            sss::require(std::abs(std::remainder(static_cast<double>(v[i]), 2.0 * pi_v<double>)) < 0.5 * pi_v<double>,
+                         name, [&] { return "sample " + std::to_string(i) + " is 90 deg or more from level"; });
     }
     static void check_increasing(const std::vector<double>& k, const char* name) {
         for (std::size_t i = 0; i < k.size(); ++i) {
