@@ -8,8 +8,8 @@
 // The full simulator again with the seabed's shadow edges out of the along-track check (ray_density::
 // along_split_seabed = false; by default they take part here, the columns being coarse at 100 m) gives what that
 // check costs; with the check in thirds only (ray_density::along_split = 3, not ninths), what its second level costs;
-// and what clearing chords in open water saves in layered water (in the survey's and in one with strong gradients
-// down to the seabed). It also prints the scene's build time and the process's peak resident memory after the build,
+// what clearing chords in open water saves in layered water (in the survey's and in one with strong gradients
+// down to the seabed), and what following a steeper neighbour saves (layered_params::follow_neighbours). It also prints the scene's build time and the process's peak resident memory after the build,
 // the cost of ground-truth labels beside the image (render_labelled, and render then label_render, with the sides
 // that trace the bare seabed again: those where a ray meets an object), and the error
 // of the full simulator, all three ways, on both sides of several pings spread along the
@@ -161,6 +161,18 @@ int main(int argc, char** argv) {
                         speeds == &strong ? "strong gradients to the seabed" : "the survey's water", cleared, plain,
                         plain / cleared);
         }
+    }
+    {
+        // Bent rays beside a steeper neighbour (layered_params::follow_neighbours: the chords its path vouches for are
+        // skipped) against every ray traced alone; full simulator as by default, 1 thread.
+        propagation::layered_params<T> wp = sv.water.params();
+        wp.follow_neighbours = false;
+        const simulator<scattering::jackson<T>, propagation::layered<T>, beam::planar_array<T>, motion::perturbed<T>> alone(
+            sv.scattering, propagation::layered<T>(sv.water.profile(), wp), sv.array, sv.motion, sv.receiver);
+        const double each_alone = pings_per_s(alone, sv.scene, pings, 1, reps);
+        std::printf("full (1 thread): bent rays beside their neighbours %.1f pings/s, each traced alone %.1f pings/s "
+                    "(time %.2f)\n",
+                    layered_1, each_alone, layered_1 / each_alone);
     }
     {
         // Ground truth beside the image (full simulator, 1 thread): render_labelled, which takes the labels' first

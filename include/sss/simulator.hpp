@@ -414,6 +414,7 @@ private:
         hit<T> via{};     ///< for a bounced path: where it bounced
         vec3<T> launch{}; ///< the launched ray's unit direction (world)
         T leg_s{};        ///< one-way time (s) from the transducer to the first surface (surface, or via)
+        T clear_range_m{}; ///< horizontal distance within which the ray met nothing (m): path::clear_range_m
 
         /// The echo piece of this end's ray, spread over two-way times [t, t1].
         [[nodiscard]] tube_echo<T> piece(double t1, double power) const noexcept {
@@ -870,7 +871,7 @@ private:
         if constexpr (GuidedPropagation<P, Sc>) {
             if (guide)
                 return echo(scene, sd, along, e, dir,
-                            propagation_.trace_beside(r, scene, t_max_one_way, guide->launch, guide->leg_s),
+                            propagation_.trace_beside(r, scene, t_max_one_way, guide->launch, guide->clear_range_m),
                             t_max_one_way, column_sr, bounce);
         }
         return echo(scene, sd, along, e, dir, propagation_.trace(r, scene, t_max_one_way), t_max_one_way, column_sr,
@@ -897,6 +898,7 @@ private:
         r.valid = true;
         r.t = 2.0 * double(traced->time_s);
         r.leg_s = traced->time_s;
+        r.clear_range_m = traced->clear_range_m;
         r.gain = sigma * loss / double(sin_facet);
         r.power_per_rad = w * r.gain;
         r.stretch = detail::time_stretch(r.t, double(sin_facet));

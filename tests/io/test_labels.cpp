@@ -372,9 +372,9 @@ struct counted_straight : propagation::straight<double> {
         propagation::straight<double>::trace_many(rs, s, t, out);
     }
     template <Scene S>
-    std::optional<path<double>> trace_beside(const ray<double>& r, const S& s, double t, const vec3<double>& a, double a_leg_s) const {
+    std::optional<path<double>> trace_beside(const ray<double>& r, const S& s, double t, const vec3<double>& a, double a_clear_range_m) const {
         ++*rays;
-        return propagation::straight<double>::trace_beside(r, s, t, a, a_leg_s);
+        return propagation::straight<double>::trace_beside(r, s, t, a, a_clear_range_m);
     }
 };
 

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -590,6 +591,215 @@ template <class T> void check_clearance_changes_nothing() {
 TEST_CASE_TEMPLATE("clearing chords in open water finds the plain chord walk's hits bit for bit, with fewer chords", T,
                    float, double) {
     check_clearance_changes_nothing<T>();
+}
+
+namespace {
+
+// A scene that hands every query to `s` and counts the chords it is asked about; with `guided`, it is a GuidedScene
+// too and counts the bent rays it clears some distance for.
+template <class S, bool guided> struct counting_scene {
+    using value_type = typename S::value_type;
+    using T = value_type;
+    const S* s;
+    mutable long intersects = 0, cleared = 0;
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max) const {
+        ++intersects;
+        return s->intersect(r, t_max);
+    }
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max, T band) const { return s->clear_length_m(r, t_max, band); }
+    [[nodiscard]] std::optional<hit<T>> intersect_beside(const ray<T>& r, T t, const ray<T>& a, T a_clear) const
+        requires guided
+    {
+        return s->intersect_beside(r, t, a, a_clear);
+    }
+    [[nodiscard]] T clear_range_beside_m(const scene::beside_rays<T>& b) const
+        requires guided
+    {
+        const T d = s->clear_range_beside_m(b);
+        cleared += d > T(0);
+        return d;
+    }
+    [[nodiscard]] T seabed_height_m(T x, T y) const { return s->seabed_height_m(x, y); }
+    [[nodiscard]] T top_m() const { return s->top_m(); }
+};
+
+template <class T> bool same_path(const std::optional<path<T>>& x, const std::optional<path<T>>& y) {
+    if (x.has_value() != y.has_value()) return false;
+    if (!x) return true;
+    return x->surface.point == y->surface.point && x->surface.normal == y->surface.normal &&
+           x->surface.object == y->surface.object && x->surface.distance_m == y->surface.distance_m &&
+           x->time_s == y->time_s && x->spreading == y->spreading && x->absorption == y->absorption &&
+           x->arrival == y->arrival && x->clear_range_m == y->clear_range_m;
+}
+
+// Waters for the guided tests, under a surface at world z 40 m: strong gradients down to the seabed that bend rays
+// down and up (as in the clearance test), and three layers like bench/bench_survey.cpp's.
+template <class T> std::vector<layered<T>> guided_waters() {
+    layered_params<T> p;
+    p.surface_z_m = T(40);
+    const std::vector<T> strong{T(0), T(20), T(30), T(40.5)};
+    std::vector<layered<T>> out;
+    out.emplace_back(sound_speed_profile<T>(strong, {T(1500), T(1500), T(1490), T(1470)}), p);
+    out.emplace_back(sound_speed_profile<T>(strong, {T(1470), T(1470), T(1480), T(1500)}), p);
+    out.emplace_back(sound_speed_profile<T>({T(0), T(12), T(25), T(60)}, {T(1510), T(1507), T(1494), T(1491)}), p);
+    return out;
+}
+
+// A sidescan-like ray from `fish` at depression e (rad) on azimuth az (rad, from +x).
+template <class T> ray<T> fan_ray(const vec3<T>& fish, double az, double e) {
+    return ray<T>{fish, vec3<T>{T(std::cos(e) * std::cos(az)), T(std::cos(e) * std::sin(az)), T(-std::sin(e))}};
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain trace's path to the last bit, in fewer "
+                   "chords",
+                   T, float, double) {
+    const auto sc = rough_scene_with_objects<T>();
+    using Sc = scene::scene<scene::height_field<T>>;
+    static_assert(GuidedScene<Sc> && GuidedPropagation<layered<T>, Sc>);
+    std::size_t pairs = 0, hits = 0, objects = 0;
+    long guided_chords = 0, plain_chords = 0, cleared = 0;
+    for (const layered<T>& water : guided_waters<T>()) {
+        // Towfish 10 m and 3 m above the mean seabed, and one below the mound's top.
+        for (const vec3<T> fish : {vec3<T>{T(-45), T(-20), T(10)}, vec3<T>{T(-40), T(10), T(3)}, vec3<T>{T(18), T(4), T(1.1)}})
+            for (int a = 0; a < 6; ++a)
+                for (int g = 0; g < 40; ++g) {
+                    const double az = -0.3 + 0.1 * a + (fish.x > T(0) ? 2.0 : 0.0), e = (2 + 1.3 * g) * deg;
+                    // Neighbours as the refinement meets them, down to 2^-12 of a first-pass step, some turned by up to
+                    // a degree (another column of a conical beam).
+                    const double de = 1.3 * deg * std::ldexp(1.0, -(g * 7 + a) % 13);
+                    const double turn = (g + a) % 5 == 0 ? ((g % 3) - 1) * 1.0 * deg : 0.0;
+                    const ray<T> steep = fan_ray(fish, az, e), r = fan_ray(fish, az + turn, e - de);
+                    const T t_max = T(0.2);
+                    const auto a_path = water.trace(steep, sc, t_max);
+                    if (!a_path) continue;
+                    const counting_scene<Sc, true> guided{&sc};
+                    const counting_scene<Sc, false> plain{&sc};
+                    const auto want = water.trace(r, plain, t_max);
+                    const auto got = water.trace_beside(r, guided, t_max, steep.direction, a_path->clear_range_m);
+                    ++pairs;
+                    hits += want.has_value();
+                    objects += want && want->surface.object != no_object;
+                    if (!same_path(got, want)) FAIL_CHECK("fish " << fish.z << " ray " << a << ", " << g << ": differs");
+                    guided_chords += guided.intersects;
+                    plain_chords += plain.intersects;
+                    cleared += guided.cleared;
+                    // The wrong way round: the shallower ray is no guide for the steeper one.
+                    if (want) {
+                        const counting_scene<Sc, true> back{&sc};
+                        CHECK(same_path(water.trace_beside(steep, back, t_max, r.direction, want->clear_range_m), a_path));
+                        CHECK(back.cleared == 0);
+                    }
+                }
+    }
+    MESSAGE(pairs << " pairs, " << hits << " hits (" << objects << " on objects), " << cleared << " guided; chords "
+                  << guided_chords << " guided against " << plain_chords << " plain");
+    CHECK(hits > pairs / 2);
+    CHECK(objects > 20);
+    CHECK(cleared > std::int64_t(pairs) / 3);
+    CHECK(guided_chords < plain_chords);
+}
+
+TEST_CASE_TEMPLATE("A column traced together over a GuidedScene gets each ray's own trace bit for bit, either way round",
+                   T, float, double) {
+    const auto sc = rough_scene_with_objects<T>();
+    using Sc = scene::scene<scene::height_field<T>>;
+    long cleared = 0, compared = 0;
+    for (const layered<T>& water : guided_waters<T>())
+        for (int a = 0; a < 8; ++a)
+            for (const bool down_first : {true, false}) {
+                std::vector<ray<T>> rays;
+                for (int g = 0; g < 120; ++g) {
+                    const double e = (3 + 0.4 * g) * deg;
+                    rays.push_back(fan_ray(vec3<T>{T(-45), T(-20), T(10)}, -0.3 + 0.08 * a, down_first ? 50 * deg - e + 3 * deg : e));
+                }
+                const counting_scene<Sc, true> guided{&sc};
+                std::vector<std::optional<path<T>>> together(rays.size());
+                water.trace_many(std::span<const ray<T>>(rays), guided, T(0.2), std::span<std::optional<path<T>>>(together));
+                for (std::size_t k = 0; k < rays.size(); ++k) {
+                    ++compared;
+                    if (!same_path(together[k], water.trace(rays[k], sc, T(0.2))))
+                        FAIL_CHECK("column " << a << ", ray " << k << (down_first ? " (steepest first)" : " (shallowest first)"));
+                }
+                cleared += guided.cleared;
+            }
+    MESSAGE(compared << " rays, " << cleared << " guided");
+    CHECK(cleared > compared / 2);
+}
+
+namespace {
+// A flat seabed at world z `z` that records what a guided ray asks it (and clears nothing).
+struct bound_probe {
+    using value_type = double;
+    double z;
+    mutable std::optional<scene::beside_rays<double>> asked;
+    [[nodiscard]] std::optional<hit<double>> intersect(const ray<double>& r, double t) const {
+        return scene::flat_seabed<double>(z).intersect(r, t);
+    }
+    [[nodiscard]] std::optional<hit<double>> intersect_beside(const ray<double>& r, double t, const ray<double>&, double) const {
+        return intersect(r, t);
+    }
+    [[nodiscard]] double clear_range_beside_m(const scene::beside_rays<double>& b) const {
+        asked = b;
+        return 0;
+    }
+    [[nodiscard]] double seabed_height_m(double, double) const { return z; }
+    [[nodiscard]] double top_m() const { return z; }
+};
+} // namespace
+
+TEST_CASE("A shallower bent ray lies at least the bound's gain times the range above its steeper neighbour, and comes "
+          "down no faster than its slope, in water that bends rays down and up") {
+    std::vector<layered<double>> waters = guided_waters<double>();
+    layered_params<double> p;
+    p.surface_z_m = 40;
+    waters.emplace_back(sound_speed_profile<double>::constant(1500), p);
+    const vec3<double> fish{0, 0, 10};
+    // Depth (m below the source) of ray r at horizontal distance rho: where a flat seabed meets it there.
+    const auto range_at = [&](const layered<double>& w, const ray<double>& r, double drop) {
+        const auto h = w.trace(r, bound_probe{fish.z - drop, std::nullopt}, 1.0);
+        return h ? std::hypot(h->surface.point.x - fish.x, h->surface.point.y - fish.y) : -1.0;
+    };
+    int checked = 0, refused = 0;
+    double worst_iso = 0;
+    for (std::size_t wi = 0; wi < waters.size(); ++wi) {
+        const layered<double>& w = waters[wi];
+        for (const double e : {4.0, 9.0, 20.0, 45.0})
+            for (const double de : {0.5, 0.01, 1e-4}) {
+                const ray<double> a = fan_ray(fish, 0.3, e * deg), r = fan_ray(fish, 0.3, (e - de) * deg);
+                const bound_probe asked{fish.z - 35, std::nullopt};
+                const auto a_path = w.trace(a, asked, 1.0);
+                if (!a_path) continue; // turned back up before the seabed
+                (void)w.trace_beside(r, asked, 1.0, a.direction, a_path->clear_range_m);
+                if (!asked.asked) { // r may level off: no bound is claimed
+                    ++refused;
+                    continue;
+                }
+                const scene::beside_rays<double> b = *asked.asked;
+                CHECK(b.rho_a_m == a_path->clear_range_m);
+                for (const double drop : {0.5, 3.0, 10.0, 25.0, 34.0}) {
+                    const double rho = range_at(w, a, drop);
+                    if (!(rho > 0) || rho > b.rho_a_m) continue;
+                    // r's depth at rho, by bisection over flat seabeds.
+                    double lo = 0, hi = drop;
+                    for (int it = 0; it < 60; ++it) {
+                        const double mid = 0.5 * (lo + hi);
+                        (range_at(w, r, mid) < rho ? lo : hi) = mid;
+                    }
+                    const double gap = drop - hi;
+                    ++checked;
+                    CHECK(gap >= b.gain * rho * (1 - 1e-9) - 1e-9);
+                    CHECK(hi <= b.slope_r * rho + 1e-9);
+                    if (wi == waters.size() - 1 && de < 0.1) // isovelocity, close neighbours: the bound is nearly tight
+                        worst_iso = std::max(worst_iso, 1 - b.gain * rho / gap);
+                }
+            }
+    }
+    MESSAGE(checked << " depths checked, " << refused << " pairs refused; in isovelocity water the bound is within "
+                    << worst_iso << " of the gap");
+    CHECK(checked > 150);
+    CHECK(worst_iso < 0.02);
 }
 
 TEST_CASE("absorption integrates Francois-Garrison and Ainslie-McColm along the path") {

@@ -78,6 +78,13 @@ template <class Inner, bool guided> struct guide_probe {
         guided_calls->fetch_add(1, std::memory_order_relaxed);
         return inner->intersect_beside(r, t, a, a_clear);
     }
+    [[nodiscard]] T clear_range_beside_m(const sss::scene::beside_rays<T>& b) const
+        requires guided
+    {
+        const T d = inner->clear_range_beside_m(b);
+        if (d > T(0)) guided_calls->fetch_add(1, std::memory_order_relaxed);
+        return d;
+    }
     [[nodiscard]] T seabed_height_m(T x, T y) const { return inner->seabed_height_m(x, y); }
     [[nodiscard]] T top_m() const { return inner->top_m(); }
     [[nodiscard]] T top_m(const sss::vec2<T>& lo, const sss::vec2<T>& hi) const { return inner->top_m(lo, hi); }
@@ -93,9 +100,9 @@ template <class Inner> struct one_ray_at_a_time {
     [[nodiscard]] value_type seabed_height_m(value_type x, value_type y) const { return inner->seabed_height_m(x, y); }
     [[nodiscard]] value_type top_m() const { return inner->top_m(); }
 };
-/// Lambert, straight rays and an ideal fan on a towfish heading -21 deg at 9 m, rolling and pitching a few degrees:
-/// rays cross a grid obliquely, in columns that are not vertical planes.
-template <class T> auto rolling_towfish() {
+/// Lambert, straight rays (or the given water) and an ideal fan on a towfish heading -21 deg at 9 m, rolling and
+/// pitching a few degrees: rays cross a grid obliquely, in columns that are not vertical planes.
+template <class T, class Water = sss::propagation::straight<T>> auto rolling_towfish(Water water = {}) {
     sss::receiver_params rx;
     rx.max_range_m = 40.0;
     sss::motion::perturbed_params<T> tow;
@@ -104,8 +111,8 @@ template <class T> auto rolling_towfish() {
     tow.altitude_m = T(9);
     tow.roll_deg = {T(4), T(6), T(90)};
     tow.pitch_deg = {T(2), T(4), T(90)};
-    return sss::simulator<sss::scattering::lambertian<T>, sss::propagation::straight<T>, sss::beam::ideal_fan<T>,
-                          sss::motion::perturbed<T>>({}, {}, {}, sss::motion::perturbed<T>{tow}, rx);
+    return sss::simulator<sss::scattering::lambertian<T>, Water, sss::beam::ideal_fan<T>, sss::motion::perturbed<T>>(
+        {}, std::move(water), {}, sss::motion::perturbed<T>{tow}, rx);
 }
 } // namespace
 
@@ -145,12 +152,10 @@ TEST_CASE_TEMPLATE("a ping over rough relief is the same whether its columns are
     }
 }
 
-TEST_CASE_TEMPLATE("Refinement rays guided by their steeper neighbours give the same lines, bit for bit, over relief "
-                   "with objects",
-                   T, float, double) {
-    const auto sim = rolling_towfish<T>();
-    // Ripples across the track (their lee sides shadowed at low grazing) and a trench, a lying cylinder and a sphere
-    // above the seabed: edges everywhere for the refinement to bisect.
+namespace {
+/// Ripples across the track (their lee sides shadowed at low grazing) and a trench, a lying cylinder and a sphere
+/// above the seabed: edges everywhere for the refinement to bisect.
+template <class T> auto ripples_trench_and_targets() {
     const std::size_t n = 241;
     std::vector<T> h(n * n);
     for (std::size_t iy = 0; iy < n; ++iy)
@@ -165,10 +170,12 @@ TEST_CASE_TEMPLATE("Refinement rays guided by their steeper neighbours give the 
     using sss::scene::sphere;
     std::vector<object<T>> objs{object<T>({}, {cylinder<T>(sss::vec3<T>{T(15), T(-8), T(0.9)}, sss::vec3<T>{T(17), T(4), T(0.9)}, T(0.5), {1, 2, 3})}),
                                 object<T>({sphere<T>(sss::vec3<T>{T(-12), T(2), T(3)}, T(0.6), {2, 3, 4})}, {})};
-    const sss::scene::scene sc(sss::scene::height_field<T>({.nx = n, .ny = n, .cell_m = T(0.4), .origin_m = {T(-46), T(-50)}, .heights_m = std::move(h)}),
-                               sss::scene::object_set<T>(std::move(objs)));
-    using Sc = std::remove_cvref_t<decltype(sc)>;
-    static_assert(sss::GuidedScene<Sc> && sss::GuidedPropagation<sss::propagation::straight<T>, Sc>);
+    return sss::scene::scene(sss::scene::height_field<T>({.nx = n, .ny = n, .cell_m = T(0.4), .origin_m = {T(-46), T(-50)}, .heights_m = std::move(h)}),
+                             sss::scene::object_set<T>(std::move(objs)));
+}
+
+/// Pings 0, 3, 6 and 9 of `sim` over `sc` with and without the guide: the same lines, bit for bit; the guide's uses.
+template <class Sim, class Sc> long guided_against_plain(const Sim& sim, const Sc& sc) {
     static_assert(!sss::GuidedScene<guide_probe<Sc, false>> && sss::GuidedScene<guide_probe<Sc, true>>);
     std::atomic<long> calls{0};
     for (std::size_t i = 0; i < 4; ++i) {
@@ -177,6 +184,33 @@ TEST_CASE_TEMPLATE("Refinement rays guided by their steeper neighbours give the 
         CHECK(guided.port == plain.port);
         CHECK(guided.starboard == plain.starboard);
     }
-    MESSAGE(calls.load() << " refinement rays guided");
-    CHECK(calls.load() > 1000);
+    return calls.load();
+}
+} // namespace
+
+TEST_CASE_TEMPLATE("Refinement rays guided by their steeper neighbours give the same lines, bit for bit, over relief "
+                   "with objects",
+                   T, float, double) {
+    const auto sc = ripples_trench_and_targets<T>();
+    using Sc = std::remove_cvref_t<decltype(sc)>;
+    static_assert(sss::GuidedScene<Sc> && sss::GuidedPropagation<sss::propagation::straight<T>, Sc>);
+    const long calls = guided_against_plain(rolling_towfish<T>(), sc);
+    MESSAGE(calls << " refinement rays guided");
+    CHECK(calls > 1000);
+}
+
+TEST_CASE_TEMPLATE("Bent rays guided by their steeper neighbours, in the first pass and the refinement, give the same "
+                   "lines, bit for bit, over relief with objects",
+                   T, float, double) {
+    const auto sc = ripples_trench_and_targets<T>();
+    using Sc = std::remove_cvref_t<decltype(sc)>;
+    static_assert(sss::GuidedPropagation<sss::propagation::layered<T>, Sc>);
+    // Speed falling 20 m/s over the 12 m above the seabed: rays bend down, in chords of about a metre.
+    sss::propagation::layered_params<T> p;
+    p.surface_z_m = T(30);
+    const sss::propagation::layered<T> water(
+        sss::propagation::sound_speed_profile<T>({T(0), T(18), T(30), T(40)}, {T(1500), T(1500), T(1480), T(1478)}), p);
+    const long calls = guided_against_plain(rolling_towfish<T>(water), sc);
+    MESSAGE(calls << " bent rays guided");
+    CHECK(calls > 20000);
 }

@@ -201,3 +201,50 @@ TEST_CASE_TEMPLATE("No object lies within the band of a segment over the object 
     CHECK(set.clear_length_m(ray<T>{vec3<T>{T(0), T(0), T(50)}, vec3<T>{T(1), T(0), T(0)}}, T(7), T(-1)) == T(0));
     CHECK(set.clear_length_m(ray<T>{vec3<T>{T(0), T(0), T(50)}, vec3<T>{T(1), T(0), T(0)}}, T(7), std::numeric_limits<T>::quiet_NaN()) == T(0));
 }
+
+TEST_CASE_TEMPLATE("No object lies above a descending ray's lower bound within the object set's clear range beside a "
+                   "neighbour",
+                   T, float, double) {
+    const object_set<T> set(random_objects<T>(200, 5));
+    std::mt19937_64 g(37);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::size_t short_of_limit = 0, to_limit = 0;
+    const T high = set.top_m() + T(1);
+    for (int k = 0; k < 2000; ++k) {
+        const double az = 6.283 * u(g);
+        sss::scene::beside_rays<T> b;
+        b.origin = vec3<T>{T(120 * u(g) - 60), T(120 * u(g) - 60), T(3 + 4 * u(g))};
+        // Along the axes now and then: the horizontal ray's slabs with a zero component.
+        b.heading_r = k % 10 == 0 ? sss::vec2<T>{T(0), T(k % 20 == 0 ? 1 : -1)}
+                      : k % 10 == 1 ? sss::vec2<T>{T(1), T(0)}
+                                    : sss::vec2<T>{T(std::cos(az)), T(std::sin(az))};
+        b.slope_r = T(k % 50 == 0 ? 0.0 : 0.02 + 0.4 * u(g));
+        b.margin_m = T(0.2 * u(g));
+        const T limit = T(60);
+        const T d = set.clear_range_beside_m(b, limit);
+        REQUIRE(d >= T(0));
+        REQUIRE(d <= limit);
+        (d < limit ? short_of_limit : to_limit)++;
+        // Vertical probes every 5 cm short of d, from above every object down to the lower bound, meet nothing.
+        for (int s = 0; s * 0.05 < double(d); ++s) {
+            const T rho = T(0.05 * s);
+            const T low = b.origin.z - b.slope_r * rho - b.margin_m;
+            if (!(high > low)) continue;
+            const ray<T> probe{vec3<T>{b.origin.x + b.heading_r.x * rho, b.origin.y + b.heading_r.y * rho, high},
+                               vec3<T>{T(0), T(0), T(-1)}};
+            if (set.intersect(probe, high - low)) {
+                FAIL_CHECK("ray " << k << ": an object above the bound at " << rho << " m of a clear range " << d);
+                break;
+            }
+        }
+    }
+    MESSAGE(short_of_limit << " stopped short by an object's box, " << to_limit << " clear to the limit");
+    CHECK(short_of_limit > 100);
+    CHECK(to_limit > 100);
+    CHECK(object_set<T>{}.clear_range_beside_m(sss::scene::beside_rays<T>{}, T(7)) == T(7));
+    // A negative or NaN slope promises nothing.
+    sss::scene::beside_rays<T> bad{.origin = {T(0), T(0), T(50)}, .heading_r = {T(1), T(0)}, .slope_r = T(-1)};
+    CHECK(set.clear_range_beside_m(bad, T(7)) == T(0));
+    bad.slope_r = std::numeric_limits<T>::quiet_NaN();
+    CHECK(set.clear_range_beside_m(bad, T(7)) == T(0));
+}

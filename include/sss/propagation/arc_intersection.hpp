@@ -138,16 +138,20 @@ template <Real T> struct arc_hit {
 
 /// The first hit of the scene along an arc between arc lengths s_begin_m and s_end_m (m), found through chords of
 /// sagitta at most tolerance_m (m) and refined onto the arc (file comment), handed to
-/// `on_hit(const hit<T>& scene_hit, const vec3<T>& point, T arc_m, const arc_offset<T>& at)`: the scene's hit on the
-/// chord, the point on the arc it refines to, its arc length from the arc's start and the arc's offset there. Returns
-/// whether there was a hit (on_hit called once) or not (not called). The arc starts at inclination phi0, given as
-/// (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to scene.intersect. With
-/// clear_open_water, a ClearanceScene is first asked to clear windows of chords (file comment); the hit is the same.
-/// s_end_m may be +infinity only for a straight arc (zero curvature). (The callback lets a caller build its result
-/// from the scene's hit where it lies, with no intermediate copy: a hit is about a hundred bytes.)
+/// `on_hit(const hit<T>& scene_hit, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T clear_arc_m)`: the
+/// scene's hit on the chord, the point on the arc it refines to, its arc length from the arc's start, the arc's offset
+/// there, and the arc length up to which the chords met nothing (where the chord that met the scene starts; the hit
+/// itself on a straight arc). Returns whether there was a hit (on_hit called once) or not (not called). The arc
+/// starts at inclination phi0, given as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords`
+/// counts the calls to scene.intersect. With clear_open_water, a ClearanceScene is first asked to clear windows of
+/// chords (file comment); the hit is the same. The caller may know that the arc meets nothing up to arc length
+/// s_clear_m (m; 0 when it does not): the chords that end there or before are skipped, and the rest are the plain
+/// walk's, so the hit is the same (on a straight arc, one chord, it is unused). s_end_m may be +infinity only for a
+/// straight arc (zero curvature). (The callback lets a caller build its result from the scene's hit where it lies,
+/// with no intermediate copy: a hit is about a hundred bytes.)
 template <Scene S, Real T, class OnHit>
 bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0, T kappa_per_m, T s_begin_m,
-                   T s_end_m, T tolerance_m, bool clear_open_water, std::size_t& chords, OnHit&& on_hit) {
+                   T s_end_m, T tolerance_m, bool clear_open_water, T s_clear_m, std::size_t& chords, OnHit&& on_hit) {
     if (!(s_end_m > s_begin_m)) return false;
     const T sin0 = sin_phi0, cos0 = cos_phi0, kappa = kappa_per_m;
     const vec3<T> down{T(0), T(0), T(-1)};
@@ -161,7 +165,7 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
         const auto h = scene.intersect(chord, s_end_m - s_begin_m);
         if (!h) return false;
         const T arc_m = s_begin_m + h->distance_m;
-        on_hit(*h, h->point, arc_m, offset_along_arc(sin0, cos0, kappa, arc_m));
+        on_hit(*h, h->point, arc_m, offset_along_arc(sin0, cos0, kappa, arc_m), arc_m);
         return true;
     }
 
@@ -262,7 +266,17 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
                   : 0;
     std::size_t traced = traced_before_asking;
     vec3<T> p = p0;
-    for (std::size_t k_chord = 0; k_chord < n;) {
+    std::size_t k_first = 0;
+    if (s_clear_m > s_begin_m) { // skip the chords [0, k_first), all ending at or before s_clear_m
+        const T whole = std::min(std::floor((s_clear_m - s_begin_m) / ds), static_cast<T>(n));
+        k_first = whole >= T(1) ? static_cast<std::size_t>(whole) : 0;
+        while (k_first > 0 && s_at(k_first) > s_clear_m) --k_first;
+        if (k_first > 0) {
+            p = start_of(k_first);
+            traced = 0; // the ray is about where its neighbour met the scene: trace a few chords before asking
+        }
+    }
+    for (std::size_t k_chord = k_first; k_chord < n;) {
         if constexpr (clearance) {
             if (clear_open_water && traced >= traced_before_asking && n - k_chord >= 4) {
                 const std::size_t w = std::min(n, k_chord + window_chords);
@@ -316,7 +330,7 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
                 }
                 o = offset_along_arc(sin0, cos0, kappa, s);
             }
-            on_hit(*h, world(o), s, o);
+            on_hit(*h, world(o), s, o, s_lo);
             return true;
         }
         p = q;
@@ -330,8 +344,8 @@ template <Scene S, Real T>
                                                       T kappa_per_m, T s_begin_m, T s_end_m, T tolerance_m,
                                                       std::size_t& chords) {
     std::optional<arc_hit<T>> out;
-    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, true, chords,
-                  [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at) {
+    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, true, T(0), chords,
+                  [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T) {
                       out.emplace(h, arc_m, at);
                       out->surface.point = point;
                       out->surface.distance_m = arc_m;

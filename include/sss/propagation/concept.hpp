@@ -38,12 +38,13 @@
 ///
 /// Optional (`GuidedPropagation`): a policy that can use what a neighbouring ray found also offers
 ///
-/// | `p.trace_beside(r, scene, t_max_s, a_launch, a_leg_s)` | `std::optional<path<T>>` | p.trace(r, scene, t_max_s), bit for bit |
+/// | `p.trace_beside(r, scene, t_max_s, a_launch, a_clear_range_m)` | `std::optional<path<T>>` | p.trace(r, scene, t_max_s), bit for bit |
 ///
 /// given that the ray launched from r's origin along the unit direction `a_launch` (a `vec3<T>`) met nothing of the
-/// scene for one-way time a_leg_s (s), save what the scene's guided query leaves out (scene/concept.hpp). The
-/// simulator's refinement passes the steeper of the two rays it traces a new one between (straight rays hand it to a
-/// GuidedScene).
+/// scene within horizontal distance a_clear_range_m (m) of the origin (its path's `clear_range_m`), save what the
+/// scene's guided query leaves out (scene/concept.hpp). The simulator's refinement passes the steeper of the two rays
+/// it traces a new one between (straight rays hand it to a GuidedScene's intersect_beside; bent rays ask a
+/// GuidedScene's clear_range_beside_m how many chords they may skip).
 
 #include <concepts>
 #include <cstddef>
@@ -63,6 +64,10 @@ template <Real T> struct path {
     T spreading{};         ///< return-leg spreading: intensity at the transducer relative to 1 m from the hit (1/r^2 isovelocity)
     T absorption{};        ///< one-way absorption: intensity ratio in (0, 1]
     vec3<T> arrival{};     ///< unit direction of travel where the path meets the surface (world)
+    /// Horizontal distance from the source within which the path surely met nothing (m): no further than the hit, and
+    /// short of it by what the propagation cannot vouch for (a neighbour's trace builds on it, GuidedPropagation); 0
+    /// claims nothing.
+    T clear_range_m{};
 };
 
 template <class P>

@@ -13,7 +13,9 @@
 /// (turning points included); each arc that can reach the scene (deeper than the scene's top_m) is handed to
 /// the scene as chords of sagitta at most `chord_tolerance_m`, and the chord's hit is moved onto the arc
 /// (arc_intersection.hpp): on planar facets the hit point, path length and time are exact to rounding.
-/// The arrival direction is the bent ray's tangent at the hit, so grazing angles come out right.
+/// The arrival direction is the bent ray's tangent at the hit, so grazing angles come out right. Over a GuidedScene
+/// a ray traced beside a steeper neighbour from the same origin (the rays of a column in trace_many, the refinement's
+/// rays in trace_beside) skips the chords its neighbour's path vouches for: the same hit, in fewer chords.
 ///
 /// Absorption. alpha(z) (dB/km) from Francois & Garrison (1982, JASA 72, 896-907 and 1879-1890) or Ainslie &
 /// McColm (1998, JASA 103, 1671-1672) (absorption.hpp), with temperature, salinity and pH held constant and the
@@ -75,6 +77,9 @@ template <Real T> struct layered_params {
     /// lies well above the seabed); where rays run close to the seabed all the way it can cost a little more
     /// (docs/design/layered.md).
     bool clear_open_water = true;
+    /// Over a GuidedScene, skip the chords a steeper neighbour's path vouches for (trace_beside, and the rays of a
+    /// column in trace_many): the same hits, fewer chords (docs/design/layered.md). Off: every ray is traced alone.
+    bool follow_neighbours = true;
 };
 
 /// Everything a layered trace knows about one path. Plain data.
@@ -148,30 +153,87 @@ public:
         return out;
     }
 
+    /// trace(r, scene, t_max_s), bit for bit (GuidedPropagation), given that the ray launched from r's origin along the
+    /// unit direction a_launch met nothing within horizontal distance a_clear_range_m (m) of the origin. Over a
+    /// GuidedScene the chords within the horizontal distance the scene clears for r (clear_range_beside_m, from the
+    /// bound below) are skipped: the walk starts about where the neighbour met the scene, and the chords it traces are
+    /// the plain walk's. Any other scene, or a pair the bound does not cover, is traced as by trace.
+    ///
+    /// The bound (beside_rays). Both rays go down, a the steeper, and neither can level off below the source
+    /// (p c_max < 1, p = cos(phi) / c the ray parameter, Snell's invariant; c_min, c_max the slowest and fastest water
+    /// from the source down). A ray reaches depth d at horizontal distance X(d, p) = integral from d0 to d of
+    /// p c / sqrt(1 - p^2 c^2) dz, and dX/dp = integral of c (1 - p^2 c^2)^(-3/2) dz >= c_min (d - d0) / s^3, s the
+    /// largest sine of inclination any ray with parameter at least p_a has (sqrt(1 - p_a^2 c_min^2)). So at a's depth
+    /// d, r arrives at least (p_r - p_a) c_min (d - d0) / s^3 further out; coming down at least t_r per metre there
+    /// (t = the least tan(phi) along a ray, sqrt(1 - p^2 c_max^2) / (p c_max)), it lies that much times t_r above a at
+    /// a's horizontal distance rho, where a has come down at least t_a rho:
+    ///     gain = t_r t_a c_min (p_r - p_a) / s^3,
+    /// which in isovelocity water is tan(phi_a) - tan(phi_r) to first order in the difference. The margin holds both
+    /// rays' chords (within tolerance / cos(phi) of their arcs vertically, cos(phi) >= p_a c_min) and the launch
+    /// table's error in range (its validation tolerance, relative), times the steepest slope.
+    template <Scene S>
+    [[nodiscard]] std::optional<path<T>> trace_beside(const ray<T>& r, const S& scene, T t_max_s, const vec3<T>& a_launch,
+                                                      T a_clear_range_m) const {
+        std::optional<path<T>> out;
+        march m;
+        vec3<T> hdir;
+        const trace_start st = start_for(r.origin.z, scene);
+        if (!launch(r, t_max_s, st, m, hdir)) return out;
+        T clear = T(0);
+        if constexpr (GuidedScene<S>) {
+            if (p_.follow_neighbours)
+                if (const auto b = beside(r, hdir, a_launch, a_clear_range_m, water_from(st.depth0)))
+                    clear = scene.clear_range_beside_m(*b);
+        }
+        (void)follow(m, r, hdir, scene, t_max_s, st.chord_depth, out, nullptr, clear);
+        return out;
+    }
+
     /// paths[k] = trace(rays[k], scene, t_max_s) for every k, bit for bit (the BatchPropagation method). The rays of a
     /// column share their origin, so the launch table and the depths it depends on are found once per origin depth
     /// rather than once per ray; and the rays are launched a block at a time, so that the table lookups, independent
-    /// of one another, overlap. `paths` must hold at least rays.size() slots.
+    /// of one another, overlap. Over a GuidedScene the rays are followed from the steeper end of the span, each beside
+    /// the last one before it that met the scene, as trace_beside follows them. `paths` must hold at least rays.size()
+    /// slots.
     template <Scene S>
     void trace_many(std::span<const ray<T>> rays, const S& scene, T t_max_s, std::span<std::optional<path<T>>> paths) const {
         constexpr std::size_t block = 16;
+        const std::size_t n = rays.size();
+        // From the steeper end (a column comes ordered by depression either way).
+        const bool guided = GuidedScene<S> && p_.follow_neighbours;
+        const bool reverse = guided && n > 1 && rays[n - 1].direction.z < rays[0].direction.z;
+        const auto at = [&](std::size_t j) { return reverse ? n - 1 - j : j; };
         std::optional<trace_start> st;
         march m[block];
         vec3<T> hdir[block];
         T chord_depth[block];
+        water_below water{};
         bool alive[block];
-        for (std::size_t first = 0; first < rays.size(); first += block) {
-            const std::size_t count = std::min(block, rays.size() - first);
+        std::size_t guide = n; // the last ray followed that met the scene (none yet)
+        for (std::size_t first = 0; first < n; first += block) {
+            const std::size_t count = std::min(block, n - first);
             for (std::size_t i = 0; i < count; ++i) {
-                const ray<T>& r = rays[first + i];
-                if (!st || st->origin_z != r.origin.z) st = start_for(r.origin.z, scene);
+                const ray<T>& r = rays[at(first + i)];
+                if (!st || st->origin_z != r.origin.z) {
+                    st = start_for(r.origin.z, scene);
+                    if constexpr (GuidedScene<S>) water = water_from(st->depth0);
+                }
                 alive[i] = launch(r, t_max_s, *st, m[i], hdir[i]);
                 chord_depth[i] = st->chord_depth;
             }
             for (std::size_t i = 0; i < count; ++i) {
-                std::optional<path<T>>& slot = paths[first + i];
+                const std::size_t k = at(first + i);
+                std::optional<path<T>>& slot = paths[k];
                 slot.reset();
-                if (alive[i]) (void)follow(m[i], rays[first + i], hdir[i], scene, t_max_s, chord_depth[i], slot, nullptr);
+                if (!alive[i]) continue;
+                T clear = T(0);
+                if constexpr (GuidedScene<S>) {
+                    if (guided && guide < n && rays[guide].origin == rays[k].origin)
+                        if (const auto b = beside(rays[k], hdir[i], rays[guide].direction, paths[guide]->clear_range_m, water))
+                            clear = scene.clear_range_beside_m(*b);
+                }
+                (void)follow(m[i], rays[k], hdir[i], scene, t_max_s, chord_depth[i], slot, nullptr, clear);
+                if (slot) guide = k;
             }
         }
     }
@@ -257,6 +319,65 @@ private:
         return true;
     }
 
+    /// The water below a source at depth depth0 (m): c there, and the slowest and fastest water from there down (the
+    /// last layer goes on at its bottom knot's speed), widened by a few roundings. What trace_beside's bound needs of
+    /// the source.
+    struct water_below {
+        double c0, c_lo, c_hi;
+    };
+    [[nodiscard]] water_below water_from(T depth0) const noexcept {
+        const double eps = double(std::numeric_limits<T>::epsilon());
+        const double c0 = double(profile_.speed_mps(depth0));
+        double c_lo = c0, c_hi = c0;
+        for (const gradient_layer<T>& l : layers_) {
+            if (!(l.z_bottom_m > depth0)) continue;
+            const double top = double(l.speed_mps(std::max(l.z_top_m, depth0)));
+            const double bottom = std::isfinite(l.z_bottom_m) ? double(l.speed_mps(l.z_bottom_m)) : top;
+            c_lo = std::min({c_lo, top, bottom});
+            c_hi = std::max({c_hi, top, bottom});
+        }
+        return {c0, c_lo * (1.0 - 16.0 * eps), c_hi * (1.0 + 16.0 * eps)};
+    }
+
+    /// What r keeps over its steeper neighbour a (a_dir, clear within rho_a_m) in water w: trace_beside's bound;
+    /// nullopt where it does not apply (either ray not going down, a not steeper, a ray that may level off, a
+    /// near-vertical ray). hdir is r's horizontal direction as the walk uses it.
+    [[nodiscard]] std::optional<scene::beside_rays<T>> beside(const ray<T>& r, const vec3<T>& hdir, const vec3<T>& a_dir,
+                                                             T rho_a_m, const water_below& w) const noexcept {
+        if (!(rho_a_m > T(0)) || !std::isfinite(rho_a_m)) return std::nullopt;
+        // In double: the difference of the two rays' parameters is small against either.
+        const double rx = double(r.direction.x), ry = double(r.direction.y), rz = double(r.direction.z);
+        const double ax = double(a_dir.x), ay = double(a_dir.y), az = double(a_dir.z);
+        const double rh = std::sqrt(rx * rx + ry * ry), ah = std::sqrt(ax * ax + ay * ay);
+        const double inv_rl = 1.0 / std::sqrt(rh * rh + rz * rz), inv_al = 1.0 / std::sqrt(ah * ah + az * az);
+        const double sin_r = -rz * inv_rl, sin_a = -az * inv_al, cos_r = rh * inv_rl, cos_a = ah * inv_al;
+        if (!(sin_r > 0.0) || !(sin_a > sin_r) || !(cos_r >= 1e-3) || !(cos_a >= 1e-3)) return std::nullopt;
+        const double p_r = cos_r / w.c0, p_a = cos_a / w.c0;
+        const double r_hi = p_r * w.c_hi, a_hi = p_a * w.c_hi, r_lo = p_r * w.c_lo, a_lo = p_a * w.c_lo;
+        if (!(r_hi < 1.0 - 1e-6)) return std::nullopt; // r might level off
+        // The least and greatest tan(phi) along each ray (Snell: cos(phi) = p c), and s, a's greatest sin(phi).
+        const double least_r = std::sqrt((1.0 - r_hi) * (1.0 + r_hi)) / r_hi;
+        const double least_a = std::sqrt((1.0 - a_hi) * (1.0 + a_hi)) / a_hi;
+        const double most_r = std::sqrt((1.0 - r_lo) * (1.0 + r_lo)) / r_lo;
+        const double s = std::sqrt((1.0 - a_lo) * (1.0 + a_lo)), most_a = s / a_lo;
+        // p_r - p_a from the cosines' difference, (sin_a^2 - sin_r^2) / (cos_r + cos_a), free of cancellation.
+        const double dp = (sin_a - sin_r) * (sin_a + sin_r) / ((cos_r + cos_a) * w.c0);
+        const double gain = least_r * least_a * w.c_lo * dp / (s * s * s) * (1.0 - 1e-6);
+        const double rho_a = double(rho_a_m);
+        const double eps = double(std::numeric_limits<T>::epsilon());
+        const double rel = 2.0 * std::max(1e-10, 64.0 * eps); // the launch table's tolerance in range, and rounding
+        const double world = std::abs(double(r.origin.x)) + std::abs(double(r.origin.y)) + rho_a;
+        const double margin = 2.02 * double(p_.chord_tolerance_m) / a_lo + 2.0 * most_a * (rel * rho_a + 8.0 * eps * world);
+        return scene::beside_rays<T>{.origin = r.origin,
+                                     .heading_r = {hdir.x, hdir.y},
+                                     .heading_a = {T(ax / ah), T(ay / ah)},
+                                     .rho_a_m = rho_a_m,
+                                     .gain = T(gain),
+                                     .slope_r = T(most_r * (1.0 + 1e-6)),
+                                     .drop_a_m = T(most_a * rho_a * (1.0 + 1e-6)),
+                                     .margin_m = T(margin * (1.0 + 1e-6))};
+    }
+
     static const layered_params<T>& validated(const layered_params<T>& p) {
         sss::require_finite(p.surface_z_m, "layered.surface_z_m");
         sss::require_positive(p.frequency_hz, "layered.frequency_hz");
@@ -302,8 +423,10 @@ private:
     /// Follows the ray from `m` arc by arc until it meets the scene (true, the path in `out` and, when `more` is not
     /// null, the details in *more), leaves the water or runs out of time (false, `out` untouched).
     template <Scene S>
+    /// Chords that lie wholly within horizontal distance clear_range_m (m) of the origin are known to meet nothing
+    /// (trace_beside) and are skipped.
     [[nodiscard]] bool follow(march& m, const ray<T>& r, const vec3<T>& hdir, const S& scene, T t_max_s, T chord_depth,
-                              std::optional<path<T>>& out, details* more) const {
+                              std::optional<path<T>>& out, details* more, T clear_range_m = T(0)) const {
         constexpr T inf = std::numeric_limits<T>::infinity();
         constexpr std::size_t max_arcs = std::size_t(1) << 24;
         int zero_steps = 0;
@@ -323,12 +446,20 @@ private:
             const arc_frame<T> frame{vec3<T>{r.origin.x + hdir.x * m.x, r.origin.y + hdir.y * m.x, p_.surface_z_m - m.z}, hdir};
             // A hit on this arc ends the trace: the path, if the hit comes in time.
             bool in_time = false;
-            const auto done = [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at) {
-                in_time = finish(m, a, h, point, arc_m, at, layer, hdir, t_max_s, out, more);
+            const auto done = [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T clear_arc_m) {
+                in_time = finish(m, a, h, point, arc_m, at, clear_arc_m, layer, hdir, t_max_s, out, more);
             };
             // Path length the time left allows in this layer (c is largest at one of its bounds).
             const T c_max = g == T(0) ? c0 : std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m));
             const T s_cap = c_max * (t_max_s - m.t);
+            // The arc length within which this arc stays within clear_range_m: it goes at most cos(phi) = xi c <=
+            // xi c_max horizontally per metre (Snell), a few roundings less.
+            T s_clear = T(0);
+            if (clear_range_m > m.x) {
+                const T cos_hi = std::min(T(1), xi * c_max);
+                if (cos_hi > T(1e-3))
+                    s_clear = (clear_range_m - m.x) / cos_hi * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
+            }
 
             // Where the arc surely stays in the layer and may meet geometry, look before stepping through the layer.
             T s_done = T(0);
@@ -342,7 +473,7 @@ private:
                 if (a.kappa != T(0) && first > T(0) && T(256) * k_first2 >= T(8) * p_.chord_tolerance_m) {
                     if (k_first2 > T(8) * p_.chord_tolerance_m) first = chord_arc_length_m(a.kappa, p_.chord_tolerance_m);
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, T(0), first, p_.chord_tolerance_m,
-                                      p_.clear_open_water, m.chords, done))
+                                      p_.clear_open_water, s_clear, m.chords, done))
                         return in_time;
                     s_done = first;
                 }
@@ -353,7 +484,7 @@ private:
                 const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
                 if (stay > s_done) {
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, s_done, stay, p_.chord_tolerance_m,
-                                      p_.clear_open_water, m.chords, done))
+                                      p_.clear_open_water, s_clear, m.chords, done))
                         return in_time;
                     s_done = stay;
                 }
@@ -377,7 +508,7 @@ private:
             if (s_done < s_end) {
                 if (const auto s_begin = chord_start(st, a.kappa, chord_depth, s_end)) {
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
-                                      p_.chord_tolerance_m, p_.clear_open_water, m.chords, done))
+                                      p_.chord_tolerance_m, p_.clear_open_water, s_clear, m.chords, done))
                         return in_time;
                 }
             }
@@ -413,10 +544,10 @@ private:
     }
 
     /// The path to a hit on the current arc, into `out` (and the details into *more when not null); false if the hit
-    /// comes after t_max_s.
+    /// comes after t_max_s. The chords met nothing up to arc length clear_arc_m of this arc.
     [[nodiscard]] bool finish(const march& m, const detail::arc_start<T>& a, const hit<T>& h, const vec3<T>& point,
-                              T arc_m, const arc_offset<T>& o, const gradient_layer<T>& layer, const vec3<T>& hdir,
-                              T t_max_s, std::optional<path<T>>& out, details* more) const {
+                              T arc_m, const arc_offset<T>& o, T clear_arc_m, const gradient_layer<T>& layer,
+                              const vec3<T>& hdir, T t_max_s, std::optional<path<T>>& out, details* more) const {
         T dt;
         if (a.cos0 > T(0)) {
             dt = detail::arc_time(a, o.range_m, o.cos_incline, o.sin_half * o.sin_half);
@@ -453,6 +584,11 @@ private:
                     hdir * o.cos_incline + vec3<T>{T(0), T(0), -o.sin_incline});
         out->surface.point = point;
         out->surface.distance_m = path_length;
+        // Clear up to clear_arc_m: the hit's range less at most the arc between (horizontal progress <= arc length),
+        // less 1e-4 of it for rounding.
+        const T cos_hi = std::min(T(1), a.xi * std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m)));
+        out->clear_range_m = std::max(T(0), (m.x + o.range_m - cos_hi * std::max(arc_m - clear_arc_m, T(0))) * T(0.9999));
+
         if (more) *more = details{finite ? s_ab : T(0), c_hit, m.x + o.range_m, path_length};
         return true;
     }

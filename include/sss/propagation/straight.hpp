@@ -46,14 +46,15 @@ public:
         return to_path(r, scene.intersect(r, t_max_s * p_.sound_speed_mps));
     }
 
-    /// trace(r, scene, t_max_s), bit for bit, given that the ray from r's origin along a_launch met nothing for
-    /// one-way time a_leg_s (s) (GuidedPropagation): a GuidedScene is told that it met nothing for distances below
-    /// c a_leg_s, less 1e-4 of it for the rounding of the time; any other scene is asked as by trace.
+    /// trace(r, scene, t_max_s), bit for bit, given that the ray from r's origin along a_launch met nothing within
+    /// horizontal distance a_clear_range_m (m) (GuidedPropagation): a GuidedScene is told that it met nothing for
+    /// distances along it below a_clear_range_m divided by its horizontal part; any other scene is asked as by trace.
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace_beside(const ray<T>& r, const S& scene, T t_max_s, const vec3<T>& a_launch,
-                                                      T a_leg_s) const {
+                                                      T a_clear_range_m) const {
         if constexpr (GuidedScene<S>) {
-            const T clear_m = a_leg_s * p_.sound_speed_mps * T(0.9999);
+            const T ha = std::sqrt(a_launch.x * a_launch.x + a_launch.y * a_launch.y);
+            const T clear_m = ha > T(0) ? a_clear_range_m / ha : T(0);
             return to_path(r, scene.intersect_beside(r, t_max_s * p_.sound_speed_mps, ray<T>{r.origin, a_launch}, clear_m));
         } else {
             return trace(r, scene, t_max_s);
@@ -73,12 +74,14 @@ public:
     }
 
 private:
-    /// The path to hit h of ray r (none without a hit).
+    /// The path to hit h of ray r (none without a hit). It met nothing before the hit: clear_range_m is the hit's
+    /// horizontal distance, less 1e-4 of it for rounding.
     [[nodiscard]] std::optional<path<T>> to_path(const ray<T>& r, const std::optional<hit<T>>& h) const {
         if (!h) return std::nullopt;
         const T range_m = h->distance_m;
+        const T horizontal = std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
         return path<T>{*h, range_m / p_.sound_speed_mps, T(1) / (range_m * range_m), std::exp(-loss_per_m_ * range_m),
-                       r.direction};
+                       r.direction, range_m * horizontal * T(0.9999)};
     }
 
     straight_params<T> p_;

@@ -37,6 +37,11 @@ public:
     {
         return scene_->intersect_beside(r, t_max_m, a, a_clear_m);
     }
+    [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const
+        requires GuidedScene<S>
+    {
+        return scene_->clear_range_beside_m(b);
+    }
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const
         requires BatchScene<S>
     {
@@ -81,6 +86,12 @@ public:
     {
         if (objects_near_) return scene_->intersect_beside(r, t_max_m, a, a_clear_m);
         return scene_->seabed().intersect_beside(r, t_max_m, a, a_clear_m);
+    }
+    [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const
+        requires GuidedScene<Seabed>
+    {
+        if (objects_near_) return scene_->clear_range_beside_m(b);
+        return scene_->seabed().clear_range_beside_m(b);
     }
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
         if (objects_near_) scene_->intersect_many(rays, t_max_m, hits);

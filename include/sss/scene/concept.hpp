@@ -42,11 +42,15 @@
 /// Optional (`GuidedScene`): a scene that can use what a neighbouring ray found also offers
 ///
 /// | `s.intersect_beside(r, t_max_m, a, a_clear_m)` | `std::optional<hit<T>>` | s.intersect(r, t_max_m), bit for bit |
+/// | `s.clear_range_beside_m(b)` | `T` | a horizontal distance rho: ray r of b meets nothing within rho of b.origin |
 ///
 /// given that ray `a` (a `ray<T>` from r's origin) met nothing for distances below a_clear_m (m), save a hit of
-/// rounding alone that the exact geometry does not have (height_field_beside.hpp says when). The simulator's
-/// refinement traces a ray between two it has traced (sampling/detail/tube_refinement.hpp) and passes the steeper
-/// of them: a height field starts the new ray's walk about where the neighbour's ended (height_field_beside.hpp).
+/// rounding alone that the exact geometry does not have (height_field_beside.hpp says when); `b` is a
+/// `scene::beside_rays<T>`, what a ray r is known to keep over a neighbour a that met nothing (beside_rays.hpp), and
+/// rho is conservative like a clear length (0 always does). The simulator's refinement traces a ray between two it
+/// has traced (sampling/detail/tube_refinement.hpp) and passes the steeper of them: a height field starts the new
+/// ray's walk about where the neighbour's ended (height_field_beside.hpp); bent rays skip the chords within rho
+/// (propagation/layered.hpp).
 
 #include <concepts>
 #include <cstddef>
@@ -55,6 +59,7 @@
 
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/scene/beside_rays.hpp"
 
 namespace sss {
 
@@ -88,8 +93,10 @@ concept ClearanceScene = Scene<S> && requires(const S& s, const ray<typename S::
 
 /// A Scene that takes a neighbouring ray's clear distance as a guide (see the table above).
 template <class S>
-concept GuidedScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t) {
+concept GuidedScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t,
+                                           const scene::beside_rays<typename S::value_type>& b) {
     { s.intersect_beside(r, t, r, t) } -> std::same_as<std::optional<hit<typename S::value_type>>>;
+    { s.clear_range_beside_m(b) } -> std::same_as<typename S::value_type>;
 };
 
 /// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.

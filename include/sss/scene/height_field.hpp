@@ -126,6 +126,12 @@ public:
         const T s_clear = clear_beside_m(grid_, pyramid_, bounds_, r, neighbour, neighbour_clear_m);
         return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m, s_clear));
     }
+    /// Horizontal distance (m) from b.origin within which ray r of b surely stays above the surface, from what b
+    /// says of r and a neighbour that met nothing (GuidedScene; bent rays use it: propagation/layered.hpp): the chain
+    /// of height_field_beside.hpp; 0 where it does not apply.
+    [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const noexcept {
+        return sss::scene::clear_range_beside_m(grid_, pyramid_, bounds_, b);
+    }
     /// How far r runs with nothing of the surface within band_m below it (ClearanceScene; above a height field
     /// is water): where r lowered by band_m first meets the surface (t_max_m if it does not), provided the lowered
     /// start lies over the footprint and clearly above the surface there (it then cannot come from below, and a

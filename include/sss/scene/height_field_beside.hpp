@@ -17,6 +17,10 @@
 /// keeps the argument exact: a's path up to rho_a lies over the grid's footprint (the surface under it is defined
 /// there; a path that leaves the footprint is not covered).
 ///
+/// Bent rays (layered water) keep the argument with a lower bound in place of (tau_a - tau_r) rho and a margin for the
+/// chords they are traced along (beside_rays.hpp; propagation/layered.hpp derives both): clear_range_beside_m takes
+/// the general form, clear_beside_m the straight one.
+///
 /// trace_accelerated then starts r's walk at the entry crossing of the cell holding that distance: the same hit to
 /// the last bit, in a few cells instead of a walk from the top down, with one exception. The walk reads the surface
 /// at a grid position rounded by about eps |u| cells (u the position in cells from the grid's corner), so where the
@@ -33,6 +37,7 @@
 #include <limits>
 
 #include "sss/core/ray.hpp"
+#include "sss/scene/beside_rays.hpp"
 #include "sss/scene/grid_hit.hpp"
 #include "sss/scene/height_field_pyramid.hpp"
 #include "sss/scene/height_grid.hpp"
@@ -61,11 +66,50 @@ template <Real T>
     return top;
 }
 
+/// Horizontal distance (m) from b.origin within which ray r surely stays above the height field (g, its pyramid p and
+/// bounds hb), given what b says of r and its neighbour a (beside_rays.hpp): the file comment's chain with b.gain in
+/// place of tau_a - tau_r, b.slope_r bounding how fast r comes down near the origin, and b.margin_m added to the
+/// rounding. 0 where it does not apply (headings more than 2.5 degrees apart, a gain the turn eats, an origin not
+/// clearly above the surface around it, a's path off the footprint, non-finite or negative inputs).
+template <Real T>
+[[nodiscard]] T clear_range_beside_m(const height_grid_view<T>& g, const max_pyramid<T>& p, height_bounds<T> hb,
+                                     const beside_rays<T>& b) noexcept {
+    const T rho_a = b.rho_a_m;
+    if (!(rho_a > T(0)) || !std::isfinite(rho_a) || !(b.gain > T(0)) || !std::isfinite(b.gain) ||
+        !(b.slope_r >= T(0)) || !std::isfinite(b.slope_r) || !(b.drop_a_m >= T(0)) || !std::isfinite(b.drop_a_m) ||
+        !(b.margin_m >= T(0)) || !std::isfinite(b.margin_m))
+        return T(0);
+    const T z0 = b.origin.z;
+    // a's path out to its clear point over the footprint (a segment between two points of a rectangle).
+    const T u0 = (b.origin.x - g.origin_m.x) * g.inv_cell_m, v0 = (b.origin.y - g.origin_m.y) * g.inv_cell_m;
+    const T ua = u0 + b.heading_a.x * rho_a * g.inv_cell_m, va = v0 + b.heading_a.y * rho_a * g.inv_cell_m;
+    const T nu = static_cast<T>(g.nx - 1), nv = static_cast<T>(g.ny - 1);
+    if (!(u0 >= T(0) && v0 >= T(0) && u0 <= nu && v0 <= nv && ua >= T(0) && va >= T(0) && ua <= nu && va <= nv))
+        return T(0);
+    // The turn between the headings, theta, as its sine: the points under the two rays at rho are 2 rho sin(theta/2)
+    // apart, at most 1.001 rho sin(theta) while cos(theta) > 0.999 (theta below 2.5 degrees; neighbours in a
+    // refinement turn far less), plus rounding.
+    const T eps = std::numeric_limits<T>::epsilon();
+    const vec2<T> hr = b.heading_r, ha = b.heading_a;
+    if (!(hr.x * ha.x + hr.y * ha.y > T(0.999))) return T(0);
+    const T turn = T(1.001) * std::abs(ha.x * hr.y - ha.y * hr.x) + T(8) * eps;
+    const T lipschitz = p.max_step_m() * T(1.41421357) * g.inv_cell_m;
+    const T gain = b.gain - lipschitz * turn; // height r gains over a per metre of horizontal travel
+    // Rounding of f = z - h, at a's points (its first hit) and at r's: a few roundings of the terms' magnitudes. (Not
+    // the rounding of the grid position the surface is read at: see the file comment.)
+    const T err = T(16) * eps * (T(1) + std::abs(z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m) + b.drop_a_m) +
+                  b.margin_m;
+    if (!(gain > T(0))) return T(0);
+    const T rho_min = err / gain; // beyond it r is above a by more than rounding
+    if (!(z0 - b.slope_r * rho_min > highest_near(g, p, hb, u0, v0, rho_min * g.inv_cell_m) + err)) return T(0);
+    return rho_a;
+}
+
 /// Distance (m) along r below which r surely stays above the height field (g, its pyramid p and bounds hb), given
-/// that ray `a` from the same origin met nothing of it for distances below a_clear_m (m): the file comment's
-/// chain. 0 where it does not apply (different origins, a not steeper by enough, headings more than 2.5 degrees
-/// apart, an origin not clearly above the surface around it, a's path off the footprint, near-vertical or non-finite
-/// rays).
+/// that straight ray `a` from the same origin met nothing of it for distances below a_clear_m (m): the file comment's
+/// chain (clear_range_beside_m, with gain tau_a - tau_r). 0 where it does not apply (different origins, a not
+/// steeper by enough, headings more than 2.5 degrees apart, an origin not clearly above the surface around it, a's
+/// path off the footprint, near-vertical or non-finite rays).
 template <Real T>
 [[nodiscard]] T clear_beside_m(const height_grid_view<T>& g, const max_pyramid<T>& p, height_bounds<T> hb,
                                const ray<T>& r, const ray<T>& a, T a_clear_m) noexcept {
@@ -76,30 +120,16 @@ template <Real T>
     if (!(hr >= T(1e-3)) || !(ha >= T(1e-3))) return T(0);
     const T tau_r = -r.direction.z / hr, tau_a = -a.direction.z / ha;
     if (!std::isfinite(tau_r) || !std::isfinite(tau_a) || !(tau_r > T(0)) || !(tau_a > tau_r)) return T(0);
-    const T z0 = r.origin.z;
-    // a's path out to its clear point over the footprint (a segment between two points of a rectangle).
     const T rho_a = a_clear_m * ha; // horizontal distance (m)
-    const T u0 = (r.origin.x - g.origin_m.x) * g.inv_cell_m, v0 = (r.origin.y - g.origin_m.y) * g.inv_cell_m;
-    const T ua = u0 + a.direction.x * a_clear_m * g.inv_cell_m, va = v0 + a.direction.y * a_clear_m * g.inv_cell_m;
-    const T nu = static_cast<T>(g.nx - 1), nv = static_cast<T>(g.ny - 1);
-    if (!(u0 >= T(0) && v0 >= T(0) && u0 <= nu && v0 <= nv && ua >= T(0) && va >= T(0) && ua <= nu && va <= nv))
-        return T(0);
-    // The turn between the headings, theta, as its sine: the points under the two rays at rho are 2 rho sin(theta/2)
-    // apart, at most 1.001 rho sin(theta) while cos(theta) > 0.999 (theta below 2.5 degrees; neighbours in a
-    // refinement turn far less), plus rounding.
-    const T eps = std::numeric_limits<T>::epsilon();
-    const T hxr = r.direction.x / hr, hyr = r.direction.y / hr, hxa = a.direction.x / ha, hya = a.direction.y / ha;
-    if (!(hxr * hxa + hyr * hya > T(0.999))) return T(0);
-    const T turn = T(1.001) * std::abs(hxa * hyr - hya * hxr) + T(8) * eps;
-    const T lipschitz = p.max_step_m() * T(1.41421357) * g.inv_cell_m;
-    const T gain = (tau_a - tau_r) - lipschitz * turn; // height r gains over a per metre of horizontal travel
-    // Rounding of f = z - h, at a's points (its first hit) and at r's: a few roundings of the terms' magnitudes. (Not
-    // the rounding of the grid position the surface is read at: see the file comment.)
-    const T err = T(16) * eps * (T(1) + std::abs(z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m) + tau_a * rho_a);
-    if (!(gain > T(0))) return T(0);
-    const T rho_min = err / gain; // beyond it r is above a by more than rounding
-    if (!(z0 - tau_r * rho_min > highest_near(g, p, hb, u0, v0, rho_min * g.inv_cell_m) + err)) return T(0);
-    return rho_a / hr;
+    const beside_rays<T> b{.origin = r.origin,
+                           .heading_r = {r.direction.x / hr, r.direction.y / hr},
+                           .heading_a = {a.direction.x / ha, a.direction.y / ha},
+                           .rho_a_m = rho_a,
+                           .gain = tau_a - tau_r,
+                           .slope_r = tau_r,
+                           .drop_a_m = tau_a * rho_a,
+                           .margin_m = T(0)};
+    return clear_range_beside_m(g, p, hb, b) > T(0) ? rho_a / hr : T(0);
 }
 
 } // namespace sss::scene

@@ -31,6 +31,7 @@
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
+#include "sss/scene/beside_rays.hpp"
 #include "sss/scene/detail/bvh_node.hpp"
 #include "sss/scene/object.hpp"
 
@@ -149,6 +150,63 @@ public:
             stack[top++] = n.offset;
         }
         return t_best;
+    }
+
+    /// Horizontal distance (m) from b.origin within which ray r of b (beside_rays.hpp) surely meets no object: r runs
+    /// in the vertical plane of b.heading_r, no lower than z0 - slope_r rho - margin_m at horizontal distance rho, so
+    /// it can be inside a box of the hierarchy only where the horizontal ray crosses the box's footprint and that bound
+    /// has come down to the box's top. The least such distance over the leaf boxes (a node's is no more than its
+    /// children's), or limit_m (m) when that is less (boxes reached only beyond it are not looked into).
+    [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b, T limit_m) const noexcept {
+        constexpr T inf = std::numeric_limits<T>::infinity();
+        if (nodes_.empty()) return limit_m;
+        if (!(b.slope_r >= T(0)) || !(b.margin_m >= T(0)) || !std::isfinite(b.heading_r.x) ||
+            !std::isfinite(b.heading_r.y) || !std::isfinite(b.origin.x) || !std::isfinite(b.origin.y) ||
+            !std::isfinite(b.origin.z))
+            return T(0); // nothing can be promised
+        const T across = T(16) * std::numeric_limits<T>::epsilon() *
+                         std::max({std::abs(b.origin.x), std::abs(b.origin.y), std::abs(b.origin.z), T(1)});
+        const T ox = b.origin.x, oy = b.origin.y, high = b.origin.z - b.margin_m;
+        const T ix = T(1) / b.heading_r.x, iy = T(1) / b.heading_r.y; // +-infinity along an axis
+        // Where the bound reaches z_top and the horizontal ray is within [lo, hi]: +infinity when never.
+        const auto reach = [&](const box<T>& bx) {
+            const T lx = bx.lo.x - across, hx = bx.hi.x + across, ly = bx.lo.y - across, hy = bx.hi.y + across;
+            T enter = T(0), leave = inf;
+            if (b.heading_r.x != T(0)) {
+                const T t1 = (lx - ox) * ix, t2 = (hx - ox) * ix;
+                enter = std::max(enter, std::min(t1, t2));
+                leave = std::min(leave, std::max(t1, t2));
+            } else if (ox < lx || ox > hx) {
+                return inf;
+            }
+            if (b.heading_r.y != T(0)) {
+                const T t1 = (ly - oy) * iy, t2 = (hy - oy) * iy;
+                enter = std::max(enter, std::min(t1, t2));
+                leave = std::min(leave, std::max(t1, t2));
+            } else if (oy < ly || oy > hy) {
+                return inf;
+            }
+            const T above = high - bx.hi.z; // the bound comes down to the box's top at above / slope_r
+            const T down = above <= T(0) ? T(0) : (b.slope_r > T(0) ? above / b.slope_r * T(0.999) : inf);
+            const T first = std::max(enter, down);
+            return first <= leave ? first : inf;
+        };
+        T best = limit_m;
+        std::array<std::uint32_t, max_depth> stack;
+        std::size_t top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const detail::bvh_node<T>& n = nodes_[stack[--top]];
+            const T first = reach(n.bounds);
+            if (!(first < best)) continue;
+            if (n.count > 0) {
+                best = first;
+                continue;
+            }
+            stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+            stack[top++] = n.offset;
+        }
+        return best;
     }
 
     /// intersect by testing every object (each behind its own bounding box): the reference.

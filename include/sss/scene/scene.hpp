@@ -54,6 +54,16 @@ public:
         return h;
     }
 
+    /// Horizontal distance (m) from b.origin within which ray r of b surely meets nothing (GuidedScene, when the seabed
+    /// is one): the shorter of the seabed's and the objects' (object_set::clear_range_beside_m).
+    [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const
+        requires GuidedScene<Seabed>
+    {
+        const T d = seabed_.clear_range_beside_m(b);
+        if (objects_.empty() || !(d > T(0))) return d;
+        return objects_.clear_range_beside_m(b, d);
+    }
+
     /// hits[k] = intersect(rays[k], t_max_m) for every k: the seabed's hits together (sss::intersect_all, so a
     /// seabed that shares work among rays does), then the objects ray by ray up to each seabed hit.
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {

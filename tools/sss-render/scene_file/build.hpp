@@ -242,12 +242,27 @@ template <Real T = float> [[nodiscard]] sss::motion::trajectory<T> load_trajecto
                                         .method = m.interpolation == "linear" ? sss::motion::interpolation::linear
                                                                               : sss::motion::interpolation::cubic,
                                         .roll_from_turn = m.roll_from_turn};
-    try {
-        return sss::motion::trajectory<T>(sss::io::read_trajectory_csv<T>(m.trajectory_file), p);
-    } catch (const sss::error& e) {
+    const auto fail = [&](const sss::error& e) {
         std::string what = e.what();
         if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
-        throw scene_error(d.path + ": motion.trajectory_file: " + what);
+        return scene_error(d.path + ": motion.trajectory_file: " + what);
+    };
+    std::optional<sss::motion::trajectory_samples<T>> samples;
+    try {
+        samples.emplace(sss::io::read_trajectory_csv<T>(m.trajectory_file));
+    } catch (const sss::error& e) {
+        throw fail(e);
+    }
+    // Ping 0 among the file's keys: the scene's key, not the library's, in the message.
+    const std::vector<double>& key = samples->ping.empty() ? samples->time_s : samples->ping;
+    if (m.ping_zero_at && !key.empty() && !(*m.ping_zero_at >= key.front() && *m.ping_zero_at <= key.back()))
+        throw scene_error(d.path + ": motion.ping_zero_at: " + detail::fmt(*m.ping_zero_at) + " lies outside motion.trajectory_file '" +
+                          m.trajectory_file + "', whose " + (samples->ping.empty() ? "times run from " : "pings run from ") +
+                          detail::fmt(key.front()) + " to " + detail::fmt(key.back()) + (samples->ping.empty() ? " s" : ""));
+    try {
+        return sss::motion::trajectory<T>(*samples, p);
+    } catch (const sss::error& e) {
+        throw fail(e);
     }
 }
 
