@@ -247,9 +247,10 @@ public:
     ///
     /// Where the scene can bound its geometry over a rectangle (AreaScene) and the propagation how far its rays
     /// reach (ReachBoundedPropagation), the rays see the scene over the rectangle they can reach
-    /// (sampling/reach.hpp, scene/area_view.hpp): the same geometry, with the top of what lies there. The launch
-    /// angles still follow the whole scene's top (sampling/launch_angles.hpp), so the rays traced are the same
-    /// either way.
+    /// (sampling/reach.hpp, scene/area_view.hpp): the same geometry, with the top of what lies there; and where that
+    /// view can narrow (area_view::within), each column's rays see the objects only where the rectangle of that
+    /// column reaches one. The launch angles still follow the whole scene's top (sampling/launch_angles.hpp), so the
+    /// rays traced are the same either way.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
@@ -322,7 +323,7 @@ private:
         if (density_.refine_depth == 0 || levels == 0 || n_along < 2) {
             for (std::size_t j = 0; j < n_along; ++j) {
                 const auto [lo, hi] = bounds(j);
-                trace_column(scene, f, lo, hi, scratch, nullptr, visit);
+                in_column(scene, f, lo, hi, [&](const Sc& col) { trace_column(col, f, lo, hi, scratch, nullptr, visit); });
             }
             return;
         }
@@ -337,7 +338,7 @@ private:
             r.edges.clear();
             const auto [lo, hi] = bounds(j);
             auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
-            trace_column(scene, f, lo, hi, scratch, &r, keep);
+            in_column(scene, f, lo, hi, [&](const Sc& col) { trace_column(col, f, lo, hi, scratch, &r, keep); });
             std::swap(r.angles, scratch.angles);
             std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& a, const column_edge& b) { return a.t < b.t; });
         };
@@ -559,6 +560,24 @@ private:
         one_way(y, x);
     }
 
+    /// Calls fn with the scene that the rays of the column between along-track angles lo and hi (rad) see: where
+    /// `scene` is an area view that can narrow (area_view::within) and rays keep their heading, the view over the
+    /// rectangle they stay over (sampling/reach.hpp, for the column's along-track angle and the side's depressions),
+    /// so that a column passing beside every object does not ask the objects; else the scene itself. The rays are
+    /// followed as they are through `scene`, so the echoes are the same.
+    template <Scene Sc, class Fn> void in_column(const Sc& scene, const trace_frame& f, double lo, double hi, Fn&& fn) const {
+        if constexpr (ReachBoundedPropagation<P> && !bouncing &&
+                      requires(const vec2<T>& v) { { scene.within(v, v) } -> std::same_as<Sc>; }) {
+            const T along = static_cast<T>(0.5 * (lo + hi));
+            const double reach_m = double(one_way_limit_s()) * double(propagation_.reach_speed_mps(f.p.position.z));
+            const beam_extent<T> column{along, along, f.ext.depression_min_rad, f.ext.depression_max_rad};
+            const plane_rectangle<T> r = side_reach(f.p, f.sd, column, reach_m, true);
+            fn(scene.within(r.lo, r.hi));
+        } else {
+            fn(scene);
+        }
+    }
+
     /// Traces the column between along-track angles lo and hi (rad) and visits its echoes; with a record given, the
     /// two-way times of the edges its refinement located go to its `edges`, and its `interval` follows the launch
     /// interval being refined.
@@ -662,8 +681,8 @@ private:
         };
         const bool last = level + 1 >= division_levels();
         if (last) {
-            trace_runs(scene, f, lo, a, angles, runs, b.scratch, nullptr, visit);
-            trace_runs(scene, f, c, hi, angles, runs, b.scratch, nullptr, visit);
+            in_column(scene, f, lo, a, [&](const Sc& col) { trace_runs(col, f, lo, a, angles, runs, b.scratch, nullptr, visit); });
+            in_column(scene, f, c, hi, [&](const Sc& col) { trace_runs(col, f, c, hi, angles, runs, b.scratch, nullptr, visit); });
             for (const auto& [k0, k1] : runs)
                 for (std::size_t k = k0; k <= k1; ++k) emit_middle(k);
             return;
@@ -676,7 +695,8 @@ private:
             r.first.assign(angles.size(), 0);
             r.seabed_edges = rec.seabed_edges;
             auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
-            trace_runs(scene, f, s == 0 ? lo : c, s == 0 ? a : hi, angles, runs, b.scratch, &r, keep);
+            const double s_lo = s == 0 ? lo : c, s_hi = s == 0 ? a : hi;
+            in_column(scene, f, s_lo, s_hi, [&](const Sc& col) { trace_runs(col, f, s_lo, s_hi, angles, runs, b.scratch, &r, keep); });
             std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& x, const column_edge& y) { return x.t < y.t; });
         }
         // The middle third's edges: the column's, within the runs.

@@ -142,3 +142,64 @@ TEST_CASE("an area view over nothing keeps its scene's top") {
     const sss::scene::area_view view(f, vec2<double>{500.0, 500.0}, vec2<double>{600.0, 600.0});
     CHECK(view.top_m() == f.top_m());
 }
+
+TEST_CASE("a view narrowed to a column's rectangle leaves out the objects that reach nowhere over it, and keeps its top") {
+    auto field = sloped_field();
+    std::vector<sss::scene::object<double>> objs;
+    const auto ground = [&field](double x, double y) { return field.seabed_height_m(x, y); };
+    objs.push_back(sss::seabed::tethered_mine<double>({.anchor_m = {-30.0, 70.0}, .case_height_m = 4.0, .object_id = 1}, ground));
+    const sss::scene::scene sc(std::move(field), sss::scene::object_set<double>(std::move(objs)));
+    const sss::scene::area_view view(sc, vec2<double>{-45.0, 50.0}, vec2<double>{40.0, 90.0});
+    REQUIRE(view.objects_near());
+    const auto beside = view.within({0.0, 50.0}, {40.0, 90.0}); // east of the mine
+    const auto over = view.within({-35.0, 65.0}, {-25.0, 75.0});
+    CHECK_FALSE(beside.objects_near());
+    CHECK(over.objects_near());
+    CHECK(beside.top_m() == view.top_m());
+    // Narrowing a view that has no object near keeps it so.
+    const sss::scene::area_view bare(sc, vec2<double>{10.0, 25.0}, vec2<double>{40.0, 45.0});
+    CHECK_FALSE(bare.within({-35.0, 65.0}, {-25.0, 75.0}).objects_near());
+    // Rays that stay over the narrowed rectangle meet what they meet through the whole scene.
+    std::mt19937_64 g(9);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int k = 0; k < 2000; ++k) {
+        const vec3<double> from{40.0 * u(g), 50.0 + 40.0 * u(g), 15.0}, to{40.0 * u(g), 50.0 + 40.0 * u(g), -10.0};
+        const sss::ray<double> r{from, glm::normalize(to - from)};
+        const double t = glm::length(to - from);
+        const auto a = beside.intersect(r, t), b = sc.intersect(r, t);
+        REQUIRE(bool(a) == bool(b));
+        if (a) CHECK(a->distance_m == b->distance_m);
+    }
+}
+
+TEST_CASE("the object hierarchy reaches over a rectangle wherever a vertical ray through it meets an object") {
+    std::mt19937_64 g(21);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<sss::scene::object<double>> objs;
+    for (std::uint32_t k = 0; k < 120; ++k) {
+        const vec2<double> at{200.0 * u(g) - 100.0, 200.0 * u(g) - 100.0};
+        objs.push_back(sss::seabed::tethered_mine<double>(
+            {.anchor_m = at, .case_height_m = 1.0 + 4.0 * u(g), .object_id = k + 1}, [](double, double) { return 0.0; }));
+    }
+    const sss::scene::object_set<double> set(std::move(objs));
+    int empty = 0, reached = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const vec2<double> lo{220.0 * u(g) - 110.0, 220.0 * u(g) - 110.0};
+        const vec2<double> hi = lo + vec2<double>{0.2 + 8.0 * u(g), 0.2 + 8.0 * u(g)};
+        const bool over = set.reaches_over(lo, hi);
+        (over ? reached : empty)++;
+        if (over) continue;
+        // Vertical probes on a 10 cm grid over the rectangle meet nothing.
+        for (double x = lo.x; x <= hi.x; x += 0.1)
+            for (double y = lo.y; y <= hi.y; y += 0.1)
+                if (set.intersect(sss::ray<double>{{x, y, 20.0}, {0.0, 0.0, -1.0}}, 40.0)) {
+                    FAIL_CHECK("an object under (" << x << ", " << y << ") where none reaches over the rectangle");
+                    x = hi.x + 1;
+                    break;
+                }
+    }
+    MESSAGE(reached << " rectangles reached, " << empty << " clear");
+    CHECK(empty > 1000);
+    CHECK(reached > 150);
+    CHECK_FALSE(sss::scene::object_set<double>().reaches_over({0.0, 0.0}, {1.0, 1.0}));
+}

@@ -214,3 +214,47 @@ TEST_CASE_TEMPLATE("Bent rays guided by their steeper neighbours, in the first p
     MESSAGE(calls << " bent rays guided");
     CHECK(calls > 20000);
 }
+
+TEST_CASE_TEMPLATE("Columns see the scene over the rectangle their rays stay over: the same lines, bit for bit, as "
+                   "through the side's view, in straight and layered water",
+                   T, float, double) {
+    const auto sc = ripples_trench_and_targets<T>();
+    using Sc = std::remove_cvref_t<decltype(sc)>;
+    // The side's view of `sc` narrows per column (area_view::within); the probe's view cannot (its objects are asked
+    // wherever the side's rectangle holds one), and is as guided.
+    static_assert(requires(const sss::scene::area_view<Sc>& v, const sss::vec2<T>& p) { v.within(p, p); });
+    static_assert(!requires(const sss::scene::area_view<guide_probe<Sc, true>>& v, const sss::vec2<T>& p) { v.within(p, p); });
+    sss::propagation::layered_params<T> p;
+    p.surface_z_m = T(30);
+    const sss::propagation::layered<T> water(
+        sss::propagation::sound_speed_profile<T>({T(0), T(18), T(30), T(40)}, {T(1500), T(1500), T(1480), T(1478)}), p);
+    std::atomic<long> calls{0};
+    const auto straight_sim = rolling_towfish<T>();
+    const auto layered_sim = rolling_towfish<T>(water);
+    for (std::size_t i = 0; i < 4; ++i) {
+        const auto a = straight_sim.ping(sc, 3 * i), b = straight_sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
+        CHECK(a.port == b.port);
+        CHECK(a.starboard == b.starboard);
+        const auto c = layered_sim.ping(sc, 3 * i), d = layered_sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
+        CHECK(c.port == d.port);
+        CHECK(c.starboard == d.starboard);
+    }
+    // Some columns pass beside both targets, some meet one.
+    const auto pose = straight_sim.motion().pose_at(0);
+    std::size_t beside = 0, meeting = 0;
+    for (const sss::side sd : {sss::side::port, sss::side::starboard}) {
+        const auto area = straight_sim.side_area(pose, sd);
+        REQUIRE(area);
+        const sss::scene::area_view<Sc> view(sc, area->lo, area->hi);
+        const auto ext = sss::beam::ideal_fan<T>{}.extent(sd);
+        for (int k = 0; k <= 20; ++k) {
+            const T along = ext.along_min_rad + (ext.along_max_rad - ext.along_min_rad) * T(k) / T(20);
+            const auto r = sss::side_reach(pose, sd, sss::beam_extent<T>{along, along, ext.depression_min_rad, ext.depression_max_rad},
+                                           40.0 * 1.0001, true);
+            (view.within(r.lo, r.hi).objects_near() ? meeting : beside)++;
+        }
+    }
+    MESSAGE(beside << " of " << beside + meeting << " columns beside every target");
+    CHECK(beside > 0);
+    CHECK(meeting > 0);
+}

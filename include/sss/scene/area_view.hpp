@@ -108,6 +108,14 @@ public:
     [[nodiscard]] const scene<Seabed>& whole() const noexcept { return *scene_; }
     /// True when an object reaches over the rectangle (else the objects are not asked).
     [[nodiscard]] bool objects_near() const noexcept { return objects_near_; }
+    /// This view for rays that stay over the rectangle [lo, hi] (world x, y, m), which lies within this view's: the
+    /// objects are asked only when one of them reaches over it (object_set::reaches_over). The top stays this view's,
+    /// so that rays are followed as they are through this view (layered water starts its chords from the top).
+    [[nodiscard]] area_view within(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
+        area_view v = *this;
+        v.objects_near_ = objects_near_ && scene_->objects().reaches_over(lo, hi);
+        return v;
+    }
 
 private:
     const scene<Seabed>* scene_;

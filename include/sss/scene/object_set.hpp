@@ -77,6 +77,25 @@ public:
         return m;
     }
 
+    /// Whether a leaf box of the hierarchy reaches over the rectangle [lo, hi] (world x, y, m): false only where no
+    /// object can lie over it. Through the hierarchy (a node's box holds its children's), so a column of a ping asks
+    /// in a few box tests however many objects there are.
+    [[nodiscard]] bool reaches_over(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
+        if (nodes_.empty()) return false;
+        std::array<std::uint32_t, max_depth> stack;
+        std::size_t top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const detail::bvh_node<T>& n = nodes_[stack[--top]];
+            const box<T>& b = n.bounds;
+            if (!(b.hi.x >= lo.x && b.lo.x <= hi.x && b.hi.y >= lo.y && b.lo.y <= hi.y)) continue;
+            if (n.count > 0) return true;
+            stack[top++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+            stack[top++] = n.offset;
+        }
+        return false;
+    }
+
     /// Nearest hit over all objects with 0 < distance <= t_max_m, through the hierarchy.
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         if (nodes_.empty()) return std::nullopt;
