@@ -170,7 +170,7 @@ public:
     ///     gain = t_r t_a c_min (p_r - p_a) / s^3,
     /// which in isovelocity water is tan(phi_a) - tan(phi_r) to first order in the difference. The margin holds both
     /// rays' chords (within tolerance / cos(phi) of their arcs vertically, cos(phi) >= p_a c_min) and the launch
-    /// table's error in range (its validation tolerance, relative), times the steepest slope.
+    /// table's error in range (its validation tolerance, relative to the path length), times the steepest slope.
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace_beside(const ray<T>& r, const S& scene, T t_max_s, const vec3<T>& a_launch,
                                                       T a_clear_range_m) const {
@@ -365,9 +365,12 @@ private:
         const double gain = least_r * least_a * w.c_lo * dp / (s * s * s) * (1.0 - 1e-6);
         const double rho_a = double(rho_a_m);
         const double eps = double(std::numeric_limits<T>::epsilon());
-        const double rel = 2.0 * std::max(1e-10, 64.0 * eps); // the launch table's tolerance in range, and rounding
+        // The launch table's tolerance in range (relative to the path length, at most rho / (p c_lo) <= rho / a_lo
+        // for either ray), with room for rounding.
+        const double rel = 2.0 * std::max(1e-10, 64.0 * eps);
         const double world = std::abs(double(r.origin.x)) + std::abs(double(r.origin.y)) + rho_a;
-        const double margin = 2.02 * double(p_.chord_tolerance_m) / a_lo + 2.0 * most_a * (rel * rho_a + 8.0 * eps * world);
+        const double margin =
+            2.02 * double(p_.chord_tolerance_m) / a_lo + 2.0 * most_a * (rel * rho_a / a_lo + 8.0 * eps * world);
         return scene::beside_rays<T>{.origin = r.origin,
                                      .heading_r = {hdir.x, hdir.y},
                                      .heading_a = {T(ax / ah), T(ay / ah)},
