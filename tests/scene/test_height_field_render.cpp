@@ -174,6 +174,15 @@ template <class T> auto ripples_trench_and_targets() {
                              sss::scene::object_set<T>(std::move(objs)));
 }
 
+/// Water under a surface 30 m above z = 0 whose speed falls 20 m/s over the 12 m above the seabed: rays bend down, in
+/// chords of about a metre.
+template <class T> sss::propagation::layered<T> bending_water() {
+    sss::propagation::layered_params<T> p;
+    p.surface_z_m = T(30);
+    return sss::propagation::layered<T>(
+        sss::propagation::sound_speed_profile<T>({T(0), T(18), T(30), T(40)}, {T(1500), T(1500), T(1480), T(1478)}), p);
+}
+
 /// Pings 0, 3, 6 and 9 of `sim` over `sc` with and without the guide: the same lines, bit for bit; the guide's uses.
 template <class Sim, class Sc> long guided_against_plain(const Sim& sim, const Sc& sc) {
     static_assert(!sss::GuidedScene<guide_probe<Sc, false>> && sss::GuidedScene<guide_probe<Sc, true>>);
@@ -205,12 +214,7 @@ TEST_CASE_TEMPLATE("Bent rays guided by their steeper neighbours, in the first p
     const auto sc = ripples_trench_and_targets<T>();
     using Sc = std::remove_cvref_t<decltype(sc)>;
     static_assert(sss::GuidedPropagation<sss::propagation::layered<T>, Sc>);
-    // Speed falling 20 m/s over the 12 m above the seabed: rays bend down, in chords of about a metre.
-    sss::propagation::layered_params<T> p;
-    p.surface_z_m = T(30);
-    const sss::propagation::layered<T> water(
-        sss::propagation::sound_speed_profile<T>({T(0), T(18), T(30), T(40)}, {T(1500), T(1500), T(1480), T(1478)}), p);
-    const long calls = guided_against_plain(rolling_towfish<T>(water), sc);
+    const long calls = guided_against_plain(rolling_towfish<T>(bending_water<T>()), sc);
     MESSAGE(calls << " bent rays guided");
     CHECK(calls > 20000);
 }
@@ -224,13 +228,9 @@ TEST_CASE_TEMPLATE("Columns see the scene over the rectangle their rays stay ove
     // wherever the side's rectangle holds one), and is as guided.
     static_assert(requires(const sss::scene::area_view<Sc>& v, const sss::vec2<T>& p) { v.within(p, p); });
     static_assert(!requires(const sss::scene::area_view<guide_probe<Sc, true>>& v, const sss::vec2<T>& p) { v.within(p, p); });
-    sss::propagation::layered_params<T> p;
-    p.surface_z_m = T(30);
-    const sss::propagation::layered<T> water(
-        sss::propagation::sound_speed_profile<T>({T(0), T(18), T(30), T(40)}, {T(1500), T(1500), T(1480), T(1478)}), p);
     std::atomic<long> calls{0};
     const auto straight_sim = rolling_towfish<T>();
-    const auto layered_sim = rolling_towfish<T>(water);
+    const auto layered_sim = rolling_towfish<T>(bending_water<T>());
     for (std::size_t i = 0; i < 4; ++i) {
         const auto a = straight_sim.ping(sc, 3 * i), b = straight_sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
         CHECK(a.port == b.port);
