@@ -7,12 +7,15 @@
 //   minimal   Lambert, straight rays, ideal fan, straight-line towfish
 // The full simulator again with the seabed's shadow edges out of the along-track check (ray_density::
 // along_split_seabed = false; by default they take part here, the columns being coarse at 100 m) gives what that
-// check costs; with the check in thirds only (ray_density::along_split = 3, not ninths), what its second level costs;
+// check costs; with the check in thirds only (ray_density::along_split = 3 with every column alike, not ninths shared
+// by weight), what its second level costs;
+// with the division even (ray_density::along_split_by_weight = false: every column to ninths, rather than the columns
+// near the array's axis to 27ths and those near its extent's edges to thirds), what sharing it by weight changes;
 // what clearing chords in open water saves in layered water (in the survey's and in one with strong gradients
 // down to the seabed), and what following a steeper neighbour saves (layered_params::follow_neighbours). It also prints the scene's build time and the process's peak resident memory after the build,
 // the cost of ground-truth labels beside the image (render_labelled, and render then label_render, with the sides
 // that trace the bare seabed again: those where a ray meets an object), and the error
-// of the full simulator, all three ways, on both sides of several pings spread along the
+// of the full simulator, all four ways, on both sides of several pings spread along the
 // track (one line can be lucky: the error varies by a factor of five from line to line), against a converged
 // reference (the same simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp), with how much
 // the reference's last doubling changed it (the reference's own error is of that order).
@@ -111,7 +114,8 @@ int main(int argc, char** argv) {
         beam::ideal_fan<T>{}, line, sv.receiver);
     const auto full_sim = full({});
     const auto full_objects_only = full({.along_split_seabed = false});
-    const auto full_thirds = full({.along_split = 3});
+    const auto full_thirds = full({.along_split = 3, .along_split_by_weight = false});
+    const auto full_even = full({.along_split_by_weight = false});
 
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
@@ -137,6 +141,9 @@ int main(int argc, char** argv) {
     const double thirds_1 = row("full, the along-track check in thirds only (along_split = 3)", full_thirds);
     std::printf("full: dividing to ninths (the default) costs %.2f times the time per ping of thirds only\n",
                 thirds_1 / layered_1);
+    const double even_1 = row("full, the along-track division even (along_split_by_weight = false)", full_even);
+    std::printf("full: the division shared by weight (the default) takes %.2f times the time per ping of even division\n",
+                even_1 / layered_1);
     {
         // Clearing chords in open water (layered_params::clear_open_water) against the walk chord by chord, in the
         // survey's water and in water whose strong gradients reach the seabed (1500 m/s to 20 m, 1490 m/s at the
@@ -220,11 +227,12 @@ int main(int argc, char** argv) {
                     "samples within 40 dB of the line's peak:\n");
         std::printf("| ping | side | reference's last doubling, RMS | default: RMS / median / p99 | shadows missed | "
                     "thirds only: RMS / median / p99 | shadows missed | seabed's edges out: RMS / median / p99 | "
-                    "shadows missed |\n|---|---|---|---|---|---|---|---|---|\n");
+                    "shadows missed | even division: RMS / median / p99 | shadows missed |\n"
+                    "|---|---|---|---|---|---|---|---|---|---|---|\n");
         struct total {
             double sum_sq = 0, worst_p99 = 0;
             std::size_t misses = 0, shadows = 0, within = 0;
-        } totals[3];
+        } totals[4];
         std::size_t lines = 0;
         for (std::size_t k = 0; k < error_pings; ++k) {
             const auto pose = sv.motion.pose_at(k * step);
@@ -235,7 +243,7 @@ int main(int argc, char** argv) {
                      .max_doublings = 1});
                 std::printf("| %zu | %s | %.3f |", k * step, sd == side::port ? "port" : "starboard", ref.last_change_db);
                 int v = 0;
-                for (const auto* sim : {&full_sim, &full_thirds, &full_objects_only}) {
+                for (const auto* sim : {&full_sim, &full_thirds, &full_objects_only, &full_even}) {
                     const auto e = sss_test::compare_lines(sss_bench::side_line(*sim, sv.scene, pose, sd), ref.values);
                     std::printf(" %.3f / %.3f / %.3f | %zu of %zu |", e.rms_db, e.median_db, e.p99_db, e.shadow_misses,
                                 e.shadow_samples);
@@ -250,10 +258,13 @@ int main(int argc, char** argv) {
                 ++lines;
             }
         }
-        for (int v = 0; v < 3; ++v)
+        for (int v = 0; v < 4; ++v)
             std::printf("%s: RMS over the lines' RMS %.3f dB, worst p99 %.3f dB, %zu of %zu shadow samples missed; %zu of %zu "
                         "lines within 0.3 dB RMS and 1 dB p99 with no shadow missed\n",
-                        v == 0 ? "default" : v == 1 ? "thirds only (along_split = 3)" : "the seabed's edges out of the along-track check",
+                        v == 0   ? "default"
+                        : v == 1 ? "thirds only (along_split = 3)"
+                        : v == 2 ? "the seabed's edges out of the along-track check"
+                                 : "even division (along_split_by_weight = false)",
                         std::sqrt(totals[v].sum_sq / double(lines)), totals[v].worst_p99, totals[v].misses,
                         totals[v].shadows, totals[v].within, lines);
     }

@@ -3,7 +3,8 @@
 // towfish, 100 m per side in 2048 samples. For ping 0's starboard line, at the default density {8, 0, 1} with the
 // refinement off (the previous tubes), on with only objects' edges in the along-track check, and on as by default
 // (the columns are coarse here, so the seabed's shadow edges take part too: ray_density::along_split_seabed), that
-// with disagreeing stretches divided into thirds only once (ray_density::along_split = 3, not 9), and (not with
+// with disagreeing stretches divided into thirds only once (ray_density::along_split = 3, every column alike), that with every
+// column divided alike rather than by the beam's weight on it (ray_density::along_split_by_weight), and (not with
 // --quick) down to 1/27 of a column, and 32 uniform columns without the along-track check: rays
 // per side, time per side (best of 3, in turn), and the RMS,
 // median and 99th percentile |dB| error over the samples within 40 dB of the reference's peak, and the missed shadow
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
         {"{8, 0, 1}", "off", {.refine_depth = 0}},
         {"{8, 0, 1}", "on, objects' edges along", {.along_split_seabed = false}},
         {"{8, 0, 1}", "on (default: seabed's edges too, along_split 9)", {}},
-        {"{8, 0, 1}", "on, along_split 3 (thirds, not divided again)", {.along_split = 3}},
+        {"{8, 0, 1}", "on, along_split 3 (thirds, not divided again)", {.along_split = 3, .along_split_by_weight = false}},
+        {"{8, 0, 1}", "on, the division even (along_split_by_weight = false)", {.along_split_by_weight = false}},
     };
     if (!quick) { // the frontier beyond: finer division, and uniform columns without the along-track check
         vs.push_back({"{8, 0, 1}", "on, along_split 27", {.along_split = 27}});

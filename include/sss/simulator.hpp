@@ -22,8 +22,9 @@
 /// ray is traced beside the steeper of the two, whose first hit it cannot meet anything of the seabed before:
 /// scene/height_field_beside.hpp; the same hits, sooner). Where a column's objects' edges
 /// disagree with a neighbour's (an edge crossing the beam obliquely), the launch angles between the disagreeing
-/// edges are traced again as narrower columns, in thirds where they still disagree (ray_density.along_split; the
-/// seabed's own shadow edges too with ray_density.along_split_seabed). On an open flat seabed nothing is refined
+/// edges are traced again as narrower columns, in thirds where they still disagree (ray_density.along_split, deeper
+/// where the beam weights a column more: sampling/division_depths.hpp; the seabed's own shadow edges too with
+/// ray_density.along_split_seabed). On an open flat seabed nothing is refined
 /// and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
@@ -61,6 +62,7 @@
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
 #include "sss/sampling/detail/tube_refinement.hpp"
+#include "sss/sampling/division_depths.hpp"
 #include "sss/sampling/launch_angles.hpp"
 #include "sss/sampling/reach.hpp"
 #include "sss/scattering/concept.hpp"
@@ -87,9 +89,20 @@ struct ray_density {
     /// divided into thirds along track: the middle third is centred where the column is, so it keeps the column's
     /// rays and its share of their echo; the outer two are traced. A third whose edges still disagree with its
     /// neighbouring third's is divided again, down to columns 1/along_split as wide (rounded down to a power of
-    /// three; below 3: never divided; at most 3^8). On the survey of bench/bench_survey_accuracy.cpp, 9 takes about twice
-    /// the time per line of 3 and about halves the 99th percentile of the error (the bench prints both).
+    /// three; below 3: never divided; at most 3^8). With `along_split_by_weight`, that is the depth for a column of
+    /// even weight, and a beam whose pattern weights its columns unevenly shares it among them. On the survey of
+    /// bench/bench_survey_accuracy.cpp, 9 takes about twice the time per line of 3 and about halves the 99th
+    /// percentile of the error (the bench prints both).
     std::size_t along_split = 9;
+    /// Share the along-track check's division among a side's columns by the beam's weight on each
+    /// (sampling/division_depths.hpp): one level deeper per factor 9 of weight, the heaviest at most one level deeper
+    /// and every one at least into thirds; from along_split = 9 up, at about the cost of dividing every column to
+    /// 1/along_split (at 3 the least depth makes it dearer). Under a beam that weights its columns alike (an ideal
+    /// fan up to 150 degrees wide along track) nothing changes; under the survey's 100 kHz array it lowers the error
+    /// of the lines together against a converged render by a tenth to a fifth in the same time or less (not on every
+    /// line), and leaves a few more shadow samples a few dB short of 40 dB below their surroundings
+    /// (docs/design/along-track.md).
+    bool along_split_by_weight = true;
     /// The seabed's own shadow edges (behind crests, ridges, ripples) take part in the along-track check too:
     /// true, false, or (unset) where the columns are more than two range samples apart at the end of the line.
     /// There, an edge crossing the beam obliquely moves by more than a sample from one column to the next, and
@@ -342,7 +355,17 @@ private:
             std::swap(r.angles, scratch.angles);
             std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& a, const column_edge& b) { return a.t < b.t; });
         };
-        if (b.divisions.size() + 1 < levels) b.divisions.resize(levels - 1); // before divide takes references
+        // How deep each column may be divided: by its weight under the beam, or alike.
+        std::vector<std::size_t>& depths = b.depths;
+        depths.assign(n_along, levels);
+        if (density_.along_split_by_weight) {
+            std::vector<double>& weights = b.weights;
+            weights.assign(n_along, 0.0);
+            for (std::size_t j = 0; j < n_along; ++j) weights[j] = column_weight(f.ext, sd, bounds(j));
+            division_depths(weights, levels, depths);
+        }
+        const std::size_t deepest = *std::max_element(depths.begin(), depths.end());
+        if (b.divisions.size() + 1 < deepest) b.divisions.resize(deepest - 1); // before divide takes references
         std::vector<redo_range>& windows = b.windows;
         std::vector<std::pair<std::size_t, std::size_t>>& runs = b.runs;
         std::vector<std::ptrdiff_t>& cover = b.cover;
@@ -381,7 +404,7 @@ private:
             for (std::size_t i = here.first.empty() ? 0 : here.first.back(); i < here.echoes.size(); ++i)
                 visit(here.echoes[i]);
             const auto [lo, hi] = bounds(j);
-            if (!runs.empty()) divide(scene, f, lo, hi, here.angles, here, 1.0, runs, 0, b, visit);
+            if (!runs.empty()) divide(scene, f, lo, hi, here.angles, here, 1.0, runs, 0, depths[j], b, visit);
         }
     }
 
@@ -484,6 +507,8 @@ private:
         std::vector<std::pair<std::size_t, std::size_t>> runs;
         std::vector<std::ptrdiff_t> cover;
         std::vector<division> divisions; ///< one per level of divide but the last
+        std::vector<std::size_t> depths; ///< how deep each column of the side may be divided
+        std::vector<double> weights;     ///< the beam's weight on each column
     };
 
     /// Buffers kept between trace calls, so that a ping reuses the memory of the pings before it instead of
@@ -659,16 +684,28 @@ private:
         return levels;
     }
 
+    /// The beam's two-way weight on the column between along-track angles `bounds` (rad) of side sd: its weight at
+    /// the column's centre, summed over eight depressions across the extent (the along-track pattern of a planar
+    /// array hardly depends on depression), times the column's solid angle per unit depression.
+    [[nodiscard]] double column_weight(const beam_extent<T>& ext, side sd, std::pair<double, double> bounds) const noexcept {
+        const T along = static_cast<T>(0.5 * (bounds.first + bounds.second));
+        const double e0 = double(ext.depression_min_rad), e1 = double(ext.depression_max_rad);
+        double w = 0.0;
+        for (int q = 0; q < 8; ++q)
+            w += double(beam_.weight(sd, along, static_cast<T>(e0 + (e1 - e0) * (double(q) + 0.5) / 8.0)));
+        return w * (std::sin(bounds.second) - std::sin(bounds.first));
+    }
+
     /// Replaces the column between along-track angles lo and hi, over the launch intervals `runs`, by its thirds.
     /// The middle third is centred where the column is, so its rays are the column's own: its echoes are `rec`'s
     /// (the column's, with powers `scale` times `rec`'s), times the third's share of the column's solid angle. The
     /// outer two are traced. Where a third's located edges disagree with its neighbouring third's (as columns'
-    /// do in trace_over), the stretch is divided again, `division_levels()` deep at most; elsewhere the third's
-    /// echoes stand.
+    /// do in trace_over), the stretch is divided again, `depth` levels deep at most (the column's depth from
+    /// trace_over); elsewhere the third's echoes stand.
     template <Scene Sc, class Visitor>
     void divide(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
                 const column_record& rec, double scale, const std::vector<std::pair<std::size_t, std::size_t>>& runs,
-                std::size_t level, trace_buffers& b, Visitor& visit) const {
+                std::size_t level, std::size_t depth, trace_buffers& b, Visitor& visit) const {
         const double width = (hi - lo) / 3.0;
         const double a = lo + width, c = hi - width;
         const double middle = scale * (std::sin(c) - std::sin(a)) / (std::sin(hi) - std::sin(lo));
@@ -679,7 +716,7 @@ private:
                 visit(e);
             }
         };
-        const bool last = level + 1 >= division_levels();
+        const bool last = level + 1 >= depth;
         if (last) {
             in_column(scene, f, lo, a, [&](const Sc& col) { trace_runs(col, f, lo, a, angles, runs, b.scratch, nullptr, visit); });
             in_column(scene, f, c, hi, [&](const Sc& col) { trace_runs(col, f, c, hi, angles, runs, b.scratch, nullptr, visit); });
@@ -747,9 +784,9 @@ private:
                 }
             }
         }
-        if (!d.runs[0].empty()) divide(scene, f, lo, a, angles, d.outer[0], 1.0, d.runs[0], level + 1, b, visit);
-        if (!d.runs[1].empty()) divide(scene, f, a, c, angles, rec, middle, d.runs[1], level + 1, b, visit);
-        if (!d.runs[2].empty()) divide(scene, f, c, hi, angles, d.outer[1], 1.0, d.runs[2], level + 1, b, visit);
+        if (!d.runs[0].empty()) divide(scene, f, lo, a, angles, d.outer[0], 1.0, d.runs[0], level + 1, depth, b, visit);
+        if (!d.runs[1].empty()) divide(scene, f, a, c, angles, rec, middle, d.runs[1], level + 1, depth, b, visit);
+        if (!d.runs[2].empty()) divide(scene, f, c, hi, angles, d.outer[1], 1.0, d.runs[2], level + 1, depth, b, visit);
     }
 
     /// Traces the launch intervals `runs` (each [k0, k1]: the rays at angles[k0] to angles[k1 + 1]) of a column

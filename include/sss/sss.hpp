@@ -87,6 +87,7 @@
 #include "sss/motion/straight_line.hpp"
 #include "sss/motion/trajectory.hpp"
 
+#include "sss/sampling/division_depths.hpp"
 #include "sss/sampling/launch_angles.hpp"
 
 #include "sss/receiver/echo_statistics.hpp"

@@ -176,6 +176,14 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     CHECK(again.bed.regions[0].ripple_sets[0].crest_heading_deg == 0.0);
     CHECK(again.sea.absorption_db_per_km == 30.0); // a default, written out and read back
     CHECK(again.run.precision == "float");
+    CHECK(again.run.along_split_by_weight);
+    CHECK(sss::scene_file::rays_of(again).along_split_by_weight);
+    // Even division, asked for, reads back and reaches the simulator's ray density.
+    auto even = d;
+    even.run.along_split_by_weight = false;
+    const auto even_again = sss::scene_file::parse(sss::scene_file::to_toml(even), "resolved.toml");
+    CHECK_FALSE(even_again.run.along_split_by_weight);
+    CHECK_FALSE(sss::scene_file::rays_of(even_again).along_split_by_weight);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
     const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
     CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));

@@ -160,3 +160,69 @@ TEST_CASE("under a beam 4 deg wide along track, rippled relief renders as the co
     CHECK(std::abs(default_energy - 1.0) < 2e-3);
     CHECK(std::abs(thirds_energy - 1.0) < 2e-3);
 }
+
+TEST_CASE("under an ideal fan, sharing the along-track division by weight is the even division, bit for bit") {
+    // A fan weights every column alike, so every column keeps along_split's depth (sampling/division_depths.hpp).
+    const auto relief = sss_test::ripple_field<double>();
+    const auto pose = sss_test::rough_pose<double>(true);
+    auto make = [](bool by_weight) {
+        return sss::simulator<>({}, {}, sss::beam::ideal_fan<double>({.along_width_deg = 4.0}), {},
+                                sss_test::rough_receiver(), {.along_split_by_weight = by_weight});
+    };
+    const auto shared = make(true).ping_at(relief, pose), even = make(false).ping_at(relief, pose);
+    CHECK(shared.starboard == even.starboard);
+    CHECK(shared.port == even.port);
+}
+
+TEST_CASE("under an array's along-track pattern, sharing the along-track division by weight renders rippled relief "
+          "as close to the converged reference as even division, with fewer rays") {
+    // A single element 0.25 m long at 100 kHz: a two-way pattern whose -30 dB extent reaches 5.6 deg either side of
+    // the axis, in 10 columns: the
+    // two on the axis carry most of the echo, their neighbours a fifth as much, the six beyond (the main lobe's skirts
+    // and the first sidelobes) below -25 dB. Shared by weight, the two are divided a level deeper, their neighbours
+    // as deep as before and the six a level less (sampling/division_depths.hpp). Here the error left at the
+    // default depth is the columns' own (more columns lower it, deeper division does not), so what sharing shows
+    // is the rays it saves; on the survey of bench/bench_survey.cpp, where depth matters, it lowers the error at the
+    // same cost instead (docs/design/along-track.md).
+    const auto relief = sss_test::ripple_field<double>();
+    const auto pose = sss_test::rough_pose<double>(false);
+    const sss::beam::planar_array<double> array(
+        {.frequency_hz = 100000.0,
+         .depression_deg = 20.0,
+         .transmit = {.along = {.count = 1, .element_m = 0.25}, .vertical = {.count = 1, .element_m = 0.02}}});
+    auto make = [&](const sss::ray_density& d) {
+        return sss::simulator<sss::scattering::lambertian<double>, sss::propagation::straight<double>,
+                              sss::beam::planar_array<double>>({}, {}, array, {}, sss_test::rough_receiver(), d);
+    };
+    const auto ref = sss_test::converged_line(
+        make, relief, pose, sss::side::starboard,
+        {.start = {.along = 32, .across = 0, .per_sample = 4.0, .along_split_seabed = true}, .max_doublings = 2});
+    REQUIRE(ref.converged);
+    struct render {
+        sss_test::line_error error;
+        std::size_t pieces = 0; // echo pieces: about one per ray traced
+    };
+    auto run = [&](std::size_t along_split, bool by_weight) {
+        const auto sim = make({.along_split = along_split, .along_split_by_weight = by_weight});
+        render r;
+        sim.trace(relief, pose, sss::side::starboard, [&](const sss::tube_echo<double>&) { ++r.pieces; });
+        r.error = sss_test::compare_lines(sim.ping_at(relief, pose).starboard, ref.values);
+        return r;
+    };
+    for (const std::size_t along_split : {std::size_t{9}, std::size_t{27}}) {
+        CAPTURE(along_split);
+        const render shared = run(along_split, true), even = run(along_split, false);
+        const double rays = double(shared.pieces) / double(even.pieces);
+        INFO("shared by weight: rms " << shared.error.rms_db << " dB, 99th percentile " << shared.error.p99_db
+                                      << " dB, shadow " << shared.error.shadow_misses << " of "
+                                      << shared.error.shadow_samples << " missed");
+        INFO("even: rms " << even.error.rms_db << " dB, 99th percentile " << even.error.p99_db << " dB, shadow "
+                          << even.error.shadow_misses << " of " << even.error.shadow_samples << " missed");
+        INFO("echo pieces, shared against even: " << rays);
+        CHECK(shared.error.compared > 300);
+        CHECK(shared.error.rms_db <= even.error.rms_db + 0.01);
+        CHECK(shared.error.p99_db <= even.error.p99_db + 0.05);
+        CHECK(shared.error.shadow_misses <= even.error.shadow_misses);
+        CHECK(rays < (along_split == 9 ? 0.95 : 0.8));
+    }
+}

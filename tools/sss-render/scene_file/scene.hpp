@@ -188,6 +188,7 @@ struct render {
     double rays_per_sample = 1;              ///< rays per range sample in each column
     std::string seabed_edges_along = "auto"; ///< auto, on or off: the seabed's shadow edges in the along-track check
     std::int64_t along_split = 9;            ///< narrowest columns of that check, as a fraction of a column
+    bool along_split_by_weight = true;       ///< that depth shared among the columns by the beam's weight on each
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 

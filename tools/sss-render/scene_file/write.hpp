@@ -61,6 +61,7 @@ struct toml_out {
     o.kv("rays_per_sample", d.run.rays_per_sample);
     o.kv("seabed_edges_along", d.run.seabed_edges_along);
     o.kv("along_split", d.run.along_split);
+    o.kv("along_split_by_weight", d.run.along_split_by_weight);
     o.kv("precision", d.run.precision);
 
     const auto& b = d.bed;
