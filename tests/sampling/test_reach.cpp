@@ -101,6 +101,41 @@ TEST_CASE("every ray of a side stays over its reach, straight or refracted, unde
     CHECK(checked > 20000);
 }
 
+TEST_CASE("a column's reach (one along-track angle) holds every ray of the column and lies within its side's") {
+    const sss::propagation::straight<double> straight({.sound_speed_mps = 1500});
+    const sss::beam::planar_array<double> array(sss::beam::planar_array_params<double>{});
+    std::mt19937_64 g(23);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double t_max_s = 0.12, reach_m = t_max_s * straight.reach_speed_mps(30.0);
+    std::size_t checked = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        const auto pose = sss::make_pose<double>(0.0, vec3<double>{-300.0 * u(g), 800.0 * u(g), 30.0}, (24 * u(g) - 12) * deg,
+                                                 (16 * u(g) - 8) * deg, 360 * u(g) * deg);
+        const auto sd = trial % 2 == 0 ? sss::side::port : sss::side::starboard;
+        const auto ext = array.extent(sd);
+        const auto side = sss::side_reach(pose, sd, ext, reach_m, true);
+        const double a = ext.along_min_rad + (ext.along_max_rad - ext.along_min_rad) * u(g);
+        const sss::beam_extent<double> column{a, a, ext.depression_min_rad, ext.depression_max_rad};
+        const auto r = sss::side_reach(pose, sd, column, reach_m, true);
+        CHECK(r.lo.x >= side.lo.x);
+        CHECK(r.lo.y >= side.lo.y);
+        CHECK(r.hi.x <= side.hi.x);
+        CHECK(r.hi.y <= side.hi.y);
+        for (int n = 0; n <= 64; ++n) {
+            const double e = ext.depression_min_rad + (ext.depression_max_rad - ext.depression_min_rad) * n / 64.0;
+            const sss::ray<double> ray{pose.position, pose.to_world(sss::beam_direction(sd, a, e))};
+            for (const double z : {25.0, 0.0, -60.0}) {
+                const sss::scene::flat_seabed<double> floor(z);
+                if (const auto p = straight.trace(ray, floor, t_max_s)) {
+                    ++checked;
+                    CHECK(inside(r, p->surface.point));
+                }
+            }
+        }
+    }
+    CHECK(checked > 5000);
+}
+
 TEST_CASE("a level side's reach hugs its footprint; a bounced path's is the square around the towfish") {
     const sss::beam::planar_array<double> array(sss::beam::planar_array_params<double>{});
     const auto pose = sss::make_pose<double>(0.0, vec3<double>{0.0, 0.0, 10.0}, 0.0, 0.0, 0.0);

@@ -61,6 +61,10 @@ template <Real T>
         const double f = double(i) / steps;
         const double a = a0 + (a1 - a0) * f, e = e0 + (e1 - e0) * f;
         add(a0, e);
+        if (a1 == a0) { // one along-track angle (a column): the other edges repeat this one's points
+            if (i == steps) add(a0, e1);
+            continue;
+        }
         add(a1, e);
         add(a, e0);
         add(a, e1);
