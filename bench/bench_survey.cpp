@@ -11,14 +11,17 @@
 // by weight), what its second level costs;
 // with the division even (ray_density::along_split_by_weight = false: every column to ninths, rather than the columns
 // near the array's axis to 27ths and those near its extent's edges to thirds), what sharing it by weight changes;
+// with the seabed's facets' edges not refined across track (ray_density::refine_facets = false), what that costs;
 // what clearing chords in open water saves in layered water (in the survey's and in one with strong gradients
 // down to the seabed), and what following a steeper neighbour saves (layered_params::follow_neighbours). It also prints the scene's build time and the process's peak resident memory after the build,
 // the cost of ground-truth labels beside the image (render_labelled, and render then label_render, with the sides
 // that trace the bare seabed again: those where a ray meets an object), and the error
 // of the full simulator, all four ways, on both sides of several pings spread along the
 // track (one line can be lucky: the error varies by a factor of five from line to line), against a converged
-// reference (the same simulator at 16 and 32 times the rays: tests/support/converged_reference.hpp), with how much
-// the reference's last doubling changed it (the reference's own error is of that order).
+// reference (the same simulator at 64 and 256 times the rays, {64, 0, 8} then {128, 0, 16}:
+// tests/support/converged_reference.hpp), with how much the reference's last doubling changed it (the reference's own
+// error is of that order: about 0.1 dB RMS from {64, 0, 8} to {128, 0, 16}, 0.05 dB to {256, 0, 32}, on the 256 m copy
+// of bench/bench_survey_accuracy.cpp).
 //   sss_bench_survey [--pings N] [--size M] [--error-pings K] [--quick]
 // --pings: pings per measurement (default 40, best of 2); --size: the seabed's side in metres (default 1024);
 // --error-pings: pings whose lines are compared with the reference (default 4, every 150 m / 0.2 m of track);
@@ -116,6 +119,7 @@ int main(int argc, char** argv) {
     const auto full_objects_only = full({.along_split_seabed = false});
     const auto full_thirds = full({.along_split = 3, .along_split_by_weight = false});
     const auto full_even = full({.along_split_by_weight = false});
+    const auto full_plain_facets = full({.refine_facets = false});
 
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
@@ -144,6 +148,9 @@ int main(int argc, char** argv) {
     const double even_1 = row("full, the along-track division even (along_split_by_weight = false)", full_even);
     std::printf("full: the division shared by weight (the default) takes %.2f times the time per ping of even division\n",
                 even_1 / layered_1);
+    const double plain_facets_1 = row("full, facets' edges not refined (refine_facets = false)", full_plain_facets);
+    std::printf("full: refining at the facets' edges (the default) takes %.2f times the time per ping of not\n",
+                plain_facets_1 / layered_1);
     {
         // Clearing chords in open water (layered_params::clear_open_water) against the walk chord by chord, in the
         // survey's water and in water whose strong gradients reach the seabed (1500 m/s to 20 m, 1490 m/s at the
@@ -223,27 +230,28 @@ int main(int argc, char** argv) {
     if (!quick && error_pings > 0) {
         // Pings 150 apart (30 m of track at 0.2 m per ping), within the track the targets lie along.
         const std::size_t step = std::max<std::size_t>(1, std::min<std::size_t>(150, std::size_t(sp.track_m / 0.2) / error_pings));
-        std::printf("error against the reference {64, 0, 8} (the seabed's edges in the along-track check), dB over the "
+        std::printf("error against the reference {128, 0, 16} (the seabed's edges in the along-track check), dB over the "
                     "samples within 40 dB of the line's peak:\n");
         std::printf("| ping | side | reference's last doubling, RMS | default: RMS / median / p99 | shadows missed | "
                     "thirds only: RMS / median / p99 | shadows missed | seabed's edges out: RMS / median / p99 | "
-                    "shadows missed | even division: RMS / median / p99 | shadows missed |\n"
-                    "|---|---|---|---|---|---|---|---|---|---|---|\n");
+                    "shadows missed | even division: RMS / median / p99 | shadows missed | facets not refined: RMS / "
+                    "median / p99 | shadows missed |\n"
+                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         struct total {
             double sum_sq = 0, worst_p99 = 0;
             std::size_t misses = 0, shadows = 0, within = 0;
-        } totals[4];
+        } totals[5];
         std::size_t lines = 0;
         for (std::size_t k = 0; k < error_pings; ++k) {
             const auto pose = sv.motion.pose_at(k * step);
             for (const side sd : {side::port, side::starboard}) {
                 const auto ref = sss_test::converged_line(
                     full, sv.scene, pose, sd,
-                    {.start = ray_density{.along = 32, .across = 0, .per_sample = 4.0, .along_split_seabed = true},
+                    {.start = ray_density{.along = 64, .across = 0, .per_sample = 8.0, .along_split_seabed = true},
                      .max_doublings = 1});
                 std::printf("| %zu | %s | %.3f |", k * step, sd == side::port ? "port" : "starboard", ref.last_change_db);
                 int v = 0;
-                for (const auto* sim : {&full_sim, &full_thirds, &full_objects_only, &full_even}) {
+                for (const auto* sim : {&full_sim, &full_thirds, &full_objects_only, &full_even, &full_plain_facets}) {
                     const auto e = sss_test::compare_lines(sss_bench::side_line(*sim, sv.scene, pose, sd), ref.values);
                     std::printf(" %.3f / %.3f / %.3f | %zu of %zu |", e.rms_db, e.median_db, e.p99_db, e.shadow_misses,
                                 e.shadow_samples);
@@ -258,13 +266,14 @@ int main(int argc, char** argv) {
                 ++lines;
             }
         }
-        for (int v = 0; v < 4; ++v)
+        for (int v = 0; v < 5; ++v)
             std::printf("%s: RMS over the lines' RMS %.3f dB, worst p99 %.3f dB, %zu of %zu shadow samples missed; %zu of %zu "
                         "lines within 0.3 dB RMS and 1 dB p99 with no shadow missed\n",
                         v == 0   ? "default"
                         : v == 1 ? "thirds only (along_split = 3)"
                         : v == 2 ? "the seabed's edges out of the along-track check"
-                                 : "even division (along_split_by_weight = false)",
+                        : v == 3 ? "even division (along_split_by_weight = false)"
+                                 : "facets' edges not refined (refine_facets = false)",
                         std::sqrt(totals[v].sum_sq / double(lines)), totals[v].worst_p99, totals[v].misses,
                         totals[v].shadows, totals[v].within, lines);
     }

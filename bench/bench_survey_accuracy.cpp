@@ -3,16 +3,17 @@
 // towfish, 100 m per side in 2048 samples. For ping 0's starboard line, at the default density {8, 0, 1} with the
 // refinement off (the previous tubes), on with only objects' edges in the along-track check, and on as by default
 // (the columns are coarse here, so the seabed's shadow edges take part too: ray_density::along_split_seabed), that
-// with disagreeing stretches divided into thirds only once (ray_density::along_split = 3, every column alike), that with every
-// column divided alike rather than by the beam's weight on it (ray_density::along_split_by_weight), and (not with
-// --quick) down to 1/27 of a column, and 32 uniform columns without the along-track check: rays
-// per side, time per side (best of 3, in turn), and the RMS,
-// median and 99th percentile |dB| error over the samples within 40 dB of the reference's peak, and the missed shadow
-// samples, against the same simulator at {64, 0, 8} (64 times the rays, the seabed's edges in the along-track check;
-// the change from {32, 0, 4} is printed as its convergence check).
-// The seabed defaults to 256 m at 0.25 m (1024^2 heights) so that a run takes a minute; --full builds the survey's
-// 1024 m (4096^2 heights). --quick (or a short --benchmark_min_time, as the perf smoke test passes) uses 224 m
-// and a reference at {16, 0, 2} from {8, 0, 1}.
+// with disagreeing stretches divided into thirds only once (ray_density::along_split = 3, every column alike), that
+// with every column divided alike rather than by the beam's weight on it (ray_density::along_split_by_weight), that
+// with the seabed's facets' edges not refined across track (ray_density::refine_facets), and (not with --quick) down
+// to 1/27 of a column, half a ray per sample, and 32 uniform columns without the along-track check: rays per side,
+// time per side (best of 3, in turn), and the RMS, median and 99th percentile |dB| error over the samples within
+// 40 dB of the reference's peak, and the missed shadow samples, against the same simulator at {128, 0, 16} (256
+// times the rays, the seabed's edges in the along-track check; the change from {64, 0, 8} is printed as its
+// convergence check: about 0.1 dB RMS, and 0.05 dB for the next doubling).
+// The seabed defaults to 256 m at 0.25 m (1024^2 heights) so that a run takes a few minutes; --full builds the
+// survey's 1024 m (4096^2 heights). --quick (or a short --benchmark_min_time, as the perf smoke test passes) uses
+// 224 m and a reference at {16, 0, 2} from {8, 0, 1}.
 
 #include <algorithm>
 #include <chrono>
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
     const auto ref = sss_test::converged_line(make, sv.scene, pose, sss::side::starboard,
                                               {.start = quick ? sss::ray_density{.along = 8, .across = 0, .per_sample = 1.0,
                                                                                  .along_split_seabed = true}
-                                                              : sss::ray_density{.along = 32, .across = 0, .per_sample = 4.0,
+                                                              : sss::ray_density{.along = 64, .across = 0, .per_sample = 8.0,
                                                                                  .along_split_seabed = true},
                                                .max_doublings = 1});
     const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_ref0).count();
@@ -75,9 +76,11 @@ int main(int argc, char** argv) {
         {"{8, 0, 1}", "on (default: seabed's edges too, along_split 9)", {}},
         {"{8, 0, 1}", "on, along_split 3 (thirds, not divided again)", {.along_split = 3, .along_split_by_weight = false}},
         {"{8, 0, 1}", "on, the division even (along_split_by_weight = false)", {.along_split_by_weight = false}},
+        {"{8, 0, 1}", "on, facets' edges not refined (refine_facets = false)", {.refine_facets = false}},
     };
     if (!quick) { // the frontier beyond: finer division, and uniform columns without the along-track check
         vs.push_back({"{8, 0, 1}", "on, along_split 27", {.along_split = 27}});
+        vs.push_back({"{8, 0, 0.5}", "on (half a ray per sample)", {.per_sample = 0.5}});
         vs.push_back({"{32, 0, 1}", "on, along_split 1 (no along-track check)", {.along = 32, .along_split = 1}});
     }
     const std::size_t variants = vs.size();

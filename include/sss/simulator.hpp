@@ -16,8 +16,9 @@
 /// energy, integrated by the trapezoid rule over depression, is spread evenly over the two-way times between
 /// their returns; the time sampler then convolves with the pulse and averages over each sample exactly
 /// (receiver/time_sampler.hpp). Where two adjacent rays are not neighbours on one surface (an occlusion, an
-/// object's silhouette) or the surface's echo changes too fast between them (rough facets), the launch angle
-/// between them is bisected until the edge is located to 1/16 of a sample (sampling/detail/tube_refinement.hpp):
+/// object's silhouette), the launch angle between them is bisected until the edge is located to 1/16 of a sample,
+/// and where the surface's echo changes too fast between them until the tubes span half a sample (an eighth across
+/// the seabed's facets' edges: ray_density.refine_facets) (sampling/detail/tube_refinement.hpp):
 /// each side of an edge then keeps its energy up to it, and shadows stay empty (with a GuidedPropagation each new
 /// ray is traced beside the steeper of the two, whose first hit it cannot meet anything of the seabed before:
 /// scene/height_field_beside.hpp; the same hits, sooner). Where a column's objects' edges
@@ -81,9 +82,17 @@ struct ray_density {
     /// Refine across track where adjacent rays are not neighbours on one surface (an occlusion, an object's edge,
     /// the end of coverage): bisect the launch angle up to `refine_depth` times (0: never), and at most
     /// `refine_rays` extra rays per column, so that each side of the edge keeps its energy up to it
-    /// (sampling/tube_refinement.hpp).
+    /// (sampling/tube_refinement.hpp). Where the echo changes fast between two rays on one surface (the seabed's
+    /// facets' edges, a curved object's shading), up to 8 times as many rays as the column has are spent apart from
+    /// those (`refine_rays` bounds only the edges'), so that rough relief never leaves an edge unlocated.
     std::size_t refine_depth = 12;
-    std::size_t refine_rays = 64;  ///< extra rays per column at most, on top of half the column's own rays
+    std::size_t refine_rays = 64;  ///< extra rays per column for edges at most, on top of half the column's own rays
+    /// Refine across the seabed's facets' edges too (sampling/detail/tube_refinement.hpp): between two seabed rays on
+    /// different plane facets whose echoes per radian differ by more than 5 %, down to an eighth of a sample, where
+    /// the footprint jumps from one facet to the next. On the rippled survey of bench/bench_survey_accuracy.cpp it
+    /// lowers the error against a converged render by about a third for a few % more time; an open flat seabed is
+    /// unchanged bit for bit.
+    bool refine_facets = true;
     /// Where a column's located edges between surfaces (objects' silhouettes and the far ends of their shadows)
     /// differ from a neighbour's (an edge crossing the beam obliquely), the stretch of the column between them is
     /// divided into thirds along track: the middle third is centred where the column is, so it keeps the column's
@@ -95,13 +104,14 @@ struct ray_density {
     /// percentile of the error (the bench prints both).
     std::size_t along_split = 9;
     /// Share the along-track check's division among a side's columns by the beam's weight on each
-    /// (sampling/division_depths.hpp): one level deeper per factor 9 of weight, the heaviest at most one level deeper
-    /// and every one at least into thirds; from along_split = 9 up, at about the cost of dividing every column to
-    /// 1/along_split (at 3 the least depth makes it dearer). Under a beam that weights its columns alike (an ideal
-    /// fan up to 150 degrees wide along track) nothing changes; under the survey's 100 kHz array it lowers the error
-    /// of the lines together against a converged render by a tenth to a fifth in the same time or less (not on every
-    /// line), and leaves a few more shadow samples a few dB short of 40 dB below their surroundings
-    /// (docs/design/along-track.md).
+    /// (sampling/division_depths.hpp): one level deeper per factor 9 of weight, normalised to the cost of dividing
+    /// every column to 1/along_split, the heaviest at most one level deeper, every one at least into thirds, and none
+    /// a level below the heaviest until its weight is a factor 9 below it. Under a beam that weights its columns alike
+    /// (an ideal fan up to 150 degrees wide along track) nothing changes; under the survey's 100 kHz array the two
+    /// columns on its axis and the two beside them go to 1/27, the six faint ones to thirds: on the 256 m copy of
+    /// bench/bench_survey_accuracy.cpp that takes the worst line's 99th percentile error against a converged render
+    /// from 2.5 to 0.9 dB for 1.3 times the time of even division (both with refine_facets), on the 1 km survey of
+    /// bench/bench_survey.cpp from 2.6 to 2.1 dB for 1.2 times its time (docs/design/along-track.md).
     bool along_split_by_weight = true;
     /// The seabed's own shadow edges (behind crests, ridges, ripples) take part in the along-track check too:
     /// true, false, or (unset) where the columns are more than two range samples apart at the end of the line.
@@ -630,10 +640,15 @@ private:
         ray_end prev, prev_bounce;
         bool in_run = false;
         std::size_t k = 0;
-        const column_context col{p, sd, along, f.t_max_one_way, column_sr,
+        const column_context col{p,
+                                 sd,
+                                 along,
+                                 f.t_max_one_way,
+                                 column_sr,
                                  density_.refine_depth == 0 ? 0 : s.rays.size() / 2 + density_.refine_rays,
+                                 density_.refine_depth == 0 ? 0 : shading_budget(s.rays.size()),
                                  record};
-        std::size_t budget = col.max_extra;
+        refine_budget budget{col.max_extra, col.max_shading};
         if (record) record->first.resize(angles.size());
         for (std::size_t i = 0; i < angles.size(); ++i) {
             const T e = angles[i];
@@ -810,9 +825,15 @@ private:
         s.paths.resize(s.rays.size());
         trace_all(propagation_, std::span<const ray<T>>(s.rays), scene, f.t_max_one_way,
                   std::span<std::optional<path<T>>>(s.paths));
-        const column_context col{f.p, f.sd, along, f.t_max_one_way, column_sr, angles.size() / 2 + density_.refine_rays,
+        const column_context col{f.p,
+                                 f.sd,
+                                 along,
+                                 f.t_max_one_way,
+                                 column_sr,
+                                 angles.size() / 2 + density_.refine_rays,
+                                 shading_budget(angles.size()),
                                  record};
-        std::size_t budget = col.max_extra;
+        refine_budget budget{col.max_extra, col.max_shading};
         std::size_t q = 0;
         for (const auto& [k0, k1] : runs) {
             ray_end prev, prev_bounce;
@@ -839,17 +860,34 @@ private:
         T along;
         T t_max_one_way;
         double column_sr;
-        std::size_t max_extra;       ///< extra rays this column may trace
+        std::size_t max_extra;       ///< extra rays this column may trace to locate edges
+        std::size_t max_shading;     ///< and to follow an echo that changes fast (facets' edges)
         column_record* record;       ///< where located edges go (none: not recorded)
     };
 
+    /// The extra rays a column has left: for edges, and for echoes that change fast. Apart, so that the many facets'
+    /// edges of rough relief never leave an occlusion's edge unlocated.
+    struct refine_budget {
+        std::size_t edges;
+        std::size_t shading;
+    };
+    /// The extra rays a column of `rays` rays may spend on echoes that change fast: 8 per ray. A tube of a ray per
+    /// sample across a facet's edge takes about 3 to reach the eighth of a sample that facets' edges are refined to
+    /// (sampling/detail/tube_refinement.hpp), and only tubes holding such an edge are refined, so it seldom binds; a
+    /// budget that ran out part of the way along a column would leave its refined and unrefined stretches biased
+    /// differently (on rippled relief at 0.05 m cells, a budget of the column's own rays doubled the error it was spent
+    /// to lower).
+    [[nodiscard]] static std::size_t shading_budget(std::size_t rays) noexcept {
+        return rays <= std::numeric_limits<std::size_t>::max() / 8 ? 8 * rays : rays;
+    }
+
     /// The energy between adjacent rays a and b (and their bounced paths): one tube where they are neighbours on
-    /// one surface; else, while the depth and the column's budget allow and the edge between them is not yet
+    /// one surface; else, while the depth and the column's budgets allow and the edge between them is not yet
     /// located to `edge_tolerance` of a sample, the ray between them is traced and each half refined in turn.
     /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step.
     template <Scene Sc, class Visitor>
     void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
-                const ray_end& b_bounce, std::size_t depth, std::size_t& budget, Visitor& visit) const {
+                const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit) const {
         const double de = std::abs(b.e - a.e);
         const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
                                                           2.0 * double(col.t_max_one_way));
@@ -860,7 +898,8 @@ private:
         }
         const double mid = 0.5 * (a.e + b.e);
         const T e_mid = static_cast<T>(mid);
-        const bool can_split = v != detail::tube_verdict::located && depth < density_.refine_depth && budget > 0 &&
+        std::size_t& left = v == detail::tube_verdict::coarse ? budget.shading : budget.edges;
+        const bool can_split = v != detail::tube_verdict::located && depth < density_.refine_depth && left > 0 &&
                                double(e_mid) != a.e && double(e_mid) != b.e;
         if (!can_split) {
             if ((depth == 0 && v == detail::tube_verdict::split) || v == detail::tube_verdict::coarse)
@@ -878,7 +917,7 @@ private:
             if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
             return;
         }
-        --budget;
+        --left;
         ray_end m_bounce;
         const ray_end m =
             shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce, steeper(a, b));
@@ -886,8 +925,15 @@ private:
         refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit);
     }
 
-    [[nodiscard]] static detail::tube_end as_tube_end(const ray_end& r) noexcept {
-        return {r.valid, r.t, r.stretch, r.gain, r.surface.object, r.surface.material};
+    [[nodiscard]] detail::tube_end as_tube_end(const ray_end& r) const noexcept {
+        return {r.valid,
+                r.t,
+                r.stretch,
+                r.gain,
+                r.surface.object,
+                r.surface.material,
+                r.valid && density_.refine_facets && r.surface.object == no_object,
+                {double(r.surface.normal.x), double(r.surface.normal.y), double(r.surface.normal.z)}};
     }
 
     /// Two rays on either side of an edge: each keeps its half of the step as a point.

@@ -184,6 +184,12 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto even_again = sss::scene_file::parse(sss::scene_file::to_toml(even), "resolved.toml");
     CHECK_FALSE(even_again.run.along_split_by_weight);
     CHECK_FALSE(sss::scene_file::rays_of(even_again).along_split_by_weight);
+    CHECK(sss::scene_file::rays_of(again).refine_facets);
+    auto plain = d;
+    plain.run.refine_facets = false;
+    const auto plain_again = sss::scene_file::parse(sss::scene_file::to_toml(plain), "resolved.toml");
+    CHECK_FALSE(plain_again.run.refine_facets);
+    CHECK_FALSE(sss::scene_file::rays_of(plain_again).refine_facets);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
     const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
     CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));

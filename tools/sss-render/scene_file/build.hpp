@@ -203,6 +203,7 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
     sss::ray_density r{.along = static_cast<std::size_t>(d.run.rays_along), .across = 0, .per_sample = d.run.rays_per_sample,
                        .along_split = static_cast<std::size_t>(d.run.along_split),
                        .along_split_by_weight = d.run.along_split_by_weight};
+    r.refine_facets = d.run.refine_facets;
     if (d.run.seabed_edges_along != "auto") r.along_split_seabed = d.run.seabed_edges_along == "on";
     return r;
 }

@@ -189,6 +189,7 @@ struct render {
     std::string seabed_edges_along = "auto"; ///< auto, on or off: the seabed's shadow edges in the along-track check
     std::int64_t along_split = 9;            ///< narrowest columns of that check, as a fraction of a column
     bool along_split_by_weight = true;       ///< that depth shared among the columns by the beam's weight on each
+    bool refine_facets = true;               ///< refine across the seabed's facets' edges where the echo jumps
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 
