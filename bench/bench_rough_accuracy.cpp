@@ -6,6 +6,8 @@
 //   ridge     Gaussian ridge 1.5 m high, 0.3 m wide, 20 m to starboard (height field of 0.05 m cells)
 //   relief    power-law relief (24 plane waves, 0.5 to 20 m) with two sets of ripples (0.8 m and 0.5 m)
 //   trench    a trench 1.2 m deep crossing the beam obliquely
+//   lee       a plateau ending in a slope whose plane passes 0.057 deg below the towfish: every ray meeting the
+//             slope grazes it (its echo per radian, 1/sin of the angle to the facet, in the hundreds)
 //   targets   a lying cylinder, a moored spherical mine and a pipeline spanning a hollow, on gentle rippled relief
 //   flat      the flat seabed z = 0 (no reference: the refinement must change nothing and cost nothing there)
 // For each scene and density {along, 0, per_sample}, with the refinement off (refine_depth 0: the tubes of the
@@ -162,6 +164,7 @@ int main(int argc, char** argv) {
     run_scene("ridge", sss_test::ridge_field<double>(), true, densities);
     run_scene("relief", sss_test::ripple_field<double>(), true, densities);
     if (!quick) run_scene("trench", sss_test::trench_field<double>(), true, densities);
+    run_scene("lee", sss_test::lee_slope_field<double>(0.057), true, densities);
     run_scene("targets", sss_test::target_scene<double>(), true, densities);
     return 0;
 }

@@ -82,9 +82,10 @@ struct ray_density {
     /// Refine across track where adjacent rays are not neighbours on one surface (an occlusion, an object's edge,
     /// the end of coverage): bisect the launch angle up to `refine_depth` times (0: never), and at most
     /// `refine_rays` extra rays per column, so that each side of the edge keeps its energy up to it
-    /// (sampling/tube_refinement.hpp). Where the echo changes fast between two rays on one surface (the seabed's
-    /// facets' edges, a curved object's shading), up to 8 times as many rays as the column has are spent apart from
-    /// those (`refine_rays` bounds only the edges'), so that rough relief never leaves an edge unlocated.
+    /// (sampling/detail/tube_refinement.hpp). Where the echo changes fast between two rays on one surface (the seabed's
+    /// facets' edges, a curved object's shading), and beside a located edge whose ray meets its facet near grazing
+    /// incidence (so that its echo lies where that facet does), up to 8 times as many rays as the column has are spent
+    /// apart from those (`refine_rays` bounds only the edges'), so that rough relief never leaves an edge unlocated.
     std::size_t refine_depth = 12;
     std::size_t refine_rays = 64;  ///< extra rays per column for edges at most, on top of half the column's own rays
     /// Refine across the seabed's facets' edges too (sampling/detail/tube_refinement.hpp): between two seabed rays on
@@ -884,10 +885,14 @@ private:
     /// The energy between adjacent rays a and b (and their bounced paths): one tube where they are neighbours on
     /// one surface; else, while the depth and the column's budgets allow and the edge between them is not yet
     /// located to `edge_tolerance` of a sample, the ray between them is traced and each half refined in turn.
-    /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step.
+    /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step; where
+    /// one end meets its facet near grazing incidence, so that its half step still spans more than the edge's
+    /// tolerance, the rays between them are traced on (from the shading budget) for where its echo lies, the edge
+    /// being recorded once, where it was located (`recorded`: it is, for the pairs within).
     template <Scene Sc, class Visitor>
     void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
-                const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit) const {
+                const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit,
+                bool recorded = false) const {
         const double de = std::abs(b.e - a.e);
         const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
                                                           2.0 * double(col.t_max_one_way));
@@ -905,14 +910,25 @@ private:
             if ((depth == 0 && v == detail::tube_verdict::split) || v == detail::tube_verdict::coarse)
                 emit_tube(a, b, de, visit); // not refined: as before
             else {                                                                            // a located edge
-                emit_ends(a, b, de, visit);
                 // Recorded for the along-track check: the edges between surfaces (objects' silhouettes), and with
                 // along_split_seabed the seabed's own (the far ends of its shadows).
-                if (col.record && a.valid && b.valid &&
+                if (!recorded && col.record && a.valid && b.valid &&
                     (col.record->seabed_edges || !same_surface(a.surface, b.surface))) {
                     col.record->edges.push_back({a.t, col.record->interval});
                     col.record->edges.push_back({b.t, col.record->interval});
                 }
+                if (v == detail::tube_verdict::located && budget.shading > 0 && depth < density_.refine_depth &&
+                    double(e_mid) != a.e && double(e_mid) != b.e &&
+                    detail::ends_unresolved(as_tube_end(a), as_tube_end(b), de, dt_)) {
+                    --budget.shading; // a grazing end: where its echo lies, not where the edge is
+                    ray_end m_bounce;
+                    const ray_end m = shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr,
+                                            m_bounce, steeper(a, b));
+                    refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, true);
+                    refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, true);
+                    return;
+                }
+                emit_ends(a, b, de, visit);
             }
             if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
             return;
@@ -921,8 +937,8 @@ private:
         ray_end m_bounce;
         const ray_end m =
             shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce, steeper(a, b));
-        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit);
-        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit);
+        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, recorded);
+        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, recorded);
     }
 
     [[nodiscard]] detail::tube_end as_tube_end(const ray_end& r) const noexcept {

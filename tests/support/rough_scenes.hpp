@@ -80,6 +80,18 @@ template <class T> sss::scene::height_field<T> trench_field() {
     });
 }
 
+/// A lee slope seen at grazing incidence: a plateau 1 m high out to x = 18 m, then a slope down to z = 0 whose plane
+/// passes `below_deg` below the towfish at (0, 0, rough_altitude_m). Every ray that meets the slope meets it within
+/// below_deg of grazing incidence (those steeper than the slope's plane, shallower than the plateau's edge), so its
+/// echo per radian, 1/sin of the angle to the facet, is tens to thousands of times its neighbours'.
+template <class T> sss::scene::height_field<T> lee_slope_field(double below_deg) {
+    const double e_edge = std::atan((rough_altitude_m - 1.0) / 18.0);
+    const double slope = std::tan(e_edge - below_deg * std::numbers::pi / 180.0), x_foot = 18.0 + 1.0 / slope;
+    return footprint_field<T>([=](double x, double) {
+        return x < 18.0 ? 1.0 : (x < x_foot ? 1.0 - (x - 18.0) * slope : 0.0);
+    });
+}
+
 /// Gentle rolling relief (0.3 m swell, 0.05 m ripples) with a hollow 0.8 m deep around x = 25 for the pipeline to
 /// span.
 inline double target_relief_m(double x, double y) {
