@@ -12,6 +12,9 @@
 // with the division even (ray_density::along_split_by_weight = false: every column to ninths, rather than the columns
 // near the array's axis to 27ths and those near its extent's edges to thirds), what sharing it by weight changes;
 // with the seabed's facets' edges not refined across track (ray_density::refine_facets = false), what that costs;
+// with the division's last level at every launch angle (ray_density::along_split_sparse = false), what tracing
+// every other one saves; and the echo pieces per ping of each (about one per ray traced), what the refinements
+// spend in rays;
 // what clearing chords in open water saves in layered water (in the survey's and in one with strong gradients
 // down to the seabed), and what following a steeper neighbour saves (layered_params::follow_neighbours). It also prints the scene's build time and the process's peak resident memory after the build,
 // the cost of ground-truth labels beside the image (render_labelled, and render then label_render, with the sides
@@ -120,6 +123,7 @@ int main(int argc, char** argv) {
     const auto full_thirds = full({.along_split = 3, .along_split_by_weight = false});
     const auto full_even = full({.along_split_by_weight = false});
     const auto full_plain_facets = full({.refine_facets = false});
+    const auto full_dense = full({.along_split_sparse = false});
 
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
@@ -151,6 +155,28 @@ int main(int argc, char** argv) {
     const double plain_facets_1 = row("full, facets' edges not refined (refine_facets = false)", full_plain_facets);
     std::printf("full: refining at the facets' edges (the default) takes %.2f times the time per ping of not\n",
                 plain_facets_1 / layered_1);
+    const double dense_1 = row("full, the division's last level at every launch angle (along_split_sparse = false)",
+                               full_dense);
+    std::printf("full: the division's last level at every other launch angle (the default) takes %.2f times the time "
+                "per ping of every angle\n",
+                dense_1 / layered_1);
+    {
+        // What the refinements spend: echo pieces per ping (about one per ray traced: a tube per pair of rays, a
+        // point per end at a located edge), over the first few pings, both sides.
+        const std::size_t counted = std::min<std::size_t>(pings, 4);
+        const auto pieces = [&](const auto& sim) {
+            std::size_t n = 0;
+            for (std::size_t i = 0; i < counted; ++i)
+                for (const side sd : {side::port, side::starboard})
+                    sim.trace(sv.scene, sim.motion().pose_at(i), sd, [&](const auto&) { ++n; });
+            return double(n) / double(counted);
+        };
+        std::printf("echo pieces per ping (pings 0 to %zu): full %.0f; the seabed's edges out %.0f; thirds only %.0f; "
+                    "even division %.0f; facets' edges not refined %.0f; the last level at every angle %.0f; "
+                    "straight rays %.0f; minimal %.0f\n",
+                    counted - 1, pieces(full_sim), pieces(full_objects_only), pieces(full_thirds), pieces(full_even),
+                    pieces(full_plain_facets), pieces(full_dense), pieces(straight_sim), pieces(minimal));
+    }
     {
         // Clearing chords in open water (layered_params::clear_open_water) against the walk chord by chord, in the
         // survey's water and in water whose strong gradients reach the seabed (1500 m/s to 20 m, 1490 m/s at the
@@ -235,12 +261,12 @@ int main(int argc, char** argv) {
         std::printf("| ping | side | reference's last doubling, RMS | default: RMS / median / p99 | shadows missed | "
                     "thirds only: RMS / median / p99 | shadows missed | seabed's edges out: RMS / median / p99 | "
                     "shadows missed | even division: RMS / median / p99 | shadows missed | facets not refined: RMS / "
-                    "median / p99 | shadows missed |\n"
-                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                    "median / p99 | shadows missed | last level at every angle: RMS / median / p99 | shadows missed |\n"
+                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         struct total {
             double sum_sq = 0, worst_p99 = 0;
             std::size_t misses = 0, shadows = 0, within = 0;
-        } totals[5];
+        } totals[6];
         std::size_t lines = 0;
         for (std::size_t k = 0; k < error_pings; ++k) {
             const auto pose = sv.motion.pose_at(k * step);
@@ -251,7 +277,8 @@ int main(int argc, char** argv) {
                      .max_doublings = 1});
                 std::printf("| %zu | %s | %.3f |", k * step, sd == side::port ? "port" : "starboard", ref.last_change_db);
                 int v = 0;
-                for (const auto* sim : {&full_sim, &full_thirds, &full_objects_only, &full_even, &full_plain_facets}) {
+                for (const auto* sim :
+                     {&full_sim, &full_thirds, &full_objects_only, &full_even, &full_plain_facets, &full_dense}) {
                     const auto e = sss_test::compare_lines(sss_bench::side_line(*sim, sv.scene, pose, sd), ref.values);
                     std::printf(" %.3f / %.3f / %.3f | %zu of %zu |", e.rms_db, e.median_db, e.p99_db, e.shadow_misses,
                                 e.shadow_samples);
@@ -266,14 +293,15 @@ int main(int argc, char** argv) {
                 ++lines;
             }
         }
-        for (int v = 0; v < 5; ++v)
+        for (int v = 0; v < 6; ++v)
             std::printf("%s: RMS over the lines' RMS %.3f dB, worst p99 %.3f dB, %zu of %zu shadow samples missed; %zu of %zu "
                         "lines within 0.3 dB RMS and 1 dB p99 with no shadow missed\n",
                         v == 0   ? "default"
                         : v == 1 ? "thirds only (along_split = 3)"
                         : v == 2 ? "the seabed's edges out of the along-track check"
                         : v == 3 ? "even division (along_split_by_weight = false)"
-                                 : "facets' edges not refined (refine_facets = false)",
+                        : v == 4 ? "facets' edges not refined (refine_facets = false)"
+                                 : "the division's last level at every angle (along_split_sparse = false)",
                         std::sqrt(totals[v].sum_sq / double(lines)), totals[v].worst_p99, totals[v].misses,
                         totals[v].shadows, totals[v].within, lines);
     }

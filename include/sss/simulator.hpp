@@ -25,7 +25,8 @@
 /// disagree with a neighbour's (an edge crossing the beam obliquely), the launch angles between the disagreeing
 /// edges are traced again as narrower columns, in thirds where they still disagree (ray_density.along_split, deeper
 /// where the beam weights a column more: sampling/division_depths.hpp; the seabed's own shadow edges too with
-/// ray_density.along_split_seabed). On an open flat seabed nothing is refined
+/// ray_density.along_split_seabed; the narrowest at every other launch angle: ray_density.along_split_sparse). On
+/// an open flat seabed nothing is refined
 /// and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
@@ -120,6 +121,14 @@ struct ray_density {
     /// each column alone would put it where its centre sees it; where the columns are closer, the check costs
     /// rays and changes little (bench/bench_survey_accuracy.cpp and bench/bench_rough_accuracy.cpp measure both).
     std::optional<bool> along_split_seabed{};
+    /// The last level of the along-track division traces every other launch angle of the column it divides: those
+    /// narrow columns each carry a ninth to a 27th of their column's weight, so their tubes' errors across track
+    /// average out over them, while along track they are what resolves the scene. Edges between such rays, two
+    /// launch intervals apart, are judged so that a shadow the column's own spacing would reveal is revealed (the
+    /// time gap need exceed the prediction only by twice one interval's, sampling/detail/tube_refinement.hpp), and
+    /// located as finely. On the survey of bench/bench_survey.cpp about a fifth fewer rays for the same error
+    /// (docs/design/along-track.md); false traces every launch angle there too.
+    bool along_split_sparse = true;
 };
 
 /// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
@@ -734,8 +743,13 @@ private:
         };
         const bool last = level + 1 >= depth;
         if (last) {
-            in_column(scene, f, lo, a, [&](const Sc& col) { trace_runs(col, f, lo, a, angles, runs, b.scratch, nullptr, visit); });
-            in_column(scene, f, c, hi, [&](const Sc& col) { trace_runs(col, f, c, hi, angles, runs, b.scratch, nullptr, visit); });
+            const std::size_t stride = density_.along_split_sparse ? 2 : 1;
+            in_column(scene, f, lo, a, [&](const Sc& col) {
+                trace_runs(col, f, lo, a, angles, runs, b.scratch, nullptr, visit, stride);
+            });
+            in_column(scene, f, c, hi, [&](const Sc& col) {
+                trace_runs(col, f, c, hi, angles, runs, b.scratch, nullptr, visit, stride);
+            });
             for (const auto& [k0, k1] : runs)
                 for (std::size_t k = k0; k <= k1; ++k) emit_middle(k);
             return;
@@ -809,20 +823,30 @@ private:
     /// between along-track angles lo and hi (rad), over the launch angles of the column it divides, with that
     /// column's refinement budget, and visits their echoes. With a record given, as trace_column: the located
     /// edges go to its `edges`, and where interval k's echoes begin to its `first[k]` (and where the last
-    /// interval of a run ends to `first[k1 + 1]`).
+    /// interval of a run ends to `first[k1 + 1]`). Without one, `stride` > 1 traces every stride-th angle of each
+    /// run and its last (ray_density::along_split_sparse).
     template <Scene Sc, class Visitor>
     void trace_runs(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
                     const std::vector<std::pair<std::size_t, std::size_t>>& runs, column_scratch& s,
-                    column_record* record, Visitor& visit) const {
+                    column_record* record, Visitor& visit, std::size_t stride = 1) const {
         const T along = static_cast<T>(0.5 * (lo + hi));
         const double column_sr = std::sin(hi) - std::sin(lo);
+        if (record || stride < 1) stride = 1; // a record's intervals each need their own rays
+        // The launch angle traced after angles[k] in the run ending at interval k1.
+        const auto next = [stride](std::size_t k, std::size_t k1) { return std::min(k + stride, k1 + 1); };
         std::size_t n_rays = 0;
-        for (const auto& [k0, k1] : runs) n_rays += k1 - k0 + 2;
+        for (const auto& [k0, k1] : runs)
+            for (std::size_t k = k0;; k = next(k, k1)) {
+                ++n_rays;
+                if (k == k1 + 1) break;
+            }
         s.rays.resize(n_rays);
         std::size_t r = 0;
         for (const auto& [k0, k1] : runs)
-            for (std::size_t k = k0; k <= k1 + 1; ++k)
+            for (std::size_t k = k0;; k = next(k, k1)) {
                 s.rays[r++] = ray<T>{f.p.position, f.p.to_world(beam_direction(f.sd, along, angles[k]))};
+                if (k == k1 + 1) break;
+            }
         s.paths.resize(s.rays.size());
         trace_all(propagation_, std::span<const ray<T>>(s.rays), scene, f.t_max_one_way,
                   std::span<std::optional<path<T>>>(s.paths));
@@ -833,12 +857,13 @@ private:
                                  column_sr,
                                  angles.size() / 2 + density_.refine_rays,
                                  shading_budget(angles.size()),
-                                 record};
+                                 record,
+                                 stride};
         refine_budget budget{col.max_extra, col.max_shading};
         std::size_t q = 0;
         for (const auto& [k0, k1] : runs) {
             ray_end prev, prev_bounce;
-            for (std::size_t k = k0; k <= k1 + 1; ++k) {
+            for (std::size_t k = k0;; k = next(k, k1)) {
                 ray_end bounce;
                 const ray_end cur = echo(scene, f.sd, along, angles[k], s.rays[q].direction, s.paths[q], f.t_max_one_way,
                                          column_sr, bounce);
@@ -850,6 +875,7 @@ private:
                 if (record) record->first[k] = record->echoes.size();
                 prev = cur;
                 prev_bounce = bounce;
+                if (k == k1 + 1) break;
             }
         }
     }
@@ -864,6 +890,7 @@ private:
         std::size_t max_extra;       ///< extra rays this column may trace to locate edges
         std::size_t max_shading;     ///< and to follow an echo that changes fast (facets' edges)
         column_record* record;       ///< where located edges go (none: not recorded)
+        std::size_t stride = 1;      ///< launch intervals between the column's adjacent traced rays
     };
 
     /// The extra rays a column has left: for edges, and for echoes that change fast. Apart, so that the many facets'
@@ -895,7 +922,7 @@ private:
                 bool recorded = false) const {
         const double de = std::abs(b.e - a.e);
         const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
-                                                          2.0 * double(col.t_max_one_way));
+                                                          2.0 * double(col.t_max_one_way), depth == 0 ? col.stride : 1);
         if (v == detail::tube_verdict::continuous) {
             emit_tube(a, b, de, visit);
             if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);

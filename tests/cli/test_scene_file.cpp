@@ -178,18 +178,23 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     CHECK(again.run.precision == "float");
     CHECK(again.run.along_split_by_weight);
     CHECK(sss::scene_file::rays_of(again).along_split_by_weight);
-    // Even division, asked for, reads back and reaches the simulator's ray density.
-    auto even = d;
-    even.run.along_split_by_weight = false;
-    const auto even_again = sss::scene_file::parse(sss::scene_file::to_toml(even), "resolved.toml");
+    // The ray density's switches, each turned off, read back and reach the simulator's ray density.
+    auto switched_off = [&](bool sss::scene_file::render::*key) {
+        auto changed = d;
+        changed.run.*key = false;
+        return sss::scene_file::parse(sss::scene_file::to_toml(changed), "resolved.toml");
+    };
+    const auto even_again = switched_off(&sss::scene_file::render::along_split_by_weight);
     CHECK_FALSE(even_again.run.along_split_by_weight);
     CHECK_FALSE(sss::scene_file::rays_of(even_again).along_split_by_weight);
     CHECK(sss::scene_file::rays_of(again).refine_facets);
-    auto plain = d;
-    plain.run.refine_facets = false;
-    const auto plain_again = sss::scene_file::parse(sss::scene_file::to_toml(plain), "resolved.toml");
+    const auto plain_again = switched_off(&sss::scene_file::render::refine_facets);
     CHECK_FALSE(plain_again.run.refine_facets);
     CHECK_FALSE(sss::scene_file::rays_of(plain_again).refine_facets);
+    CHECK(sss::scene_file::rays_of(again).along_split_sparse);
+    const auto dense_again = switched_off(&sss::scene_file::render::along_split_sparse);
+    CHECK_FALSE(dense_again.run.along_split_sparse);
+    CHECK_FALSE(sss::scene_file::rays_of(dense_again).along_split_sparse);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
     const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
     CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));

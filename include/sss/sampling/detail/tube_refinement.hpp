@@ -40,12 +40,20 @@
 /// - at a located edge, the ray between the two ends is traced again while the larger stretch spans more than the
 ///   sixteenth of a sample that located the edge (ends_unresolved); the edge keeps the place the smaller stretch
 ///   located it at (where the along-track check compares it), and the traced rays only place the energy.
+///
+/// Sparse columns. The narrowest columns of the along-track division trace every other launch angle
+/// (ray_density::along_split_sparse). A shadow of time length L between two rays on one surface, n launch intervals
+/// apart, leaves a gap of about n p + L, p one interval's prediction; between adjacent rays it is found when
+/// L > 2 p (gap > 3 p), and across n intervals the same L is found when the gap exceeds (1 + 2 / n) times the
+/// prediction n p.
+///
 /// A pair whose valid ray's surface would carry on beyond the end of the line (the far edge of coverage) is left
 /// as it is: nothing the receiver records lies between them.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 namespace sss::detail {
@@ -80,9 +88,12 @@ enum class tube_verdict : unsigned char {
 }
 
 /// Judges two rays `de` (rad) apart, with sample interval `dt_s` and the line ending at two-way time `t_line_s`.
+/// `stride`: the launch intervals of their column between them (a sparse column, ray_density::along_split_sparse):
+/// their gap is an edge where it exceeds the prediction by twice one interval's, as between adjacent rays.
 [[nodiscard]] inline tube_verdict judge_tube(const tube_end& a, const tube_end& b, double de, double dt_s,
-                                             double t_line_s) noexcept {
-    constexpr double gap_ratio = 3.0;        // a time gap this many times the prediction is an edge
+                                             double t_line_s, std::size_t stride = 1) noexcept {
+    // A time gap this many times the prediction is an edge: 3 between adjacent rays, 1 + 2 / stride across more.
+    const double gap_ratio = 1.0 + 2.0 / double(std::max<std::size_t>(stride, 1));
     const double gap_floor = 0.25 * dt_s;    // a gap below a quarter sample never is
     const double located = located_fraction * dt_s;
     // A tube whose ends' gains differ more is refined, down to tubes this short; finer across a facet's edge.
