@@ -126,8 +126,9 @@ struct ray_density {
     /// average out over them, while along track they are what resolves the scene. Edges between such rays, two
     /// launch intervals apart, are judged so that a shadow the column's own spacing would reveal is revealed (the
     /// time gap need exceed the prediction only by twice one interval's, sampling/detail/tube_refinement.hpp), and
-    /// located as finely. On the survey of bench/bench_survey.cpp about a fifth fewer rays for the same error
-    /// (docs/design/along-track.md); false traces every launch angle there too.
+    /// located as finely. On the 256 m copy of the survey (bench/bench_survey_accuracy.cpp) a fifth fewer rays for
+    /// the same error, on the 1 km survey (bench/bench_survey.cpp) a tenth fewer and 0.92 times the time for 0.006 dB
+    /// more RMS (docs/design/along-track.md); false traces every launch angle there too.
     bool along_split_sparse = true;
 };
 
