@@ -122,11 +122,11 @@ struct ray_density {
     /// rays and changes little (bench/bench_survey_accuracy.cpp and bench/bench_rough_accuracy.cpp measure both).
     std::optional<bool> along_split_seabed{};
     /// The last level of the along-track division traces every other launch angle of the column it divides: those
-    /// narrow columns each carry a ninth to a 27th of their column's weight, so their tubes' errors across track
-    /// average out over them, while along track they are what resolves the scene. Edges between such rays, two
-    /// launch intervals apart, are judged so that a shadow the column's own spacing would reveal is revealed (the
-    /// time gap need exceed the prediction only by twice one interval's, sampling/detail/tube_refinement.hpp), and
-    /// located as finely. On the 256 m copy of the survey (bench/bench_survey_accuracy.cpp) a fifth fewer rays for
+    /// narrow columns each carry a third (faint columns, or along_split = 3) to a 27th of their column's weight, so
+    /// their tubes' errors across track average out over them, while along track they are what resolves the scene.
+    /// Edges between such rays, two launch intervals apart, are judged so that a shadow the column's own spacing
+    /// would reveal is revealed (the time gap need exceed the prediction only by twice one interval's,
+    /// sampling/detail/tube_refinement.hpp), and located to the same fraction of a sample. On the 256 m copy of the survey (bench/bench_survey_accuracy.cpp) a fifth fewer rays for
     /// the same error, on the 1 km survey (bench/bench_survey.cpp) a tenth fewer and 0.92 times the time for 0.006 dB
     /// more RMS (docs/design/along-track.md); false traces every launch angle there too.
     bool along_split_sparse = true;
@@ -858,12 +858,12 @@ private:
                                  column_sr,
                                  angles.size() / 2 + density_.refine_rays,
                                  shading_budget(angles.size()),
-                                 record,
-                                 stride};
+                                 record};
         refine_budget budget{col.max_extra, col.max_shading};
         std::size_t q = 0;
         for (const auto& [k0, k1] : runs) {
             ray_end prev, prev_bounce;
+            std::size_t k_prev = k0;
             for (std::size_t k = k0;; k = next(k, k1)) {
                 ray_end bounce;
                 const ray_end cur = echo(scene, f.sd, along, angles[k], s.rays[q].direction, s.paths[q], f.t_max_one_way,
@@ -871,11 +871,12 @@ private:
                 ++q;
                 if (k > k0) {
                     if (record) record->interval = k - 1;
-                    refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+                    refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit, false, k - k_prev);
                 }
                 if (record) record->first[k] = record->echoes.size();
                 prev = cur;
                 prev_bounce = bounce;
+                k_prev = k;
                 if (k == k1 + 1) break;
             }
         }
@@ -891,7 +892,6 @@ private:
         std::size_t max_extra;       ///< extra rays this column may trace to locate edges
         std::size_t max_shading;     ///< and to follow an echo that changes fast (facets' edges)
         column_record* record;       ///< where located edges go (none: not recorded)
-        std::size_t stride = 1;      ///< launch intervals between the column's adjacent traced rays
     };
 
     /// The extra rays a column has left: for edges, and for echoes that change fast. Apart, so that the many facets'
@@ -916,14 +916,16 @@ private:
     /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step; where
     /// one end meets its facet near grazing incidence, so that its half step still spans more than the edge's
     /// tolerance, the rays between them are traced on (from the shading budget) for where its echo lies, the edge
-    /// being recorded once, where it was located (`recorded`: it is, for the pairs within).
+    /// being recorded once, where it was located (`recorded`: it is, for the pairs within; a pair within that finds
+    /// another edge draws on the edges' budget, as any edge). `intervals`: the launch intervals between a and b at
+    /// depth 0 (more than one in a sparse column, ray_density::along_split_sparse).
     template <Scene Sc, class Visitor>
     void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
                 const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit,
-                bool recorded = false) const {
+                bool recorded = false, std::size_t intervals = 1) const {
         const double de = std::abs(b.e - a.e);
         const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
-                                                          2.0 * double(col.t_max_one_way), depth == 0 ? col.stride : 1);
+                                                          2.0 * double(col.t_max_one_way), depth == 0 ? intervals : 1);
         if (v == detail::tube_verdict::continuous) {
             emit_tube(a, b, de, visit);
             if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
