@@ -922,7 +922,14 @@ private:
     template <Scene Sc, class Visitor>
     void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
                 const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit,
-                bool recorded = false, std::size_t intervals = 1) const {
+                bool recorded = false, std::size_t intervals = 1, const ray_end* outer = nullptr) const {
+        // The guide of a ray launched between a and b: the steeper of the two (the steeper end of the interval refined
+        // at depth 0, `outer`, where neither met anything), and `outer` again where the nearer one is too close for a
+        // propagation's bound.
+        if (depth == 0) outer = steeper(a, b);
+        const ray_end* near = steeper(a, b);
+        const ray_end* guide = near ? near : outer;
+        const ray_end* fallback = outer != guide ? outer : nullptr;
         const double de = std::abs(b.e - a.e);
         const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
                                                           2.0 * double(col.t_max_one_way), depth == 0 ? intervals : 1);
@@ -953,9 +960,9 @@ private:
                     --budget.shading; // a grazing end: where its echo lies, not where the edge is
                     ray_end m_bounce;
                     const ray_end m = shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr,
-                                            m_bounce, steeper(a, b));
-                    refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, true);
-                    refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, true);
+                                            m_bounce, guide, fallback);
+                    refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, true, 1, outer);
+                    refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, true, 1, outer);
                     return;
                 }
                 emit_ends(a, b, de, visit);
@@ -966,9 +973,9 @@ private:
         --left;
         ray_end m_bounce;
         const ray_end m =
-            shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce, steeper(a, b));
-        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, recorded);
-        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, recorded);
+            shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce, guide, fallback);
+        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, recorded, 1, outer);
+        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, recorded, 1, outer);
     }
 
     [[nodiscard]] detail::tube_end as_tube_end(const ray_end& r) const noexcept {
@@ -1011,13 +1018,22 @@ private:
     /// One ray: its two-way time and return power per radian of depression, or invalid if it meets nothing.
     /// With the specular bounce on, `bounce` receives the echo of the bounced path (else it stays invalid).
     /// `guide`, a valid end traced from the same pose, tells a GuidedPropagation where that ray met its first
-    /// surface (the result is the same, sooner).
+    /// surface (the result is the same, sooner); `fallback`, another, is offered to a propagation that takes two
+    /// (its trace_beside with two guides: propagation/concept.hpp).
     template <Scene Sc>
     [[nodiscard]] ray_end shoot(const Sc& scene, const pose<T>& p, side sd, T along, T e, T t_max_one_way,
-                                double column_sr, ray_end& bounce, const ray_end* guide = nullptr) const {
+                                double column_sr, ray_end& bounce, const ray_end* guide = nullptr,
+                                const ray_end* fallback = nullptr) const {
         const vec3<T> dir = p.to_world(beam_direction(sd, along, e));
         const ray<T> r{p.position, dir};
         if constexpr (GuidedPropagation<P, Sc>) {
+            if constexpr (requires { propagation_.trace_beside(r, scene, t_max_one_way, dir, T(0), dir, T(0)); }) {
+                if (guide && fallback && fallback->valid)
+                    return echo(scene, sd, along, e, dir,
+                                propagation_.trace_beside(r, scene, t_max_one_way, guide->launch, guide->clear_range_m,
+                                                          fallback->launch, fallback->clear_range_m),
+                                t_max_one_way, column_sr, bounce);
+            }
             if (guide)
                 return echo(scene, sd, along, e, dir,
                             propagation_.trace_beside(r, scene, t_max_one_way, guide->launch, guide->clear_range_m),

@@ -406,6 +406,41 @@ TEST_CASE("the sea surface ends a climbing ray, and a ray cannot start above it"
     CHECK_FALSE(water.trace(r, seabed, 40.0 / 1500 * (1 - 1e-9)));
 }
 
+TEST_CASE_TEMPLATE("a ray going up from a source above the geometry comes back to the seabed exactly when Snell's law "
+                   "turns it below the surface",
+                   T, float, double) {
+    // The survey's water under a surface at world z 40 m, a source 10 m above a flat seabed at z 0 (depth 30 m, where c
+    // is 1487.07 m/s): the fastest water above it is the surface's 1500 m/s, so a ray launched up turns back down
+    // where it is shallower than acos(c0 / 1500), about 7.53 deg, and reaches the surface (meeting nothing) where it is
+    // steeper.
+    for (const bool table : {false, true}) {
+        layered_params<T> p = exact<T>(T(40));
+        p.launch_table = table;
+        const layered<T> water(sound_speed_profile<T>({T(0), T(8), T(20), T(40.5)}, {T(1500), T(1499), T(1490), T(1484)}), p);
+        const scene::flat_seabed<T> seabed(T(0));
+        const double c0 = double(water.profile().speed_mps(T(30)));
+        const double critical = std::acos(c0 / 1500.0);
+        std::size_t back = 0, gone = 0;
+        std::vector<ray<T>> rays;
+        for (int k = 0; k < 80; ++k) {
+            const double up = (1.0 + 0.25 * k) * deg;
+            if (std::abs(up - critical) < 0.02 * deg) continue; // within rounding of the turn at the surface itself
+            rays.push_back(launch<T>(T(40), T(30), -up, 0.3));
+            const auto path = water.trace(rays.back(), seabed, T(1));
+            CHECK_MESSAGE(path.has_value() == (up < critical), "up " << up / deg << " deg, critical " << critical / deg);
+            if (path) CHECK(path->surface.point.z == doctest::Approx(0.0).epsilon(1e-5));
+            back += path.has_value();
+            gone += !path.has_value();
+        }
+        // The batch method agrees ray by ray.
+        std::vector<std::optional<path<T>>> together(rays.size());
+        water.trace_many(std::span<const ray<T>>(rays), seabed, T(1), std::span<std::optional<path<T>>>(together));
+        for (std::size_t k = 0; k < rays.size(); ++k) CHECK(together[k].has_value() == water.trace(rays[k], seabed, T(1)).has_value());
+        CHECK(back > 20);
+        CHECK(gone > 20);
+    }
+}
+
 TEST_CASE("the reference speed is the harmonic mean over the water column, unless given") {
     // c from 1500 at the surface to 1400 at 100 m: 100 m / integral dz/c = 100 g / ln(c1/c0), g = -1 1/s.
     const layered<double> water(sound_speed_profile<double>({0, 100}, {1500, 1400}), exact());
@@ -601,7 +636,7 @@ template <class S, bool guided> struct counting_scene {
     using value_type = typename S::value_type;
     using T = value_type;
     const S* s;
-    mutable long intersects = 0, cleared = 0;
+    mutable long intersects = 0, cleared = 0, asked = 0;
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max) const {
         ++intersects;
         return s->intersect(r, t_max);
@@ -616,6 +651,7 @@ template <class S, bool guided> struct counting_scene {
         requires guided
     {
         const T d = s->clear_range_beside_m(b);
+        ++asked;
         cleared += d > T(0);
         return d;
     }
@@ -699,6 +735,53 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
     CHECK(objects > 20);
     CHECK(cleared > std::int64_t(pairs) / 3);
     CHECK(guided_chords < plain_chords);
+}
+
+TEST_CASE_TEMPLATE("A bent ray too close to its steeper neighbour for the bound is guided by a farther one, and still "
+                   "gets the plain trace's path to the last bit",
+                   T, float, double) {
+    const auto sc = rough_scene_with_objects<T>();
+    using Sc = scene::scene<scene::height_field<T>>;
+    std::size_t rays = 0, objects = 0, near_only = 0, far_only = 0;
+    long near_chords = 0, both_chords = 0;
+    for (const layered<T>& water : guided_waters<T>())
+        for (const vec3<T> fish : {vec3<T>{T(-45), T(-20), T(10)}, vec3<T>{T(-40), T(10), T(3)}, vec3<T>{T(18), T(4), T(1.1)}})
+            for (int a = 0; a < 4; ++a)
+                for (int g = 0; g < 30; ++g) {
+                    const double az = -0.3 + 0.15 * a + (fish.x > T(0) ? 2.0 : 0.0), e = (2 + 1.7 * g) * deg;
+                    const double step = 1.3 * deg;
+                    // r, a neighbour 2^-14 to 2^-10 of a first-pass step steeper (as deep refinement meets it), and the
+                    // first-pass ray a whole step steeper.
+                    const ray<T> r = fan_ray(fish, az, e);
+                    const ray<T> near = fan_ray(fish, az, e + step * std::ldexp(1.0, -10 - (g + a) % 5));
+                    const ray<T> far = fan_ray(fish, az, e + step);
+                    const T t_max = T(0.2);
+                    const auto near_path = water.trace(near, sc, t_max), far_path = water.trace(far, sc, t_max);
+                    if (!near_path || !far_path) continue;
+                    const counting_scene<Sc, false> plain{&sc};
+                    const counting_scene<Sc, true> one{&sc}, two{&sc};
+                    const auto want = water.trace(r, plain, t_max);
+                    const auto got_one = water.trace_beside(r, one, t_max, near.direction, near_path->clear_range_m);
+                    const auto got_two = water.trace_beside(r, two, t_max, near.direction, near_path->clear_range_m,
+                                                            far.direction, far_path->clear_range_m);
+                    ++rays;
+                    objects += want && want->surface.object != no_object;
+                    if (!same_path(got_one, want) || !same_path(got_two, want))
+                        FAIL_CHECK("fish " << fish.z << " ray " << a << ", " << g << ": differs");
+                    // b is asked only where a gives nothing.
+                    if (one.cleared > 0) CHECK(two.asked == one.asked);
+                    near_only += one.cleared > 0;
+                    far_only += one.cleared == 0 && two.cleared > 0;
+                    near_chords += one.intersects;
+                    both_chords += two.intersects;
+                }
+    MESSAGE(rays << " rays with both guides' hits (" << objects << " meet objects); the near guide alone clears "
+                 << near_only << ", the far one " << far_only << " more; chords " << both_chords << " with both against "
+                 << near_chords);
+    CHECK(rays > 600);
+    CHECK(objects > 10);
+    CHECK(far_only > rays / 4);
+    CHECK(both_chords < near_chords);
 }
 
 TEST_CASE_TEMPLATE("A column traced together over a GuidedScene gets each ray's own trace bit for bit, either way round",

@@ -138,21 +138,24 @@ template <Real T> struct arc_hit {
 
 /// The first hit of the scene along an arc between arc lengths s_begin_m and s_end_m (m), found through chords of
 /// sagitta at most tolerance_m (m) and refined onto the arc (file comment), handed to
-/// `on_hit(const hit<T>& scene_hit, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T clear_arc_m)`: the
+/// `on_hit(const hit<T>& scene_hit, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T clear_x_m)`: the
 /// scene's hit on the chord, the point on the arc it refines to, its arc length from the arc's start, the arc's offset
-/// there, and the arc length up to which the chords met nothing (where the chord that met the scene starts; the hit
-/// itself on a straight arc). Returns whether there was a hit (on_hit called once) or not (not called). The arc
-/// starts at inclination phi0, given as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords`
-/// counts the calls to scene.intersect. With clear_open_water, a ClearanceScene is first asked to clear windows of
-/// chords (file comment); the hit is the same. The caller may know that the arc meets nothing up to arc length
-/// s_clear_m (m; 0 when it does not): the chords that end there or before are skipped, and the rest are the plain
-/// walk's, so the hit is the same (on a straight arc, one chord, it is unused). s_end_m may be +infinity only for a
-/// straight arc (zero curvature). (The callback lets a caller build its result from the scene's hit where it lies,
-/// with no intermediate copy: a hit is about a hundred bytes.)
+/// there, and the horizontal distance from the arc's start up to which the chords met nothing (the chord's own hit:
+/// the scene reports the nearest, so nothing lies on the chord before it; the walk's earlier chords met nothing).
+/// Returns whether there was a hit (on_hit called once) or not (not called). The arc starts at inclination phi0, given
+/// as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to scene.intersect.
+/// With clear_open_water, a ClearanceScene is first asked to clear windows of chords (file comment); the hit is the
+/// same. The caller may know that the arc meets nothing up to arc length s_clear_m (m; 0 when it does not): the chords
+/// that end there or before are skipped (all of them, with no set-up, when the span ends there), and the rest are the
+/// plain walk's, so the hit is the same (on a straight arc, one chord, it is unused). s_end_m may be +infinity only
+/// for a straight arc (zero curvature). (The callback lets a caller build its result from the scene's hit where it
+/// lies, with no intermediate copy: a hit is about a hundred bytes.)
 template <Scene S, Real T, class OnHit>
 bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0, T kappa_per_m, T s_begin_m,
                    T s_end_m, T tolerance_m, bool clear_open_water, T s_clear_m, std::size_t& chords, OnHit&& on_hit) {
     if (!(s_end_m > s_begin_m)) return false;
+    // Every chord ends within what the caller knows clear (a piece of the arc before its neighbour's hit): no hit.
+    if (kappa_per_m != T(0) && s_clear_m >= s_end_m) return false;
     const T sin0 = sin_phi0, cos0 = cos_phi0, kappa = kappa_per_m;
     const vec3<T> down{T(0), T(0), T(-1)};
     const auto world = [&](const arc_offset<T>& o) { return frame.start + frame.horizontal * o.range_m + down * o.depth_m; };
@@ -165,7 +168,8 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
         const auto h = scene.intersect(chord, s_end_m - s_begin_m);
         if (!h) return false;
         const T arc_m = s_begin_m + h->distance_m;
-        on_hit(*h, h->point, arc_m, offset_along_arc(sin0, cos0, kappa, arc_m), arc_m);
+        const arc_offset<T> at = offset_along_arc(sin0, cos0, kappa, arc_m);
+        on_hit(*h, h->point, arc_m, at, at.range_m);
         return true;
     }
 
@@ -330,7 +334,9 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
                 }
                 o = offset_along_arc(sin0, cos0, kappa, s);
             }
-            on_hit(*h, world(o), s, o, s_lo);
+            // Nothing lay on the chord before the scene's hit: clear out to the hit's horizontal distance on it.
+            const T x_hit = glm::dot(p - frame.start, frame.horizontal) + h->distance_m * glm::dot(dir, frame.horizontal);
+            on_hit(*h, world(o), s, o, x_hit);
             return true;
         }
         p = q;

@@ -174,19 +174,18 @@ public:
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace_beside(const ray<T>& r, const S& scene, T t_max_s, const vec3<T>& a_launch,
                                                       T a_clear_range_m) const {
-        std::optional<path<T>> out;
-        march m;
-        vec3<T> hdir;
-        const trace_start st = start_for(r.origin.z, scene);
-        if (!launch(r, t_max_s, st, m, hdir)) return out;
-        T clear = T(0);
-        if constexpr (GuidedScene<S>) {
-            if (p_.follow_neighbours)
-                if (const auto b = beside(r, hdir, a_launch, a_clear_range_m, water_from(st.depth0)))
-                    clear = scene.clear_range_beside_m(*b);
-        }
-        (void)follow(m, r, hdir, scene, t_max_s, st.chord_depth, out, nullptr, clear);
-        return out;
+        return trace_guided(r, scene, t_max_s, {&a_launch, a_clear_range_m}, {nullptr, T(0)});
+    }
+
+    /// trace(r, scene, t_max_s), bit for bit, beside a (as above) where the bound gives r some distance, and beside b
+    /// where it does not. The bound's margin (the chords' tolerance) outweighs the gain of a neighbour very close to r:
+    /// the simulator's refinement passes the nearer steeper ray of the pair r is launched between as a, and the steeper
+    /// ray of the first interval it refines as b, whose larger gain still carries r's walk to about where b met the
+    /// scene.
+    template <Scene S>
+    [[nodiscard]] std::optional<path<T>> trace_beside(const ray<T>& r, const S& scene, T t_max_s, const vec3<T>& a_launch,
+                                                      T a_clear_range_m, const vec3<T>& b_launch, T b_clear_range_m) const {
+        return trace_guided(r, scene, t_max_s, {&a_launch, a_clear_range_m}, {&b_launch, b_clear_range_m});
     }
 
     /// paths[k] = trace(rays[k], scene, t_max_s) for every k, bit for bit (the BatchPropagation method). The rays of a
@@ -258,6 +257,38 @@ private:
     struct trace_start;
     struct march;
 
+    /// A neighbour that may guide a ray (trace_beside): its launch direction and its path's clear_range_m; none when
+    /// `launch` is null.
+    struct guide_ray {
+        const vec3<T>* launch;
+        T clear_range_m;
+    };
+
+    /// trace_beside with guides a, then b where a gives no distance.
+    template <Scene S>
+    [[nodiscard]] std::optional<path<T>> trace_guided(const ray<T>& r, const S& scene, T t_max_s, guide_ray a,
+                                                      guide_ray b) const {
+        std::optional<path<T>> out;
+        march m;
+        vec3<T> hdir;
+        const trace_start st = start_for(r.origin.z, scene);
+        if (!launch(r, t_max_s, st, m, hdir)) return out;
+        T clear = T(0);
+        if constexpr (GuidedScene<S>) {
+            if (p_.follow_neighbours) {
+                const water_below w = water_from(st.depth0);
+                for (const guide_ray& g : {a, b}) {
+                    if (!g.launch) continue;
+                    if (const auto bound = beside(r, hdir, *g.launch, g.clear_range_m, w))
+                        clear = scene.clear_range_beside_m(*bound);
+                    if (clear > T(0)) break;
+                }
+            }
+        }
+        (void)follow(m, r, hdir, scene, t_max_s, st.chord_depth, out, nullptr, clear);
+        return out;
+    }
+
     /// The shared start of rays from world z origin_z (throws for an origin above the sea surface).
     template <Scene S> [[nodiscard]] trace_start start_for(T origin_z, const S& scene) const {
         constexpr T eps = std::numeric_limits<T>::epsilon();
@@ -291,6 +322,9 @@ private:
         const T inv_len = T(1) / std::sqrt(h2 + r.direction.z * r.direction.z);
         const T sin0 = -r.direction.z * inv_len, cos0 = hlen * inv_len;
 
+        // A ray going up from a source above all the geometry meets nothing unless it turns back down: skip it where
+        // it cannot.
+        if (sin0 < T(0) && st.chord_depth > depth0 && climbs_to_surface(depth0, cos0)) return false;
         m.set_out(depth0, sin0, cos0);
         T source_speed_mps;
         if (st.table && sin0 > T(0)) {
@@ -317,6 +351,20 @@ private:
         }
         m.tube = ray_tube<T>{source_speed_mps, sin0};
         return true;
+    }
+
+    /// True when a ray leaving depth depth0 (m) upwards at an inclination of cosine cos0 surely reaches the sea surface
+    /// without turning back down: by Snell's law (cos(phi) / c constant) it turns only where c reaches c(depth0) / cos0,
+    /// and the water above the source is slower than that everywhere (its fastest point is a knot or an end of the
+    /// column), by a margin far above rounding. Such a ray ends at the surface (surface reflection is not modelled).
+    [[nodiscard]] bool climbs_to_surface(T depth0, T cos0) const noexcept {
+        double c_hi = double(profile_.speed_mps(T(0)));
+        for (const gradient_layer<T>& l : layers_) {
+            if (!(l.z_top_m < depth0)) break;
+            c_hi = std::max({c_hi, double(l.speed_mps(std::max(l.z_top_m, T(0)))),
+                             double(l.speed_mps(std::min(l.z_bottom_m, depth0)))});
+        }
+        return double(cos0) * c_hi < double(profile_.speed_mps(depth0)) * (1.0 - 1e-5);
     }
 
     /// The water below a source at depth depth0 (m): c there, and the slowest and fastest water from there down (the
@@ -449,8 +497,8 @@ private:
             const arc_frame<T> frame{vec3<T>{r.origin.x + hdir.x * m.x, r.origin.y + hdir.y * m.x, p_.surface_z_m - m.z}, hdir};
             // A hit on this arc ends the trace: the path, if the hit comes in time.
             bool in_time = false;
-            const auto done = [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T clear_arc_m) {
-                in_time = finish(m, a, h, point, arc_m, at, clear_arc_m, layer, hdir, t_max_s, out, more);
+            const auto done = [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T clear_x_m) {
+                in_time = finish(m, a, h, point, arc_m, at, clear_x_m, layer, hdir, t_max_s, out, more);
             };
             // Path length the time left allows in this layer (c is largest at one of its bounds).
             const T c_max = g == T(0) ? c0 : std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m));
@@ -547,9 +595,9 @@ private:
     }
 
     /// The path to a hit on the current arc, into `out` (and the details into *more when not null); false if the hit
-    /// comes after t_max_s. The chords met nothing up to arc length clear_arc_m of this arc.
+    /// comes after t_max_s. The chords met nothing up to horizontal distance clear_x_m from this arc's start.
     [[nodiscard]] bool finish(const march& m, const detail::arc_start<T>& a, const hit<T>& h, const vec3<T>& point,
-                              T arc_m, const arc_offset<T>& o, T clear_arc_m, const gradient_layer<T>& layer,
+                              T arc_m, const arc_offset<T>& o, T clear_x_m, const gradient_layer<T>& layer,
                               const vec3<T>& hdir, T t_max_s, std::optional<path<T>>& out, details* more) const {
         T dt;
         if (a.cos0 > T(0)) {
@@ -587,10 +635,12 @@ private:
                     hdir * o.cos_incline + vec3<T>{T(0), T(0), -o.sin_incline});
         out->surface.point = point;
         out->surface.distance_m = path_length;
-        // Clear up to clear_arc_m: the hit's range less at most the arc between (horizontal progress <= arc length),
-        // less 1e-4 of it for rounding.
-        const T cos_hi = std::min(T(1), a.xi * std::max(layer.speed_mps(layer.z_top_m), layer.speed_mps(layer.z_bottom_m)));
-        out->clear_range_m = std::max(T(0), (m.x + o.range_m - cos_hi * std::max(arc_m - clear_arc_m, T(0))) * T(0.9999));
+        // Clear up to where the chord met the scene (what a neighbour's walk builds on is this ray's chords, each within
+        // the tolerance of its arc: beside's margin holds both rays' chords), less 1e-4 of the range and a few roundings
+        // of the world coordinates (the arc's start and the hit are rounded by those, whatever the range).
+        const T world_rounding = T(16) * std::numeric_limits<T>::epsilon() *
+                                 (std::abs(point.x) + std::abs(point.y) + std::abs(point.z) + std::abs(p_.surface_z_m));
+        out->clear_range_m = std::max(T(0), (m.x + clear_x_m) * T(0.9999) - world_rounding);
 
         if (more) *more = details{finite ? s_ab : T(0), c_hit, m.x + o.range_m, path_length};
         return true;
