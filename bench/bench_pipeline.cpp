@@ -55,6 +55,7 @@
 #include <sss/simulator.hpp>
 
 #include "../tests/support/compare.hpp"
+#include "../tests/support/counting_scene.hpp"
 #include "../tests/support/flat_seabed_oracle.hpp"
 #include "support/rough_relief.hpp"
 
@@ -72,28 +73,10 @@ flat_simulator<T, Beam> make_simulator(Beam beam = Beam{}, const sss::receiver_p
                                    sss::motion::straight_line<T>{}, rx, density);
 }
 
-/// A scene that counts the intersection queries made of it (one per ray for straight propagation).
-template <class Inner> class counting_scene {
-public:
-    using value_type = typename Inner::value_type;
-    counting_scene(const Inner& inner, std::size_t& count) : inner_(&inner), count_(&count) {}
-    [[nodiscard]] std::optional<sss::hit<value_type>> intersect(const sss::ray<value_type>& r,
-                                                               value_type t_max_m) const {
-        ++*count_;
-        return inner_->intersect(r, t_max_m);
-    }
-    [[nodiscard]] value_type seabed_height_m(value_type x, value_type y) const { return inner_->seabed_height_m(x, y); }
-    [[nodiscard]] value_type top_m() const { return inner_->top_m(); }
-
-private:
-    const Inner* inner_;
-    std::size_t* count_;
-};
-
 /// Rays launched by one ping (both sides).
 template <class Sim, class Scene> std::size_t rays_per_ping(const Sim& sim, const Scene& scene, std::size_t index = 0) {
     std::size_t count = 0;
-    const counting_scene<Scene> counted(scene, count);
+    const sss_test::counting_scene<Scene> counted(scene, count);
     benchmark::DoNotOptimize(sim.ping(counted, index));
     return count;
 }

@@ -25,41 +25,16 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
-#include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
 #include <sss/sss.hpp>
 
 #include "../tests/support/converged_reference.hpp"
+#include "../tests/support/counting_scene.hpp"
 #include "../tests/support/rough_scenes.hpp"
 
 namespace {
-
-/// A scene that counts the rays traced through it (one query per ray with straight propagation).
-template <class Inner> class counting_scene {
-public:
-    using value_type = typename Inner::value_type;
-    using T = value_type;
-    counting_scene(const Inner& inner, std::size_t& count) : inner_(&inner), count_(&count) {}
-    [[nodiscard]] std::optional<sss::hit<T>> intersect(const sss::ray<T>& r, T t_max_m) const {
-        ++*count_;
-        return inner_->intersect(r, t_max_m);
-    }
-    void intersect_many(std::span<const sss::ray<T>> rays, T t_max_m, std::span<std::optional<sss::hit<T>>> hits) const
-        requires requires(const Inner& s) { s.intersect_many(rays, t_max_m, hits); }
-    {
-        *count_ += rays.size();
-        inner_->intersect_many(rays, t_max_m, hits);
-    }
-    [[nodiscard]] T seabed_height_m(T x, T y) const { return inner_->seabed_height_m(x, y); }
-    [[nodiscard]] T top_m() const { return inner_->top_m(); }
-
-private:
-    const Inner* inner_;
-    std::size_t* count_;
-};
 
 auto make_sim(const sss::ray_density& d) {
     return sss::simulator<>({}, {}, {}, {}, sss_test::rough_receiver(), d);
@@ -107,7 +82,7 @@ void run_scene(const char* name, const Scene& scene, bool with_reference, const 
         for (int i = 0; i < variants; ++i) {
             const auto sim = make_sim(dens[i]);
             std::size_t n = 0;
-            const counting_scene<Scene> counted(scene, n);
+            const sss_test::counting_scene<Scene> counted(scene, n);
             (void)starboard(sim, counted, pose);
             rows[i].rays = n;
         }

@@ -462,3 +462,30 @@ TEST_CASE("Float arcs agree with double to single precision") {
     const auto pt = arc_point(turn.arc, turn.arc.length_m / 2);
     CHECK(pt.depth_m == doctest::Approx(1500 * (1 / std::cos(5 * deg) - 1) / 0.1).epsilon(1e-4));
 }
+
+TEST_CASE("atan(w)/w and atanh(u)/u by their series agree with the functions to an ulp across the series' range, "
+          "up to its ends") {
+    // The arcs' closed forms divide these by w; near 0 their series (to the q^7 term for |w| <= 1/16, where the next
+    // term is below 3.2e-21) replace the library calls. Against long double, over 1e-5 <= |w| <= 1/16, both signs.
+    const auto check = [](auto zero) {
+        using R = decltype(zero);
+        const double ulp = double(std::numeric_limits<R>::epsilon());
+        double worst_atan = 0.0, worst_atanh = 0.0;
+        for (int i = 0; i <= 4000; ++i) {
+            // Logarithmically spaced from 1e-5 to 1/16, with the switch at 1e-4 among the points.
+            const long double mag = i == 4000 ? 1e-4L : 1e-5L * std::pow(6250.0L, i / 3999.0L);
+            for (const long double sign : {1.0L, -1.0L}) {
+                const R w = R(sign * mag);
+                const long double lw = w;
+                const long double ta = std::atan(lw) / lw, th = std::atanh(lw) / lw;
+                worst_atan = std::max(worst_atan, double(std::abs((sss::propagation::detail::atan_ratio(w) - ta) / ta)));
+                worst_atanh = std::max(worst_atanh, double(std::abs((sss::propagation::detail::atanh_ratio(w) - th) / th)));
+            }
+        }
+        INFO("worst relative error: atan " << worst_atan / ulp << " ulp, atanh " << worst_atanh / ulp << " ulp");
+        CHECK(worst_atan <= ulp);
+        CHECK(worst_atanh <= ulp);
+    };
+    check(0.0f);
+    check(0.0);
+}

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "support/converged_reference.hpp"
+#include "support/counting_scene.hpp"
 #include "support/rough_scenes.hpp"
 #include <sss/sss.hpp>
 
@@ -286,7 +287,8 @@ TEST_CASE("under an array's along-track pattern, sharing the along-track divisio
 }
 
 TEST_CASE("across ripples of plane facets larger than a sample, refining at the facets' edges lowers the error against "
-          "the converged reference by more than a third") {
+          "the converged reference by more than a third, and the rays either side of each edge keep that error with "
+          "fewer rays than halving") {
     // 0.25 m cells over ripples 0.12 m high (crest to trough) and 1.1 m long, crests 20 deg off the track, and a
     // gentle swell: each facet spans several 3.75 cm samples, and the echo per radian jumps where a ray crosses from
     // one to the next (its footprint, 1/sin of the angle to the facet). Jackson's medium sand, an ideal fan 2 deg
@@ -319,6 +321,58 @@ TEST_CASE("across ripples of plane facets larger than a sample, refining at the 
         CHECK(refined.rms_db < 0.6 * plain.rms_db);
         CHECK(refined.p99_db < plain.p99_db);
         CHECK(refined.shadow_misses == 0);
+        // Bracketing each facet's edge (ray_density::bracket_facet_edges, the default) against halving the step at
+        // every level: the same tolerance, so the same error to a few thousandths of a dB, in fewer rays.
+        std::size_t bracketed_rays = 0, halved_rays = 0;
+        const auto bracketed = make({}).ping_at(sss_test::counting_scene(field, bracketed_rays), pose).starboard;
+        const auto halved = make({.bracket_facet_edges = false}).ping_at(sss_test::counting_scene(field, halved_rays), pose).starboard;
+        const auto halving = sss_test::compare_lines(halved, ref.values);
+        INFO("halving: rms " << halving.rms_db << " dB, 99th percentile " << halving.p99_db << " dB; rays "
+                             << halved_rays << " halving, " << bracketed_rays << " bracketed");
+        CHECK(sss_test::compare_lines(bracketed, ref.values).rms_db == doctest::Approx(refined.rms_db)); // as counted
+        CHECK(refined.rms_db <= halving.rms_db + 0.005);
+        CHECK(refined.p99_db <= halving.p99_db + 0.05);
+        CHECK(halving.shadow_misses == 0);
+        CHECK(double(bracketed_rays) < 0.97 * double(halved_rays));
+    }
+}
+
+TEST_CASE("where the seabed's facets are finer than the rays' spacing, bracketing the facets' edges costs at most a few "
+          "% more rays than halving, in float and far from the grid's origin too") {
+    // The ripples of the test above on 0.05 m cells: several facets lie between two rays, so the two facets' planes
+    // seldom meet where the seabed turns, and the bracket must then give way to halving. In float, 500 m from the
+    // origin, the seabed's heights are read to about 1e-4 m: too coarse to tell where the facets meet, so it must not
+    // guess either.
+    for (const double shift : {0.0, 500.0}) {
+        CAPTURE(shift);
+        const double cell = 0.05, x0 = -32.0 + shift, y0 = -4.0 + shift;
+        const auto nx = static_cast<std::size_t>(std::lround(64.0 / cell)) + 1;
+        const auto ny = static_cast<std::size_t>(std::lround(8.0 / cell)) + 1;
+        const auto heights = sss_test::sample_heights<float>(nx, ny, cell, [&](double x, double y) {
+            x += x0 - shift;
+            y += y0 - shift;
+            const double c = 20.0 * std::numbers::pi / 180.0;
+            return 0.06 * std::sin(2 * std::numbers::pi * (x * std::cos(c) - y * std::sin(c)) / 1.1) +
+                   0.02 * std::sin(0.7 * x + 1.3 * y);
+        });
+        const sss::scene::height_field<float> field(
+            {.nx = nx, .ny = ny, .cell_m = 0.05f, .origin_m = {float(x0), float(y0)}, .heights_m = heights});
+        const auto pose = sss::make_pose<float>(0.0f, {float(shift), float(shift), 10.0f}, 0.0f, 0.0f, 0.0f);
+        auto make = [](bool bracket) {
+            return sss::simulator<sss::scattering::jackson<float>, sss::propagation::straight<float>,
+                                  sss::beam::ideal_fan<float>, sss::motion::straight_line<float>>(
+                {}, {}, sss::beam::ideal_fan<float>({.along_width_deg = 2.0f}), {}, sss_test::rough_receiver(),
+                {.bracket_facet_edges = bracket});
+        };
+        std::size_t bracketed_rays = 0, halved_rays = 0;
+        const auto bracketed = make(true).ping_at(sss_test::counting_scene(field, bracketed_rays), pose).starboard;
+        const auto halved = make(false).ping_at(sss_test::counting_scene(field, halved_rays), pose).starboard;
+        const auto e = sss_test::compare_lines(sss_test::to_double(bracketed), sss_test::to_double(halved));
+        INFO("rays " << bracketed_rays << " bracketed, " << halved_rays << " halving; the lines " << e.rms_db
+                     << " dB RMS apart");
+        CHECK(double(bracketed_rays) <= 1.05 * double(halved_rays));
+        CHECK(e.compared > 300);
+        CHECK(e.rms_db <= 0.05);
     }
 }
 

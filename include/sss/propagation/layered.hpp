@@ -215,7 +215,7 @@ public:
                 const ray<T>& r = rays[at(first + i)];
                 if (!st || st->origin_z != r.origin.z) {
                     st = start_for(r.origin.z, scene);
-                    if constexpr (GuidedScene<S>) water = water_from(st->depth0);
+                    if constexpr (GuidedScene<S>) water = water_for(*st);
                 }
                 alive[i] = launch(r, t_max_s, *st, m[i], hdir[i]);
                 chord_depth[i] = st->chord_depth;
@@ -276,7 +276,7 @@ private:
         T clear = T(0);
         if constexpr (GuidedScene<S>) {
             if (p_.follow_neighbours) {
-                const water_below w = water_from(st.depth0);
+                const water_below w = water_for(st);
                 for (const guide_ray& g : {a, b}) {
                     if (!g.launch) continue;
                     if (const auto bound = beside(r, hdir, *g.launch, g.clear_range_m, w))
@@ -385,6 +385,11 @@ private:
             c_hi = std::max({c_hi, top, bottom});
         }
         return {c0, c_lo * (1.0 - 16.0 * eps), c_hi * (1.0 + 16.0 * eps)};
+    }
+
+    /// water_from(st.depth0), from st's launch table where it has one (kept with the table).
+    [[nodiscard]] water_below water_for(const trace_start& st) const noexcept {
+        return st.table ? st.table->water : water_from(st.depth0);
     }
 
     /// What r keeps over its steeper neighbour a (a_dir, clear within rho_a_m) in water w: trace_beside's bound;
@@ -701,6 +706,7 @@ private:
         std::size_t resume_layer = 0; ///< the layer of a ray going down at z_h
         T source_speed_mps{};         ///< c(z_a)
         T speed_ratio{};              ///< c(z_h) / c(z_a): cos(phi_H) = cos(phi0) c(z_h) / c(z_a) (Snell)
+        water_below water{};          ///< water_from(z_a): what trace_beside's bound needs of the source
     };
 
     struct trace_start {
@@ -732,6 +738,7 @@ private:
         e.resume_layer = profile_.layer_index(z_h, vertical_direction::down);
         e.source_speed_mps = layers_[e.source_layer].speed_mps(z_a);
         e.speed_ratio = layers_[e.resume_layer].speed_mps(z_h) / e.source_speed_mps;
+        e.water = water_from(z_a);
         return e;
     }
 

@@ -204,6 +204,7 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
                        .along_split = static_cast<std::size_t>(d.run.along_split),
                        .along_split_by_weight = d.run.along_split_by_weight};
     r.refine_facets = d.run.refine_facets;
+    r.bracket_facet_edges = d.run.bracket_facet_edges;
     r.along_split_sparse = d.run.along_split_sparse;
     if (d.run.seabed_edges_along != "auto") r.along_split_seabed = d.run.seabed_edges_along == "on";
     return r;

@@ -399,6 +399,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (d.run.along_split > 6561) r.fail("along_split", "must be <= 6561 (3^8), got " + std::to_string(d.run.along_split));
         r.boolean("along_split_by_weight", d.run.along_split_by_weight);
         r.boolean("refine_facets", d.run.refine_facets);
+        r.boolean("bracket_facet_edges", d.run.bracket_facet_edges);
         r.boolean("along_split_sparse", d.run.along_split_sparse);
         r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();

@@ -63,6 +63,7 @@ struct toml_out {
     o.kv("along_split", d.run.along_split);
     o.kv("along_split_by_weight", d.run.along_split_by_weight);
     o.kv("refine_facets", d.run.refine_facets);
+    o.kv("bracket_facet_edges", d.run.bracket_facet_edges);
     o.kv("along_split_sparse", d.run.along_split_sparse);
     o.kv("precision", d.run.precision);
 

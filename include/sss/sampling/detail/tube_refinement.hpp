@@ -26,7 +26,11 @@
 /// figures down by a third; on the 1 km survey (bench/bench_survey.cpp), whose relief differs, 18 % more rays and
 /// time for a few % less error. A level seabed is unchanged bit for bit, and so is a sloping plane whose heights'
 /// rounding leaves its facets' normals within 1e-3 rad of each other (any plane in double; in float, heights within
-/// about 250 m of zero at 0.05 m cells). Objects keep the quarter.
+/// about 250 m of zero at 0.05 m cells). Objects keep the quarter. Halving the step takes about
+/// log2(span / tolerance) rays per edge; where that is more than three and the seabed shows the two facets meeting,
+/// the simulator traces instead the two rays just either side of where their edge lies (facet_edge_crossing,
+/// facet_reaches_crossing, ray_density::bracket_facet_edges): the pair between them spans the edge within the
+/// tolerance, and the pairs outside it lie on one facet each.
 ///
 /// Grazing ends. The time a pair spans can understate the angle its ends' echoes cover. A ray meeting its facet at
 /// grazing incidence (a steep facet seen nearly edge-on) carries an echo per radian that grows as 1/sin of the angle
@@ -87,6 +91,23 @@ enum class tube_verdict : unsigned char {
     return t_s * std::sqrt(std::max(0.0, 1.0 - s * s)) / s;
 }
 
+/// Whether two rays met different plane facets of the seabed whose edges are refined: their geometric normals more than
+/// 1e-3 rad apart (those of one facet, or of coplanar ones, agree to rounding, which a hit's normal carries: it shares a
+/// division with the smooth normal at the hit).
+[[nodiscard]] inline bool facet_edge(const tube_end& a, const tube_end& b) noexcept {
+    const double nx = a.normal[0] - b.normal[0], ny = a.normal[1] - b.normal[1], nz = a.normal[2] - b.normal[2];
+    return a.faceted && b.faceted && nx * nx + ny * ny + nz * nz > 1e-6;
+}
+
+/// The two-way time (s) a tube between valid rays `de` (rad) apart spans, as its refinement takes it: their time gap;
+/// across a facet's edge where one end's echo per radian is more than twice the other's, at least the larger stretch
+/// over the step (grazing ends, see the file comment).
+[[nodiscard]] inline double tube_span(const tube_end& a, const tube_end& b, double de) noexcept {
+    const double gap = std::abs(b.t_s - a.t_s);
+    const double lo = std::min(a.gain, b.gain), hi = std::max(a.gain, b.gain);
+    return facet_edge(a, b) && hi > 2.0 * lo ? std::max(gap, std::max(a.stretch, b.stretch) * de) : gap;
+}
+
 /// Judges two rays `de` (rad) apart, with sample interval `dt_s` and the line ending at two-way time `t_line_s`.
 /// `stride`: the launch intervals of their column between them (a sparse column, ray_density::along_split_sparse):
 /// their gap is an edge where it exceeds the prediction by twice one interval's, as between adjacent rays.
@@ -97,12 +118,9 @@ enum class tube_verdict : unsigned char {
     const double gap_floor = 0.25 * dt_s;    // a gap below a quarter sample never is
     const double located = located_fraction * dt_s;
     // A tube whose ends' gains differ more is refined, down to tubes this short; finer across a facet's edge.
-    // Different facets: their normals more than 1e-3 rad apart (those of one facet, or of coplanar ones, agree to
-    // rounding, which a hit's normal carries: it shares a division with the smooth normal at the hit).
-    const double nx = a.normal[0] - b.normal[0], ny = a.normal[1] - b.normal[1], nz = a.normal[2] - b.normal[2];
-    const bool facet_edge = a.faceted && b.faceted && nx * nx + ny * ny + nz * nz > 1e-6;
-    const double gain_ratio = facet_edge ? 1.05 : 1.25;
-    const double fine = facet_edge ? dt_s / 8.0 : dt_s / 2.0;
+    const bool across_facets = facet_edge(a, b);
+    const double gain_ratio = across_facets ? 1.05 : 1.25;
+    const double fine = across_facets ? dt_s / 8.0 : dt_s / 2.0;
     if (!a.valid && !b.valid) return tube_verdict::continuous;
     if (a.valid != b.valid) {
         const tube_end& v = a.valid ? a : b;
@@ -119,10 +137,82 @@ enum class tube_verdict : unsigned char {
         // Across a facet's edge with one end's echo more than twice the other's, the end's own stretch bounds how
         // far its facet may reach (grazing ends, see the file comment).
         const double lo = std::min(a.gain, b.gain), hi = std::max(a.gain, b.gain);
-        const double span = facet_edge && hi > 2.0 * lo ? std::max(gap, std::max(a.stretch, b.stretch) * de) : gap;
-        return hi > gain_ratio * lo && span > fine ? tube_verdict::coarse : tube_verdict::continuous;
+        return hi > gain_ratio * lo && tube_span(a, b, de) > fine ? tube_verdict::coarse : tube_verdict::continuous;
     }
     return predicted <= located ? tube_verdict::located : tube_verdict::split;
+}
+
+/// Where the sheet of rays between two hits crosses the line that their facets' planes share (facet_edge_crossing).
+struct facet_crossing {
+    double fraction = -1.0;        ///< of the step from a, in (0, 1); -1 when there is no such crossing
+    std::array<double, 3> point{}; ///< the crossing (world, m)
+};
+
+/// Where the edge between the facets met by two rays lies along their step: the rays leave origin `o` (world, m), a's
+/// hit `p_a` lies on the facet of unit geometric normal `n_a`, b's hit `p_b` on that of `n_b`. The hits move over the
+/// seabed within the sheet of rays through o, p_a and p_b, and pass from one facet to the other where that sheet meets
+/// the line both facets' planes share, X (solved from the three planes by Cramer's rule, relative to o). The launch
+/// angle at X divides the step as the angle at o does: exactly for straight rays in one vertical plane (but that the
+/// ratio of the angles' sines stands for theirs, off by about the square of the step's angle), and to first order in
+/// the step for a cone's column (the launch direction turns smoothly with depression) and for refracted rays (the
+/// direction of a hit from the source, likewise). No crossing (fraction -1) where the line does not cross the
+/// sheet between the two hits, where the planes are nearly parallel to each other or to the sheet, or where the hits
+/// are in line with o. Where other facets lie between the two, X is off the surface: the caller can tell.
+[[nodiscard]] inline facet_crossing facet_edge_crossing(const std::array<double, 3>& o, const std::array<double, 3>& p_a,
+                                                        const std::array<double, 3>& n_a,
+                                                        const std::array<double, 3>& p_b,
+                                                        const std::array<double, 3>& n_b) noexcept {
+    using v3 = std::array<double, 3>;
+    const auto sub = [](const v3& x, const v3& y) { return v3{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+    const auto dot = [](const v3& x, const v3& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    const auto cross = [](const v3& x, const v3& y) {
+        return v3{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    };
+    const v3 ua = sub(p_a, o), ub = sub(p_b, o);
+    const v3 ns = cross(ua, ub); // the sheet's normal
+    const double ns_len = std::sqrt(dot(ns, ns));
+    if (!(ns_len > 0.0) || !std::isfinite(ns_len)) return {};
+    // n_a . x = n_a . ua, n_b . x = n_b . ub, ns . x = 0 (x = X - o).
+    const v3 bc = cross(n_b, ns), ca = cross(ns, n_a);
+    const double det = dot(n_a, bc);
+    if (!(std::abs(det) > 1e-6 * ns_len)) return {}; // the line nearly parallel to the sheet, or the planes alike
+    const double r1 = dot(n_a, ua) / det, r2 = dot(n_b, ub) / det;
+    const v3 x{r1 * bc[0] + r2 * ca[0], r1 * bc[1] + r2 * ca[1], r1 * bc[2] + r2 * ca[2]};
+    // X between the hits as seen from o: on the same turn from ua as ub, and before ub.
+    const v3 ax = cross(ua, x), xb = cross(x, ub);
+    if (!(dot(ax, ns) > 0.0) || !(dot(xb, ns) > 0.0)) return {};
+    // The angles' ratio by their sines' (the step is small: the ratio is off by about the square of the angle).
+    const double f = std::sqrt(dot(ax, ax) * dot(ub, ub) / (dot(x, x) * dot(ns, ns)));
+    if (!(f > 0.0 && f < 1.0)) return {};
+    return {f, {o[0] + x[0], o[1] + x[1], o[2] + x[2]}};
+}
+
+/// Whether the facet met at `p` (world, m; unit normal `n`, pointing up) reaches the crossing `x` of
+/// facet_edge_crossing, as the seabed's heights say (`height(x_m, y_m)`, world z, m): halfway from x back to p, and a
+/// twentieth of the way, the seabed lies in the facet's plane to a tenth of what the other facet's plane (turned from
+/// it by `angle`, rad) would differ there. Where another facet lies between the two, the seabed leaves the plane
+/// before x. A point is not asked where the rounding of the world coordinates (`eps`, the scene scalar's epsilon, times
+/// their size, the facet's slope and a few roundings) is as large as what it must tell apart; false where neither can
+/// be (a facet steeper than 84 degrees, a step too small, a footprint too far from the grid's origin to tell).
+template <class Height>
+[[nodiscard]] bool facet_reaches_crossing(const std::array<double, 3>& x, const std::array<double, 3>& p,
+                                          const std::array<double, 3>& n, double angle, double eps, Height&& height) {
+    if (!(n[2] > 0.1)) return false;
+    const double slope = std::sqrt(n[0] * n[0] + n[1] * n[1]) / n[2];
+    const double dx = p[0] - x[0], dy = p[1] - x[1], dz = p[2] - x[2];
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    bool asked = false;
+    for (const double t : {0.5, 0.05}) {
+        const double qx = x[0] + t * dx, qy = x[1] + t * dy;
+        const double plane = p[2] - (n[0] * (qx - p[0]) + n[1] * (qy - p[1])) / n[2];
+        const double h = height(qx, qy);
+        const double apart = 0.1 * t * angle * d; // a tenth of the other plane's difference
+        const double rounding = 4.0 * eps * ((std::abs(qx) + std::abs(qy)) * slope + std::abs(h) + 1.0);
+        if (!(rounding < apart)) continue;
+        asked = true;
+        if (!(std::abs(h - plane) <= apart + rounding)) return false;
+    }
+    return asked;
 }
 
 /// Of two valid rays `de` (rad) apart across a located edge (judge_tube: tube_verdict::located), whether the larger
