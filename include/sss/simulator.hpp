@@ -99,9 +99,10 @@ struct ray_density {
     /// just either side of where the edge lies instead: from the two facets' planes and the sheet of rays through
     /// their hits (sampling/detail/tube_refinement.hpp, facet_edge_crossing), once the seabed there shows that the two
     /// facets meet. The tubes' tolerance is the same; on the 1 km survey of bench/bench_survey.cpp a tenth fewer
-    /// refinement rays and about 0.96 times the time per ping for the same error (docs/design/along-track.md); false
-    /// halves the step at every level.
-    bool bracket_facet_edges = true;
+    /// refinement rays and about 0.96 times the time per ping, and the same error over its 8 measured lines, but on
+    /// some lines (ping 476 starboard) several times the error: off by default until that is understood
+    /// (docs/design/along-track.md). Off: the step is halved at every level.
+    bool bracket_facet_edges = false;
     /// Where a column's located edges between surfaces (objects' silhouettes and the far ends of their shadows)
     /// differ from a neighbour's (an edge crossing the beam obliquely), the stretch of the column between them is
     /// divided into thirds along track: the middle third is centred where the column is, so it keeps the column's

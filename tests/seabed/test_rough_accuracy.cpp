@@ -321,18 +321,19 @@ TEST_CASE("across ripples of plane facets larger than a sample, refining at the 
         CHECK(refined.rms_db < 0.6 * plain.rms_db);
         CHECK(refined.p99_db < plain.p99_db);
         CHECK(refined.shadow_misses == 0);
-        // Bracketing each facet's edge (ray_density::bracket_facet_edges, the default) against halving the step at
-        // every level: the same tolerance, so the same error to a few thousandths of a dB, in fewer rays.
+        // Bracketing each facet's edge (ray_density::bracket_facet_edges) against halving the step at every level (the
+        // default): the same tolerance, so the same error to a few thousandths of a dB, in fewer rays.
         std::size_t bracketed_rays = 0, halved_rays = 0;
-        const auto bracketed = make({}).ping_at(sss_test::counting_scene(field, bracketed_rays), pose).starboard;
-        const auto halved = make({.bracket_facet_edges = false}).ping_at(sss_test::counting_scene(field, halved_rays), pose).starboard;
-        const auto halving = sss_test::compare_lines(halved, ref.values);
-        INFO("halving: rms " << halving.rms_db << " dB, 99th percentile " << halving.p99_db << " dB; rays "
-                             << halved_rays << " halving, " << bracketed_rays << " bracketed");
-        CHECK(sss_test::compare_lines(bracketed, ref.values).rms_db == doctest::Approx(refined.rms_db)); // as counted
-        CHECK(refined.rms_db <= halving.rms_db + 0.005);
-        CHECK(refined.p99_db <= halving.p99_db + 0.05);
-        CHECK(halving.shadow_misses == 0);
+        const auto bracketed =
+            make({.bracket_facet_edges = true}).ping_at(sss_test::counting_scene(field, bracketed_rays), pose).starboard;
+        const auto halved = make({}).ping_at(sss_test::counting_scene(field, halved_rays), pose).starboard;
+        const auto bracketing = sss_test::compare_lines(bracketed, ref.values);
+        INFO("bracketed: rms " << bracketing.rms_db << " dB, 99th percentile " << bracketing.p99_db << " dB; rays "
+                               << halved_rays << " halving, " << bracketed_rays << " bracketed");
+        CHECK(sss_test::compare_lines(halved, ref.values).rms_db == doctest::Approx(refined.rms_db)); // as counted
+        CHECK(bracketing.rms_db <= refined.rms_db + 0.005);
+        CHECK(bracketing.p99_db <= refined.p99_db + 0.05);
+        CHECK(bracketing.shadow_misses == 0);
         CHECK(double(bracketed_rays) < 0.97 * double(halved_rays));
     }
 }

@@ -27,8 +27,8 @@
 /// time for a few % less error. A level seabed is unchanged bit for bit, and so is a sloping plane whose heights'
 /// rounding leaves its facets' normals within 1e-3 rad of each other (any plane in double; in float, heights within
 /// about 250 m of zero at 0.05 m cells). Objects keep the quarter. Halving the step takes about
-/// log2(span / tolerance) rays per edge; where that is more than three and the seabed shows the two facets meeting,
-/// the simulator traces instead the two rays just either side of where their edge lies (facet_edge_crossing,
+/// log2(span / tolerance) rays per edge; with ray_density::bracket_facet_edges (off by default), where that is more
+/// than three and the seabed shows the two facets meeting, the simulator traces instead the two rays just either side of where their edge lies (facet_edge_crossing,
 /// facet_reaches_crossing, ray_density::bracket_facet_edges): the pair between them spans the edge within the
 /// tolerance, and the pairs outside it lie on one facet each.
 ///
