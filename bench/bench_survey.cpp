@@ -12,8 +12,8 @@
 // with the division even (ray_density::along_split_by_weight = false: every column to ninths, rather than the columns
 // near the array's axis to 27ths and those near its extent's edges to thirds), what sharing it by weight changes;
 // with the seabed's facets' edges not refined across track (ray_density::refine_facets = false), what that costs;
-// with those edges bracketed by the rays either side of where each edge lies (ray_density::bracket_facet_edges = true)
-// rather than located by halving the step at every level, what bracketing saves;
+// with those edges located by halving the step at every level (ray_density::bracket_facet_edges = false) rather than
+// by the rays either side of where each edge lies, what bracketing saves;
 // with the division's last level at every launch angle (ray_density::along_split_sparse = false), what tracing
 // every other one saves; and the echo pieces per ping of each (about one per ray traced), what the refinements
 // spend in rays;
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
     const auto full_even = full({.along_split_by_weight = false});
     const auto full_plain_facets = full({.refine_facets = false});
     const auto full_dense = full({.along_split_sparse = false});
-    const auto full_bracketed = full({.bracket_facet_edges = true});
+    const auto full_halving = full({.bracket_facet_edges = false});
 
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
@@ -163,9 +163,9 @@ int main(int argc, char** argv) {
     std::printf("full: the division's last level at every other launch angle (the default) takes %.2f times the time "
                 "per ping of every angle\n",
                 dense_1 / layered_1);
-    const double bracketed_1 = row("full, facets' edges bracketed (bracket_facet_edges = true)", full_bracketed);
-    std::printf("full: bracketing the facets' edges takes %.2f times the time per ping of halving (the default)\n",
-                layered_1 / bracketed_1);
+    const double halving_1 = row("full, facets' edges halved (bracket_facet_edges = false)", full_halving);
+    std::printf("full: bracketing the facets' edges (the default) takes %.2f times the time per ping of halving\n",
+                halving_1 / layered_1);
     {
         // What the refinements spend: echo pieces per ping (about one per ray traced: a tube per pair of rays, a
         // point per end at a located edge), over the first few pings, both sides.
@@ -178,10 +178,10 @@ int main(int argc, char** argv) {
             return double(n) / double(counted);
         };
         std::printf("echo pieces per ping (pings 0 to %zu): full %.0f; the seabed's edges out %.0f; thirds only %.0f; "
-                    "even division %.0f; facets' edges not refined %.0f; facets' edges bracketed %.0f; the last level at "
+                    "even division %.0f; facets' edges not refined %.0f; facets' edges halved %.0f; the last level at "
                     "every angle %.0f; straight rays %.0f; minimal %.0f\n",
                     counted - 1, pieces(full_sim), pieces(full_objects_only), pieces(full_thirds), pieces(full_even),
-                    pieces(full_plain_facets), pieces(full_bracketed), pieces(full_dense), pieces(straight_sim),
+                    pieces(full_plain_facets), pieces(full_halving), pieces(full_dense), pieces(straight_sim),
                     pieces(minimal));
     }
     {
@@ -269,7 +269,7 @@ int main(int argc, char** argv) {
                     "thirds only: RMS / median / p99 | shadows missed | seabed's edges out: RMS / median / p99 | "
                     "shadows missed | even division: RMS / median / p99 | shadows missed | facets not refined: RMS / "
                     "median / p99 | shadows missed | last level at every angle: RMS / median / p99 | shadows missed | "
-                    "facets' edges bracketed: RMS / median / p99 | shadows missed |\n"
+                    "facets' edges halved: RMS / median / p99 | shadows missed |\n"
                     "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         struct total {
             double sum_sq = 0, worst_p99 = 0;
@@ -287,7 +287,7 @@ int main(int argc, char** argv) {
                 int v = 0;
                 for (const auto* sim :
                      {&full_sim, &full_thirds, &full_objects_only, &full_even, &full_plain_facets, &full_dense,
-                      &full_bracketed}) {
+                      &full_halving}) {
                     const auto e = sss_test::compare_lines(sss_bench::side_line(*sim, sv.scene, pose, sd), ref.values);
                     std::printf(" %.3f / %.3f / %.3f | %zu of %zu |", e.rms_db, e.median_db, e.p99_db, e.shadow_misses,
                                 e.shadow_samples);
@@ -311,7 +311,7 @@ int main(int argc, char** argv) {
                         : v == 3 ? "even division (along_split_by_weight = false)"
                         : v == 4 ? "facets' edges not refined (refine_facets = false)"
                         : v == 5 ? "the division's last level at every angle (along_split_sparse = false)"
-                                 : "facets' edges bracketed (bracket_facet_edges = true)",
+                                 : "facets' edges halved (bracket_facet_edges = false)",
                         std::sqrt(totals[v].sum_sq / double(lines)), totals[v].worst_p99, totals[v].misses,
                         totals[v].shadows, totals[v].within, lines);
     }

@@ -7,7 +7,7 @@
 // with every column divided alike rather than by the beam's weight on it (ray_density::along_split_by_weight), that
 // with the seabed's facets' edges not refined across track (ray_density::refine_facets), that with the division's
 // last level at every launch angle of its column (ray_density::along_split_sparse), that with the facets' edges
-// bracketed rather than located by halving the step (ray_density::bracket_facet_edges), and (not with --quick) down
+// located by halving the step rather than bracketed (ray_density::bracket_facet_edges), and (not with --quick) down
 // to 1/27 of a column, half a ray per sample, and 32 uniform columns without the along-track check: rays per side,
 // time per side (best of 3, in turn), and the RMS, median and 99th percentile |dB| error over the samples within
 // 40 dB of the reference's peak, and the missed shadow samples, against the same simulator at {128, 0, 16} (256
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
         {"{8, 0, 1}", "on, facets' edges not refined (refine_facets = false)", {.refine_facets = false}},
         {"{8, 0, 1}", "on, the division's last level at every launch angle (along_split_sparse = false)",
          {.along_split_sparse = false}},
-        {"{8, 0, 1}", "on, facets' edges bracketed (bracket_facet_edges = true)", {.bracket_facet_edges = true}},
+        {"{8, 0, 1}", "on, facets' edges halved (bracket_facet_edges = false)", {.bracket_facet_edges = false}},
     };
     if (!quick) { // the frontier beyond: finer division, and uniform columns without the along-track check
         vs.push_back({"{8, 0, 1}", "on, along_split 27", {.along_split = 27}});

@@ -98,11 +98,12 @@ struct ray_density {
     /// Across a facet's edge (refine_facets), where halving the step would take more than three rays, trace the two
     /// just either side of where the edge lies instead: from the two facets' planes and the sheet of rays through
     /// their hits (sampling/detail/tube_refinement.hpp, facet_edge_crossing), once the seabed there shows that the two
-    /// facets meet. The tubes' tolerance is the same; on the 1 km survey of bench/bench_survey.cpp a tenth fewer
-    /// refinement rays and about 0.96 times the time per ping, and the same error over its 8 measured lines, but on
-    /// some lines (ping 476 starboard) several times the error: off by default until that is understood
-    /// (docs/design/along-track.md). Off: the step is halved at every level.
-    bool bracket_facet_edges = false;
+    /// facets meet; where the two rays straddle an edge whose stretch jumps more than sixfold, that edge goes to the
+    /// along-track check as halving would have located it (facet_edge_marks_line). The tubes' tolerance is the same;
+    /// on the 1 km survey of bench/bench_survey.cpp about 9 % fewer rays and 0.97 times the time per ping, for a
+    /// little less error (71 lines: 0.175 against 0.188 dB RMS of their RMS, docs/design/along-track.md); false
+    /// halves the step at every level.
+    bool bracket_facet_edges = true;
     /// Where a column's located edges between surfaces (objects' silhouettes and the far ends of their shadows)
     /// differ from a neighbour's (an edge crossing the beam obliquely), the stretch of the column between them is
     /// divided into thirds along track: the middle third is centred where the column is, so it keeps the column's
@@ -926,11 +927,13 @@ private:
     /// tolerance, the rays between them are traced on (from the shading budget) for where its echo lies, the edge
     /// being recorded once, where it was located (`recorded`: it is, for the pairs within; a pair within that finds
     /// another edge draws on the edges' budget, as any edge). `intervals`: the launch intervals between a and b at
-    /// depth 0 (more than one in a sparse column, ray_density::along_split_sparse).
+    /// depth 0 (more than one in a sparse column, ray_density::along_split_sparse). `bracket`: whether a pair across a
+    /// facet's edge may be bracketed (facet_bracket) rather than halved; not within a bracket's own pairs.
     template <Scene Sc, class Visitor>
     void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
                 const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit,
-                bool recorded = false, std::size_t intervals = 1, const ray_end* outer = nullptr) const {
+                bool recorded = false, std::size_t intervals = 1, const ray_end* outer = nullptr,
+                bool bracket = true) const {
         // The guide of a ray launched between a and b: the steeper of the two (the steeper end of the interval refined
         // at depth 0, `outer`, where neither met anything), and `outer` again where the nearer one is too close for a
         // propagation's bound.
@@ -969,8 +972,8 @@ private:
                     ray_end m_bounce;
                     const ray_end m = shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr,
                                             m_bounce, guide, fallback);
-                    refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, true, 1, outer);
-                    refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, true, 1, outer);
+                    refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, true, 1, outer, bracket);
+                    refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, true, 1, outer, bracket);
                     return;
                 }
                 emit_ends(a, b, de, visit);
@@ -978,11 +981,11 @@ private:
             if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
             return;
         }
-        if (v == detail::tube_verdict::coarse) {
+        if (v == detail::tube_verdict::coarse && bracket) {
             // Across a facet's edge: the rays just either side of where the edge lies, rather than the middle one
             // (facet_bracket). The pair they make spans the edge within the tube's tolerance and the pairs outside it
-            // lie on one facet each: two rays where halving takes four or more. A poor estimate costs rays and a
-            // level of depth, as a halving would: the rays it places are judged as the middle one is.
+            // lie on one facet each: two rays where halving takes four or more. A poor estimate costs two rays: the
+            // pairs are then judged, and halved, as a halving's would be.
             T at[2];
             const std::size_t count = facet_bracket(scene, col, a, b, at);
             if (count > 0 && left >= count) {
@@ -992,11 +995,26 @@ private:
                 for (std::size_t k = 0; k < count; ++k)
                     m[k] = shoot(scene, col.p, col.sd, col.along, at[k], col.t_max_one_way, col.column_sr, m_bounce[k],
                                  guide, fallback);
-                refine(scene, col, a, a_bounce, m[0], m_bounce[0], depth + 1, budget, visit, recorded, 1, outer);
+                // Where the two rays straddle the edge, it goes to the along-track check as halving would have
+                // located it (facet_edge_marks_line). The pairs within are halved, not bracketed again: where the
+                // estimate missed (a grazing end, whose facet the sheet of rays meets nearly edge-on, leaves a
+                // first-order error in the step wider than the bracket), the edge lies in an outer pair, and another
+                // bracket from the same estimate would miss again.
+                const bool straddled =
+                    count == 2 && detail::facet_edge(as_tube_end(m[0]), as_tube_end(m[1]));
+                bool marked = recorded;
+                if (straddled && !recorded && col.record && col.record->seabed_edges &&
+                    detail::facet_edge_marks_line(as_tube_end(a), as_tube_end(b))) {
+                    col.record->edges.push_back({m[0].t, col.record->interval});
+                    col.record->edges.push_back({m[1].t, col.record->interval});
+                    marked = true;
+                }
+                refine(scene, col, a, a_bounce, m[0], m_bounce[0], depth + 1, budget, visit, recorded, 1, outer, false);
                 if (count == 2)
-                    refine(scene, col, m[0], m_bounce[0], m[1], m_bounce[1], depth + 1, budget, visit, recorded, 1, outer);
+                    refine(scene, col, m[0], m_bounce[0], m[1], m_bounce[1], depth + 1, budget, visit, marked, 1, outer,
+                           false);
                 refine(scene, col, m[count - 1], m_bounce[count - 1], b, b_bounce, depth + 1, budget, visit, recorded, 1,
-                       outer);
+                       outer, false);
                 return;
             }
         }
@@ -1004,8 +1022,8 @@ private:
         ray_end m_bounce;
         const ray_end m =
             shoot(scene, col.p, col.sd, col.along, e_mid, col.t_max_one_way, col.column_sr, m_bounce, guide, fallback);
-        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, recorded, 1, outer);
-        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, recorded, 1, outer);
+        refine(scene, col, a, a_bounce, m, m_bounce, depth + 1, budget, visit, recorded, 1, outer, bracket);
+        refine(scene, col, m, m_bounce, b, b_bounce, depth + 1, budget, visit, recorded, 1, outer, bracket);
     }
 
     /// The launch angles (into `at`, in order from a to b; returns how many) at which to trace across the edge between

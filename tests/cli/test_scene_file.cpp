@@ -191,12 +191,10 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto plain_again = switched_off(&sss::scene_file::render::refine_facets);
     CHECK_FALSE(plain_again.run.refine_facets);
     CHECK_FALSE(sss::scene_file::rays_of(plain_again).refine_facets);
-    CHECK_FALSE(sss::scene_file::rays_of(again).bracket_facet_edges); // off by default: turned on, it reads back
-    auto bracketing = d;
-    bracketing.run.bracket_facet_edges = true;
-    const auto bracketing_again = sss::scene_file::parse(sss::scene_file::to_toml(bracketing), "resolved.toml");
-    CHECK(bracketing_again.run.bracket_facet_edges);
-    CHECK(sss::scene_file::rays_of(bracketing_again).bracket_facet_edges);
+    CHECK(sss::scene_file::rays_of(again).bracket_facet_edges);
+    const auto halving_again = switched_off(&sss::scene_file::render::bracket_facet_edges);
+    CHECK_FALSE(halving_again.run.bracket_facet_edges);
+    CHECK_FALSE(sss::scene_file::rays_of(halving_again).bracket_facet_edges);
     CHECK(sss::scene_file::rays_of(again).along_split_sparse);
     const auto dense_again = switched_off(&sss::scene_file::render::along_split_sparse);
     CHECK_FALSE(dense_again.run.along_split_sparse);

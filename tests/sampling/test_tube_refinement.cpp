@@ -225,3 +225,53 @@ TEST_CASE("the seabed tells whether two facets meet where their planes cross, un
     CHECK_FALSE(sss::detail::facet_reaches_crossing(fx, fa, n_a, angle, 1.19e-7, far_crest));
     CHECK(sss::detail::facet_reaches_crossing(fx, fa, n_a, angle, 2.2e-16, far_crest));
 }
+
+TEST_CASE("halving never locates a facet's edge as an edge of the line below a fivefold jump in stretch, ever more "
+          "often above, and the bracket's test marks every one above sixfold") {
+    // Two facets along one step: times grow at stretch s_a up to the edge and s_b = R s_a beyond, the echo per radian
+    // in proportion. Halving the step as the simulator does (judge_tube at every level) locates the edge as one, which
+    // the along-track check then compares between columns, only where some sub-pair's time gap exceeds a quarter of a
+    // sample and three times the smaller end's prediction: that depends on where in the step the edge falls. The
+    // bracket leaves no such gap and records it by facet_edge_marks_line instead.
+    const double t0 = 0.05, s_a = 2e4 * dt_s;
+    const auto located_share = [&](double ratio, double span_samples) {
+        const double s_b = ratio * s_a, de = span_samples * dt_s / s_a;
+        std::size_t located = 0, places = 0;
+        for (int i = 1; i < 200; ++i, ++places) {
+            const double x = de * double(i) / 200.0;
+            const auto end = [&](double e) {
+                return e < x ? seabed_end(t0 + s_a * e, s_a, 1.0, 1.0)
+                             : seabed_end(t0 + s_a * x + s_b * (e - x), s_b, ratio, 0.95);
+            };
+            // Depth first, as the simulator refines; true once a sub-pair is a located edge.
+            const auto halve = [&](const auto& self, double e0, double e1, int depth) -> bool {
+                const tube_verdict v = judge_tube(end(e0), end(e1), e1 - e0, dt_s, t_line_s);
+                if (v == tube_verdict::located) return true;
+                if (v == tube_verdict::continuous || depth > 30) return false;
+                const double m = 0.5 * (e0 + e1);
+                return self(self, e0, m, depth + 1) || self(self, m, e1, depth + 1);
+            };
+            located += halve(halve, 0.0, de, 0) ? 1 : 0;
+        }
+        return double(located) / double(places);
+    };
+    const auto marks = [&](double ratio) {
+        return sss::detail::facet_edge_marks_line(seabed_end(t0, s_a, 1.0, 1.0), seabed_end(t0, ratio * s_a, ratio, 0.95));
+    };
+    double previous = 0.0;
+    for (const double ratio : {1.5, 3.0, 5.0, 7.0, 10.0, 20.0, 50.0}) {
+        CAPTURE(ratio);
+        for (const double span : {1.5, 6.0}) {
+            CAPTURE(span);
+            const double share = located_share(ratio, span);
+            if (ratio <= 5.0) CHECK(share == 0.0);
+            else CHECK(share > previous);
+            if (span == 6.0) previous = share;
+        }
+        CHECK(marks(ratio) == (ratio > 6.0));
+    }
+    CHECK(previous > 0.8); // at fiftyfold
+    // One facet, or an end that met nothing: never.
+    CHECK_FALSE(sss::detail::facet_edge_marks_line(seabed_end(t0, s_a), seabed_end(t0, 10 * s_a)));
+    CHECK_FALSE(sss::detail::facet_edge_marks_line(tube_end{}, seabed_end(t0, 10 * s_a, 10.0, 0.95)));
+}

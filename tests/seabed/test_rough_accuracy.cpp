@@ -282,7 +282,10 @@ TEST_CASE("under an array's along-track pattern, sharing the along-track divisio
         CHECK(shared.error.rms_db <= even.error.rms_db + 0.01);
         CHECK(shared.error.p99_db <= even.error.p99_db + 0.05);
         CHECK(shared.error.shadow_misses <= even.error.shadow_misses);
-        CHECK(rays < (along_split == 9 ? 1.1 : 1.0));
+        // At 9, 1.05 with the facets' edges halved and 1.10 bracketed: the edges the bracket marks for the
+        // along-track check (sampling/detail/tube_refinement.hpp, facet_edge_marks_line) disagree more often in the
+        // heavy columns, which sharing divides deeper (0.33 against 0.35 dB RMS, shared or even).
+        CHECK(rays < (along_split == 9 ? 1.15 : 1.0));
     }
 }
 
@@ -321,19 +324,18 @@ TEST_CASE("across ripples of plane facets larger than a sample, refining at the 
         CHECK(refined.rms_db < 0.6 * plain.rms_db);
         CHECK(refined.p99_db < plain.p99_db);
         CHECK(refined.shadow_misses == 0);
-        // Bracketing each facet's edge (ray_density::bracket_facet_edges) against halving the step at every level (the
-        // default): the same tolerance, so the same error to a few thousandths of a dB, in fewer rays.
+        // Bracketing each facet's edge (ray_density::bracket_facet_edges, the default) against halving the step at
+        // every level: the same tolerance, so the same error to a few thousandths of a dB, in fewer rays.
         std::size_t bracketed_rays = 0, halved_rays = 0;
-        const auto bracketed =
-            make({.bracket_facet_edges = true}).ping_at(sss_test::counting_scene(field, bracketed_rays), pose).starboard;
-        const auto halved = make({}).ping_at(sss_test::counting_scene(field, halved_rays), pose).starboard;
-        const auto bracketing = sss_test::compare_lines(bracketed, ref.values);
-        INFO("bracketed: rms " << bracketing.rms_db << " dB, 99th percentile " << bracketing.p99_db << " dB; rays "
-                               << halved_rays << " halving, " << bracketed_rays << " bracketed");
-        CHECK(sss_test::compare_lines(halved, ref.values).rms_db == doctest::Approx(refined.rms_db)); // as counted
-        CHECK(bracketing.rms_db <= refined.rms_db + 0.005);
-        CHECK(bracketing.p99_db <= refined.p99_db + 0.05);
-        CHECK(bracketing.shadow_misses == 0);
+        const auto bracketed = make({}).ping_at(sss_test::counting_scene(field, bracketed_rays), pose).starboard;
+        const auto halved = make({.bracket_facet_edges = false}).ping_at(sss_test::counting_scene(field, halved_rays), pose).starboard;
+        const auto halving = sss_test::compare_lines(halved, ref.values);
+        INFO("halving: rms " << halving.rms_db << " dB, 99th percentile " << halving.p99_db << " dB; rays "
+                             << halved_rays << " halving, " << bracketed_rays << " bracketed");
+        CHECK(sss_test::compare_lines(bracketed, ref.values).rms_db == doctest::Approx(refined.rms_db)); // as counted
+        CHECK(refined.rms_db <= halving.rms_db + 0.005);
+        CHECK(refined.p99_db <= halving.p99_db + 0.05);
+        CHECK(halving.shadow_misses == 0);
         CHECK(double(bracketed_rays) < 0.97 * double(halved_rays));
     }
 }
@@ -374,6 +376,49 @@ TEST_CASE("where the seabed's facets are finer than the rays' spacing, bracketin
         CHECK(double(bracketed_rays) <= 1.05 * double(halved_rays));
         CHECK(e.compared > 300);
         CHECK(e.rms_db <= 0.05);
+    }
+}
+
+TEST_CASE("in refracting water, from a rolled and pitched towfish, bracketing a lee slope's facets' edges keeps "
+          "halving's accuracy where its rays graze it") {
+    // Rays grazing the slope carry an echo per radian hundreds of times their neighbours'; the slope's facet meets the
+    // sheet of rays nearly edge-on, and in refracting water, off the vertical plane, the crossing's first-order error
+    // in the step can exceed the bracket's width (a sixteenth of a sample by the grazing end's stretch). A bracket
+    // that misses leaves the edge in one of its outer pairs, which must then be halved: bracketed again from the same
+    // planes they missed again, down to the depth limit, and one tube spread the grazing echo over the last step
+    // (0.66 dB at the worst sample here at 0.02 deg, against halving's 0.15; on the 1 km survey, 7 dB).
+    const auto water = sss_test::three_layer_water<double>();
+    const auto pose = sss_test::rough_pose<double>(true);
+    auto make = [&](const sss::ray_density& d) {
+        return sss::simulator<sss::scattering::jackson<double>, sss::propagation::layered<double>,
+                              sss::beam::ideal_fan<double>, sss::motion::straight_line<double>>(
+            {}, water, sss::beam::ideal_fan<double>({.along_width_deg = 4.0}), {}, sss_test::rough_receiver(), d);
+    };
+    for (const double off_deg : {0.02, 0.057}) {
+        CAPTURE(off_deg);
+        const auto field = sss_test::lee_slope_field<double>(off_deg);
+        const auto ref = sss_test::converged_line(make, field, pose, sss::side::starboard,
+                                                  {.start = {.along = 16, .across = 0, .per_sample = 4.0}, .max_doublings = 3});
+        REQUIRE(ref.converged);
+        double peak = 0.0;
+        for (const double v : ref.values) peak = std::max(peak, v);
+        const auto worst_db = [&](const std::vector<double>& got) {
+            double worst = 0.0;
+            for (std::size_t k = 0; k < ref.values.size(); ++k)
+                if (ref.values[k] >= 1e-4 * peak)
+                    worst = std::max(worst, std::abs(10.0 * std::log10(std::max(got[k], 1e-300) / ref.values[k])));
+            return worst;
+        };
+        sss::ray_density halving;
+        halving.bracket_facet_edges = false;
+        const auto bracketed = sss_test::to_double(make({}).ping_at(field, pose).starboard);
+        const auto halved = sss_test::to_double(make(halving).ping_at(field, pose).starboard);
+        const auto eb = sss_test::compare_lines(bracketed, ref.values), eh = sss_test::compare_lines(halved, ref.values);
+        INFO("bracketed: rms " << eb.rms_db << " dB, worst " << worst_db(bracketed) << " dB; halving: rms " << eh.rms_db
+                               << " dB, worst " << worst_db(halved) << " dB");
+        CHECK(eb.rms_db <= eh.rms_db + 0.005);
+        CHECK(worst_db(bracketed) <= worst_db(halved) + 0.1);
+        CHECK(eb.shadow_misses == 0);
     }
 }
 

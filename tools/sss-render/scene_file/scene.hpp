@@ -190,7 +190,7 @@ struct render {
     std::int64_t along_split = 9;            ///< narrowest columns of that check, as a fraction of a column
     bool along_split_by_weight = true;       ///< that depth shared among the columns by the beam's weight on each
     bool refine_facets = true;               ///< refine across the seabed's facets' edges where the echo jumps
-    bool bracket_facet_edges = false;        ///< there, the rays either side of where the edge lies (not halving)
+    bool bracket_facet_edges = true;         ///< there, the rays either side of where the edge lies (not halving)
     bool along_split_sparse = true;          ///< the narrowest columns at every other launch angle
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };

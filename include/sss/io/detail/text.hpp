@@ -64,8 +64,16 @@ namespace sss::detail {
     return true;
 }
 
-/// `s` in single quotes, for error messages.
-[[nodiscard]] inline std::string quote(std::string_view s) { return "'" + std::string(s) + "'"; }
+/// `s` in single quotes, for error messages. (Appended rather than `"'" + std::string(s)`: at -O3 GCC 12 warns of a
+/// memcpy bound in that insert, a false -Wstringop-overflow.)
+[[nodiscard]] inline std::string quote(std::string_view s) {
+    std::string out;
+    out.reserve(s.size() + 2);
+    out += '\'';
+    out.append(s);
+    out += '\'';
+    return out;
+}
 
 /// The number spelled by the whole of `field` (an optional leading '+'; "inf" and "nan" parse too), or nullopt.
 [[nodiscard]] inline std::optional<double> parse_double(std::string_view field) noexcept {
