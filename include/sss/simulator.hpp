@@ -104,8 +104,9 @@ struct ray_density {
     /// little less error (71 lines: 0.175 against 0.188 dB RMS of their RMS, docs/design/along-track.md); false
     /// halves the step at every level.
     bool bracket_facet_edges = true;
-    /// Where a column's located edges between surfaces (objects' silhouettes and the far ends of their shadows)
-    /// differ from a neighbour's (an edge crossing the beam obliquely), the stretch of the column between them is
+    /// Where a column's located edges between surfaces (objects' silhouettes, against the seabed or against open water
+    /// where the rays past them meet nothing within the line, and the far ends of their shadows) differ from a
+    /// neighbour's (an edge crossing the beam obliquely), the stretch of the column between them is
     /// divided into thirds along track: the middle third is centred where the column is, so it keeps the column's
     /// rays and its share of their echo; the outer two are traced. A third whose edges still disagree with its
     /// neighbouring third's is divided again, down to columns 1/along_split as wide (rounded down to a power of
@@ -959,11 +960,16 @@ private:
                 emit_tube(a, b, de, visit); // not refined: as before
             else {                                                                            // a located edge
                 // Recorded for the along-track check: the edges between surfaces (objects' silhouettes), and with
-                // along_split_seabed the seabed's own (the far ends of its shadows).
+                // along_split_seabed the seabed's own (the far ends of its shadows); and an object's silhouette against
+                // open water, where the rays past it meet nothing within the line (a moored target at far range:
+                // left out, its silhouette was never compared, and a sphere's front between two columns was lost).
                 if (!recorded && col.record && a.valid && b.valid &&
                     (col.record->seabed_edges || !same_surface(a.surface, b.surface))) {
                     col.record->edges.push_back({a.t, col.record->interval});
                     col.record->edges.push_back({b.t, col.record->interval});
+                } else if (!recorded && col.record && a.valid != b.valid) {
+                    const ray_end& lit = a.valid ? a : b;
+                    if (lit.surface.object != no_object) col.record->edges.push_back({lit.t, col.record->interval});
                 }
                 if (v == detail::tube_verdict::located && budget.shading > 0 && depth < density_.refine_depth &&
                     double(e_mid) != a.e && double(e_mid) != b.e &&
