@@ -99,7 +99,8 @@ struct ray_density {
     /// just either side of where the edge lies instead: from the two facets' planes and the sheet of rays through
     /// their hits (sampling/detail/tube_refinement.hpp, facet_edge_crossing), once the seabed there shows that the two
     /// facets meet; where the two rays straddle an edge whose stretch jumps more than sixfold, that edge goes to the
-    /// along-track check as halving would have located it (facet_edge_marks_line). The tubes' tolerance is the same;
+    /// along-track check (with along_split_seabed), where halving would have located it as an edge by chance
+    /// (facet_edge_marks_line). The tubes' tolerance is the same;
     /// on the 1 km survey of bench/bench_survey.cpp about 9 % fewer rays and 0.97 times the time per ping, for a
     /// little less error (71 lines: 0.175 against 0.188 dB RMS of their RMS, docs/design/along-track.md); false
     /// halves the step at every level.

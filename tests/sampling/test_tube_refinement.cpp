@@ -259,7 +259,7 @@ TEST_CASE("halving never locates a facet's edge as an edge of the line below a f
         return sss::detail::facet_edge_marks_line(seabed_end(t0, s_a, 1.0, 1.0), seabed_end(t0, ratio * s_a, ratio, 0.95));
     };
     double previous = 0.0;
-    for (const double ratio : {1.5, 3.0, 5.0, 7.0, 10.0, 20.0, 50.0}) {
+    for (const double ratio : {1.5, 3.0, 5.0, 6.0, 6.5, 7.0, 10.0, 20.0, 50.0}) {
         CAPTURE(ratio);
         for (const double span : {1.5, 6.0}) {
             CAPTURE(span);

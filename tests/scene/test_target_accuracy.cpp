@@ -52,8 +52,8 @@ TEST_CASE("a mine moored high at far range, whose rays past it meet nothing with
           "density as the converged reference") {
     // A spherical case (0.5 m radius) 6 m above gentle relief at 24 m: a ray that passes it reaches the seabed beyond
     // the 30 m line, so the case's silhouette lies between a lit ray and one that meets nothing. An 8 deg fan gives
-    // columns 0.42 m apart there: the case's front is seen first by a column through its centre, and columns on either
-    // side see it later by different amounts. Until such silhouettes went to the along-track check, nothing compared
+    // columns 0.42 m apart there: the columns either side of the case's centre see its front later than a column
+    // through the centre would, by different amounts where the case is off the middle between them. Until such silhouettes went to the along-track check, nothing compared
     // them and nothing divided the columns (RMS 0.21 and 0.26 dB, 99th percentile 0.91 and 1.66 dB at the two places
     // below; the reference itself then failed to converge in three doublings at the second). Not yet as good
     // everywhere: with a 4 deg fan and the case 0.1 m off the track, 12 samples of its body stay 2 dB too bright

@@ -284,7 +284,7 @@ TEST_CASE("under an array's along-track pattern, sharing the along-track divisio
         CHECK(shared.error.shadow_misses <= even.error.shadow_misses);
         // At 9, 1.05 with the facets' edges halved and 1.10 bracketed: the edges the bracket marks for the
         // along-track check (sampling/detail/tube_refinement.hpp, facet_edge_marks_line) disagree more often in the
-        // heavy columns, which sharing divides deeper (0.33 against 0.35 dB RMS, shared or even).
+        // heavy columns, which sharing divides deeper (bracketed 0.33 against halving's 0.35 dB RMS, shared or even).
         CHECK(rays < (along_split == 9 ? 1.15 : 1.0));
     }
 }

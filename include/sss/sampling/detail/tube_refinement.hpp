@@ -32,8 +32,9 @@
 /// facet_reaches_crossing, ray_density::bracket_facet_edges): the pair between them spans the edge within the
 /// tolerance, and the pairs outside it lie on one facet each. Those pairs are halved, never bracketed again: at a
 /// grazing end (below) the estimate's first-order error can exceed the bracket's width, and a bracket from the same
-/// planes would miss again. Where halving would have recorded the edge for the along-track check, the bracket does
-/// (facet_edge_marks_line).
+/// planes would miss again. Where its two rays straddle the edge, the bracket records it for the along-track check
+/// (with ray_density::along_split_seabed) by facet_edge_marks_line, where halving would have located it as an edge by
+/// chance; where they miss, the outer pair's halving locates it, or not, as any halving does.
 ///
 /// Grazing ends. The time a pair spans can understate the angle its ends' echoes cover. A ray meeting its facet at
 /// grazing incidence (a steep facet seen nearly edge-on) carries an echo per radian that grows as 1/sin of the angle
