@@ -192,6 +192,7 @@ struct render {
     bool refine_facets = true;               ///< refine across the seabed's facets' edges where the echo jumps
     bool bracket_facet_edges = true;         ///< there, the rays either side of where the edge lies (not halving)
     bool along_split_sparse = true;          ///< the narrowest columns at every other launch angle
+    bool along_split_targets = true;         ///< small targets divide the columns over them along track
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 

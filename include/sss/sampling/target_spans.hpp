@@ -1,0 +1,191 @@
+#pragma once
+/// \file
+/// Where a small target lies among one side's launch angles: for each sphere and cylinder of a scene's objects, the
+/// along-track and depression launch angles (body frame, rad) of the rays that can meet it.
+///
+/// The along-track check (simulator.hpp) compares neighbouring columns' located edges; a target whose along-track
+/// extent lies between two columns' launch cones is met by neither, so they agree and it vanishes from the line
+/// (a sphere 0.16 m across between cones 0.42 m apart). Its span tells the simulator which columns lie over it and
+/// which of their launch intervals to divide along track, whatever the columns agree on.
+///
+/// Each primitive is a set of points (a sphere's centre, a cylinder's two cap centres) with a radius r. For each
+/// point at horizontal distance rho and height z (world), the launch depressions of the rays through the
+/// corners (rho +- r, z +- r) of its square in the vertical plane of its heading are found on the ray's world
+/// depression, the ray traced by the propagation itself to a vertical wall at rho' (a ray refracted in
+/// layered water stays in the vertical plane of its launch; its height at a range falls monotonically with its
+/// launch depression while it does not turn): the rays that meet a sphere within that square all pass
+/// between the highest and lowest of them. Those world directions are taken to the body frame (along = asin b.x,
+/// depression = atan2(b.z, s b.y), beam_direction inverted); the along-track span is widened by the point's angular
+/// radius asin(r / rho) either way. Both spans are widened by a tenth of their width: a cylinder's points between
+/// its ends, and a column's rays at a slightly different along-track angle, lie within that. The depression through
+/// a corner is found by Newton's method from the straight ray's (two or three traces: refraction bends a ray little),
+/// by bisection where that fails; two corners per point where the square lies wholly below or above the towfish.
+/// Only the primitives within the line's range and the beam's along-track extent are traced.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <glm/matrix.hpp>
+
+#include "sss/beam/concept.hpp"
+#include "sss/core/hit.hpp"
+#include "sss/core/pose.hpp"
+#include "sss/core/ray.hpp"
+#include "sss/core/types.hpp"
+#include "sss/scene/object_set.hpp"
+
+namespace sss {
+
+/// A target's launch angles on one side (body frame, rad): the rays that can meet it leave within
+/// [along_lo, along_hi] x [depression_lo, depression_hi].
+struct target_span {
+    double along_lo = 0, along_hi = 0;
+    double depression_lo = 0, depression_hi = 0;
+};
+
+namespace detail {
+
+/// A vertical wall facing the origin's horizontal position at horizontal distance range_m along unit heading
+/// (hx, hy): the Scene through which target_spans asks a propagation where a ray is at that range.
+template <Real T> struct range_wall {
+    using value_type = T;
+    vec3<T> origin{};
+    T hx{}, hy{}, range_m{};
+
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const {
+        const T along = r.direction.x * hx + r.direction.y * hy;
+        if (!(along > T(0))) return std::nullopt;
+        const T here = (r.origin.x - origin.x) * hx + (r.origin.y - origin.y) * hy;
+        const T t = (range_m - here) / along;
+        if (!(t >= T(0) && t <= t_max_m)) return std::nullopt;
+        hit<T> h;
+        h.distance_m = t;
+        h.point = r.origin + t * r.direction;
+        h.normal = h.shading_normal = vec3<T>{-hx, -hy, T(0)};
+        return h;
+    }
+    [[nodiscard]] T seabed_height_m(T, T) const noexcept { return origin.z - T(1e6); }
+    [[nodiscard]] T top_m() const noexcept { return origin.z + T(1e6); }
+};
+
+} // namespace detail
+
+/// The spans of the spheres and cylinders of `objects` on side `sd` of the ping at pose `p` that lie within the
+/// along-track extent `ext` and within range_m (the line's range) of the towfish, and whose along-track span is at
+/// most max_along_rad wide (wider targets cross columns, whose own comparison sees their edges), appended to `out`.
+/// Rays are followed for one-way time t_max_s.
+template <class P, Real T>
+void target_spans(const P& propagation, const scene::object_set<T>& objects, const pose<T>& p, side sd,
+                  const beam_extent<T>& ext, double max_along_rad, T t_max_s, double range_m,
+                  std::vector<target_span>& out) {
+    const double s = double(side_sign<T>(sd));
+    const mat3<T> to_body = glm::transpose(p.body_to_world);
+    const double x0 = double(p.position.x), y0 = double(p.position.y), z0 = double(p.position.z);
+    const double a_lo = double(ext.along_min_rad) - max_along_rad, a_hi = double(ext.along_max_rad) + max_along_rad;
+    // The world depression (down positive) of the ray in the vertical plane of heading (hx, hy) that passes height z
+    // at horizontal distance rho; nullopt where no ray in the search interval does.
+    const auto depression_through = [&](double hx, double hy, double rho, double z) -> std::optional<double> {
+        detail::range_wall<T> wall{p.position, static_cast<T>(hx), static_cast<T>(hy), static_cast<T>(rho)};
+        const double geometric = std::atan2(z0 - z, rho);
+        // Height at the wall of the ray at depression e, or +-infinity where it never gets there (it turned).
+        const auto height = [&](double e) {
+            const ray<T> r{p.position, vec3<T>{static_cast<T>(std::cos(e) * hx), static_cast<T>(std::cos(e) * hy),
+                                               static_cast<T>(-std::sin(e))}};
+            const auto path = propagation.trace(r, wall, t_max_s);
+            if (path) return double(path->surface.point.z);
+            return e > geometric ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+        };
+        // Newton's method from the straight ray, with the straight ray's slope dz/de = -rho / cos^2 e: refraction
+        // bends the ray a little, so that slope is close and a few steps reach a micrometre; bisection otherwise.
+        const double tol_m = 1e-6 * rho + 1e-6;
+        double e = geometric;
+        for (int i = 0; i < 6; ++i) {
+            const double hz = height(e);
+            if (!std::isfinite(hz)) break;
+            if (std::abs(hz - z) <= tol_m) return e;
+            const double c = std::cos(e);
+            e = std::clamp(e + (hz - z) * c * c / rho, -1.5, 1.5);
+        }
+        double lo = std::max(geometric - 0.35, -1.5), hi = std::min(geometric + 0.35, 1.5);
+        if (!(height(lo) >= z && height(hi) <= z)) return std::nullopt;
+        for (int i = 0; i < 24; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (height(mid) >= z ? lo : hi) = mid;
+        }
+        return 0.5 * (lo + hi);
+    };
+    const auto add = [&](const vec3<T>* points, std::size_t n, double r) {
+        target_span span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+        for (std::size_t i = 0; i < n; ++i) {
+            const double dx = double(points[i].x) - x0, dy = double(points[i].y) - y0, z = double(points[i].z);
+            const double rho = std::hypot(dx, dy);
+            if (!(rho > 2.0 * r)) return; // beside or below the towfish: every column's rays pass near it anyway
+            const double hx = dx / rho, hy = dy / rho;
+            const double half = std::asin(std::min(1.0, r / rho));
+            // The corners that bound the rays through the square: below the towfish the flattest passes its far top
+            // corner and the steepest its near bottom one; above it, the near top and far bottom; else all four.
+            double corners[4][2];
+            std::size_t n_corners = 0;
+            const auto corner = [&](double dr, double dz) { corners[n_corners][0] = dr, corners[n_corners++][1] = dz; };
+            if (z + r < z0) {
+                corner(r, r);
+                corner(-r, -r);
+            } else if (z - r > z0) {
+                corner(-r, r);
+                corner(r, -r);
+            } else {
+                corner(r, r);
+                corner(-r, -r);
+                corner(-r, r);
+                corner(r, -r);
+            }
+            for (std::size_t q = 0; q < n_corners; ++q) {
+                const auto e = depression_through(hx, hy, rho + corners[q][0], z + corners[q][1]);
+                if (!e) return;
+                const vec3<T> w{static_cast<T>(std::cos(*e) * hx), static_cast<T>(std::cos(*e) * hy),
+                                static_cast<T>(-std::sin(*e))};
+                const vec3<T> b = to_body * w;
+                if (!(s * double(b.y) > 0.0)) return; // on the other side
+                const double along = std::asin(std::clamp(double(b.x), -1.0, 1.0));
+                const double dep = std::atan2(double(b.z), s * double(b.y));
+                span.along_lo = std::min(span.along_lo, along - half);
+                span.along_hi = std::max(span.along_hi, along + half);
+                span.depression_lo = std::min(span.depression_lo, dep);
+                span.depression_hi = std::max(span.depression_hi, dep);
+            }
+        }
+        const double wa = 0.1 * (span.along_hi - span.along_lo), we = 0.1 * (span.depression_hi - span.depression_lo);
+        span.along_lo -= wa;
+        span.along_hi += wa;
+        span.depression_lo -= we;
+        span.depression_hi += we;
+        if (span.along_hi - span.along_lo > max_along_rad) return;
+        if (span.along_hi < double(ext.along_min_rad) || span.along_lo > double(ext.along_max_rad)) return;
+        out.push_back(span);
+    };
+    // Quick rejection before any trace: a point whose straight-line along-track angle lies well outside the
+    // extent, or which lies beyond the line's range (refraction lengthens no path by a twentieth).
+    const auto ahead = [&](const vec3<T>& c, double r) {
+        const vec3<T> d = c - p.position;
+        const double len = double(glm::length(d));
+        if (!(len > r) || len - r > 1.05 * range_m) return false;
+        const vec3<T> b = to_body * (d / static_cast<T>(len));
+        if (!(s * double(b.y) > -r / len)) return false;
+        const double along = std::asin(std::clamp(double(b.x), -1.0, 1.0)), half = std::asin(std::min(1.0, r / len));
+        return along + half >= a_lo && along - half <= a_hi;
+    };
+    for (const scene::object<T>& o : objects.objects()) {
+        for (const scene::sphere<T>& sp : o.spheres())
+            if (ahead(sp.center_m(), double(sp.radius_m()))) add(&sp.center_m(), 1, double(sp.radius_m()));
+        for (const scene::cylinder<T>& c : o.cylinders()) {
+            const vec3<T> ends[2] = {c.end0_m(), c.end1_m()};
+            if (ahead(ends[0], double(c.radius_m())) || ahead(ends[1], double(c.radius_m()))) add(ends, 2, double(c.radius_m()));
+        }
+    }
+}
+
+} // namespace sss
