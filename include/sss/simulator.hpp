@@ -147,7 +147,8 @@ struct ray_density {
     /// along track, sampling/target_spans.hpp) divides the columns over it along track, over the launch intervals
     /// that can meet it, whatever their edges agree on: two columns whose launch cones pass either side of a target
     /// both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones 0.42 m apart).
-    /// Nothing changes where no object lies within the beam.
+    /// Nothing changes where no object lies within the beam. Like the rest of the along-track check, it needs
+    /// refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_targets = true;
 };
 
@@ -308,9 +309,13 @@ public:
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
             const plane_rectangle<T> r = *side_area(p, sd);
-            trace_over(scene::area_view<Sc>(scene, r.lo, r.hi), scene.top_m(), p, sd, visit);
+            const scene::area_view<Sc> view(scene, r.lo, r.hi);
+            const scene::object_set<T>* objects = objects_of(scene);
+            if constexpr (requires { view.objects_near(); })
+                if (!view.objects_near()) objects = nullptr;
+            trace_over(view, scene.top_m(), p, sd, objects, visit);
         } else {
-            trace_over(scene, scene.top_m(), p, sd, visit);
+            trace_over(scene, scene.top_m(), p, sd, objects_of(scene), visit);
         }
     }
 
@@ -319,11 +324,15 @@ public:
     /// The launch angles follow the whole scene's top, objects included, as in trace(sc, ...).
     template <Scene Seabed, class Visitor>
     void trace_seabed_alone(const scene::scene<Seabed>& sc, const pose<T>& p, side sd, Visitor&& visit) const {
+        // The columns over a small target divide as trace(sc, ...) divides them (ray_density::along_split_targets),
+        // so that the rays the labels test against the objects include those that meet it.
         if constexpr (AreaScene<Seabed> && ReachBoundedPropagation<P>) {
             const plane_rectangle<T> r = *side_area(p, sd);
-            trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), sc.top_m(), p, sd, visit);
+            const bool near = std::isfinite(sc.objects().top_m(r.lo, r.hi));
+            trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), sc.top_m(), p, sd, near ? &sc.objects() : nullptr,
+                       visit);
         } else {
-            trace_over(sc.seabed(), sc.top_m(), p, sd, visit);
+            trace_over(sc.seabed(), sc.top_m(), p, sd, &sc.objects(), visit);
         }
     }
 
@@ -351,9 +360,19 @@ public:
     }
 
 private:
-    /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`.
+    /// The objects of a scene that has them (scene::scene), else none.
+    template <Scene Sc> [[nodiscard]] static const scene::object_set<T>* objects_of(const Sc& s) noexcept {
+        if constexpr (requires { { s.objects() } -> std::same_as<const scene::object_set<T>&>; })
+            return &s.objects();
+        else
+            return nullptr;
+    }
+
+    /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`; the
+    /// small targets among `objects` (none: nullptr) divide the columns over them (ray_density::along_split_targets).
     template <Scene Sc, class Visitor>
-    void trace_over(const Sc& scene, T top_m, const pose<T>& p, side sd, Visitor&& visit) const {
+    void trace_over(const Sc& scene, T top_m, const pose<T>& p, side sd, const scene::object_set<T>* objects,
+                    Visitor&& visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
         const double t_max_s = double(samples_) * dt_;
         trace_frame f{p, sd, ext, T{}, T{}, T{}, T{}, {}};
@@ -411,11 +430,9 @@ private:
         std::vector<std::ptrdiff_t>& cover = b.cover;
         std::vector<target_span>& targets = b.targets;
         targets.clear();
-        if constexpr (requires { scene.objects_near(); scene.whole().objects(); }) {
-            if (density_.along_split_targets && scene.objects_near())
-                target_spans(propagation_, scene.whole().objects(), p, sd, ext, 3.0 * (a1 - a0) / double(n_along),
-                             f.t_max_one_way, double(f.max_range_m), targets);
-        }
+        if (objects && density_.along_split_targets && !objects->empty())
+            target_spans(propagation_, *objects, p, sd, ext, 3.0 * (a1 - a0) / double(n_along), f.t_max_one_way,
+                         double(f.max_range_m), targets);
         trace_into(0);
         for (std::size_t j = 0; j < n_along; ++j) {
             if (j + 1 < n_along) trace_into(j + 1);
@@ -606,6 +623,7 @@ private:
     static void target_windows(const std::vector<target_span>& targets, double lo, double hi,
                                const std::vector<T>& angles, std::vector<redo_range>& out) {
         const std::size_t intervals = angles.empty() ? 0 : angles.size() - 1;
+        if (intervals == 0) return;
         for (const target_span& t : targets) {
             if (!(t.along_hi > lo && t.along_lo < hi)) continue;
             std::size_t k0 = intervals, k1 = 0;
@@ -844,7 +862,9 @@ private:
         }
         // Each third over a small target divides again there, whatever the edges say.
         const std::vector<target_span>& targets = b.targets;
-        const bool any_target = !targets.empty();
+        const bool any_target = std::any_of(targets.begin(), targets.end(), [&](const target_span& t) {
+            return t.along_hi > lo && t.along_lo < hi;
+        });
         if (any_target) {
             d.forced.assign(3 * (intervals + 1), 0);
             const double third_lo[3] = {lo, a, c}, third_hi[3] = {a, c, hi};

@@ -263,6 +263,48 @@ TEST_CASE("In refracting water a sphere's shadow lies between the landings of it
     for (std::size_t k = first_sh; k <= last_sh; ++k) CHECK(l[k].kind == sample_class::shadow);
 }
 
+TEST_CASE("A sphere between two columns' launch cones is labelled, highlight and shadow, where the image shows it") {
+    // A 1 deg fan of two columns: their cones, 0.25 deg either side of the track, pass 0.11 m either side of a sphere
+    // 0.2 m across resting on the seabed at 24 m. Both miss it; the check by target (ray_density::along_split_targets)
+    // divides them over it, in the image's pass and in the bare seabed's, whose rays the labels test against the
+    // objects: without it, the image has no sphere and the labels neither.
+    const double a = 0.1, x0 = 24.0;
+    std::vector<object<double>> objs{object<double>({sphere<double>({x0, 0, a}, a, {1, 8, 4})}, {})};
+    const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+    receiver_params rp;
+    rp.sample_rate_hz = fs_hz;
+    rp.max_range_m = 35.0;
+    rp.pulse.length_s = 100e-6;
+    beam::ideal_fan_params<double> fan;
+    fan.along_width_deg = 1.0;
+    fan.vertical_width_deg = 90.0;
+    fan.depression_deg = 45.0;
+    const auto labels_with = [&](bool check) {
+        const sim_t sim(scattering::lambertian<double>({.mu_db = {-27.0, -10.0}}), propagation::straight<double>(), beam::ideal_fan<double>(fan),
+                        motion::straight_line<double>(), rp, ray_density{.along = 2, .across = 0, .per_sample = 4.0, .along_split_targets = check});
+        // A shadow here is a third of the seabed's echo blocked: the sphere spans 0.2 m of the beam's 0.45 m.
+        return label_line(sim, sc, towfish(), side::starboard, label_params{.shadow_fraction = 0.3});
+    };
+    const auto count = [](const std::vector<sample_label>& l, sample_class kind) {
+        return std::count_if(l.begin(), l.end(), [&](const sample_label& x) { return x.kind == kind && x.object == 8u; });
+    };
+    const auto with = labels_with(true), without = labels_with(false);
+    MESSAGE("highlight " << count(with, sample_class::highlight) << ", shadow " << count(with, sample_class::shadow)
+                         << " samples; without the check " << count(without, sample_class::highlight) << " and "
+                         << count(without, sample_class::shadow));
+    // The shadow: from the ray grazing the sphere's top to where it lands, about 12 samples on the flat seabed.
+    const double top_m = 2 * a, land_m = x0 * H / (H - top_m);
+    const double k_shadow_end = sample_of(std::hypot(land_m, H));
+    std::size_t last_shadow = 0;
+    for (std::size_t k = 0; k < with.size(); ++k)
+        if (with[k].kind == sample_class::shadow) last_shadow = k;
+    CHECK(count(with, sample_class::highlight) >= 3);
+    CHECK(count(with, sample_class::shadow) >= 5);
+    CHECK(std::abs(double(last_shadow + 1) - k_shadow_end) <= 2.0);
+    CHECK(count(without, sample_class::highlight) == 0);
+    CHECK(count(without, sample_class::shadow) == 0);
+}
+
 TEST_CASE("render_labelled is render and label_render in one trace: the same image and labels to the bit, on any number of threads") {
     const survey s = rough_survey();
     const std::size_t first = 14, count = 10;

@@ -91,7 +91,8 @@ TEST_CASE("a mine moored high at far range, whose rays past it meet nothing with
 
 namespace {
 
-// A sphere 0.16 m across (brighter than the seabed: mu -10 dB against -27) half sunk in gentle relief at 24 m,
+// A sphere 0.16 m across (brighter than the seabed: mu -10 dB against -27), its centre 0.7 of its radius above gentle
+// relief at 24 m,
 // between the launch cones of the two columns either side of the track (along-track angles -0.5 and 0.5 deg under an
 // 8 deg fan of 8 columns, 0.42 m apart there): its centre at along-track angles -0.2, 0 and 0.2 deg of the towfish's
 // frame, so that its 0.38 deg lie between them. The reference against the default render, with and without the

@@ -8,19 +8,22 @@
 /// (a sphere 0.16 m across between cones 0.42 m apart). Its span tells the simulator which columns lie over it and
 /// which of their launch intervals to divide along track, whatever the columns agree on.
 ///
-/// Each primitive is a set of points (a sphere's centre, a cylinder's two cap centres) with a radius r. For each
-/// point at horizontal distance rho and height z (world), the launch depressions of the rays through the
-/// corners (rho +- r, z +- r) of its square in the vertical plane of its heading are found on the ray's world
-/// depression, the ray traced by the propagation itself to a vertical wall at rho' (a ray refracted in
-/// layered water stays in the vertical plane of its launch; its height at a range falls monotonically with its
-/// launch depression while it does not turn): the rays that meet a sphere within that square all pass
-/// between the highest and lowest of them. Those world directions are taken to the body frame (along = asin b.x,
-/// depression = atan2(b.z, s b.y), beam_direction inverted); the along-track span is widened by the point's angular
-/// radius asin(r / rho) either way. Both spans are widened by a tenth of their width: a cylinder's points between
-/// its ends, and a column's rays at a slightly different along-track angle, lie within that. The depression through
-/// a corner is found by Newton's method from the straight ray's (two or three traces: refraction bends a ray little),
-/// by bisection where that fails; two corners per point where the square lies wholly below or above the towfish.
-/// Only the primitives within the line's range and the beam's along-track extent are traced.
+/// Each primitive is a set of points with a radius r: a sphere's centre; a cylinder's two cap centres and the points
+/// of its axis closest to the towfish and, horizontally, closest to it (where the along-track angle and the depression
+/// of a point on the axis are largest; between those points they change monotonically, short of the far side of a
+/// cylinder passing under the towfish). For each point at horizontal distance rho and height z (world), the launch
+/// depressions of the rays through the corners (rho +- r, z +- r) of its square in the vertical plane of its heading
+/// are found on the ray's world depression, the ray traced by the propagation itself to a vertical wall at that
+/// range (a ray refracted in layered water stays in the vertical plane of its launch; its height at a range falls
+/// monotonically with its launch depression while it does not turn): the rays that meet the primitive near that
+/// point pass between the highest and lowest of them. Those world directions are taken to the body frame (along =
+/// asin b.x, depression = atan2(b.z, s b.y), beam_direction inverted); the along-track span is widened by the
+/// point's angular radius asin(r / rho) either way, and both spans by a tenth of their width (a column's rays at a
+/// slightly different along-track angle lie within that). The depression through a corner is found by Newton's
+/// method from the straight ray's (two or three traces: refraction bends a ray little), by bisection where that
+/// fails; two corners per point where the square lies wholly below or above the towfish. A point whose corners
+/// cannot all be found (under the towfish, on the other side, beyond the rays' reach) adds nothing. Only the
+/// primitives within the line's range and the beam's along-track extent are traced.
 
 #include <algorithm>
 #include <cmath>
@@ -87,6 +90,7 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
     const double a_lo = double(ext.along_min_rad) - max_along_rad, a_hi = double(ext.along_max_rad) + max_along_rad;
     // The world depression (down positive) of the ray in the vertical plane of heading (hx, hy) that passes height z
     // at horizontal distance rho; nullopt where no ray in the search interval does.
+    constexpr double steepest = 1.565; // rad: 89.7 deg, the steepest ray asked
     const auto depression_through = [&](double hx, double hy, double rho, double z) -> std::optional<double> {
         detail::range_wall<T> wall{p.position, static_cast<T>(hx), static_cast<T>(hy), static_cast<T>(rho)};
         const double geometric = std::atan2(z0 - z, rho);
@@ -100,16 +104,16 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
         };
         // Newton's method from the straight ray, with the straight ray's slope dz/de = -rho / cos^2 e: refraction
         // bends the ray a little, so that slope is close and a few steps reach a micrometre; bisection otherwise.
-        const double tol_m = 1e-6 * rho + 1e-6;
+        const double tol_m = 1e-6 * (rho + 1.0) + 64.0 * double(std::numeric_limits<T>::epsilon()) * (std::abs(z) + rho);
         double e = geometric;
         for (int i = 0; i < 6; ++i) {
             const double hz = height(e);
             if (!std::isfinite(hz)) break;
             if (std::abs(hz - z) <= tol_m) return e;
             const double c = std::cos(e);
-            e = std::clamp(e + (hz - z) * c * c / rho, -1.5, 1.5);
+            e = std::clamp(e + (hz - z) * c * c / rho, -steepest, steepest);
         }
-        double lo = std::max(geometric - 0.35, -1.5), hi = std::min(geometric + 0.35, 1.5);
+        double lo = std::max(geometric - 0.35, -steepest), hi = std::min(geometric + 0.35, steepest);
         if (!(height(lo) >= z && height(hi) <= z)) return std::nullopt;
         for (int i = 0; i < 24; ++i) {
             const double mid = 0.5 * (lo + hi);
@@ -120,10 +124,12 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
     const auto add = [&](const vec3<T>* points, std::size_t n, double r) {
         target_span span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                          std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+        // A point whose corners cannot all be found (below the towfish, on the other side, beyond the rays' reach)
+        // adds nothing: the span is the other points'.
         for (std::size_t i = 0; i < n; ++i) {
             const double dx = double(points[i].x) - x0, dy = double(points[i].y) - y0, z = double(points[i].z);
             const double rho = std::hypot(dx, dy);
-            if (!(rho > 2.0 * r)) return; // beside or below the towfish: every column's rays pass near it anyway
+            if (!(rho > 2.0 * r)) continue; // under the towfish
             const double hx = dx / rho, hy = dy / rho;
             const double half = std::asin(std::min(1.0, r / rho));
             // The corners that bound the rays through the square: below the towfish the flattest passes its far top
@@ -143,21 +149,26 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
                 corner(-r, r);
                 corner(r, -r);
             }
-            for (std::size_t q = 0; q < n_corners; ++q) {
+            target_span here = span;
+            bool found = true;
+            for (std::size_t q = 0; q < n_corners && found; ++q) {
                 const auto e = depression_through(hx, hy, rho + corners[q][0], z + corners[q][1]);
-                if (!e) return;
-                const vec3<T> w{static_cast<T>(std::cos(*e) * hx), static_cast<T>(std::cos(*e) * hy),
-                                static_cast<T>(-std::sin(*e))};
+                const vec3<T> w = e ? vec3<T>{static_cast<T>(std::cos(*e) * hx), static_cast<T>(std::cos(*e) * hy),
+                                              static_cast<T>(-std::sin(*e))}
+                                    : vec3<T>{};
                 const vec3<T> b = to_body * w;
-                if (!(s * double(b.y) > 0.0)) return; // on the other side
+                found = e && s * double(b.y) > 0.0;
+                if (!found) break;
                 const double along = std::asin(std::clamp(double(b.x), -1.0, 1.0));
                 const double dep = std::atan2(double(b.z), s * double(b.y));
-                span.along_lo = std::min(span.along_lo, along - half);
-                span.along_hi = std::max(span.along_hi, along + half);
-                span.depression_lo = std::min(span.depression_lo, dep);
-                span.depression_hi = std::max(span.depression_hi, dep);
+                here.along_lo = std::min(here.along_lo, along - half);
+                here.along_hi = std::max(here.along_hi, along + half);
+                here.depression_lo = std::min(here.depression_lo, dep);
+                here.depression_hi = std::max(here.depression_hi, dep);
             }
+            if (found) span = here;
         }
+        if (!(span.along_lo <= span.along_hi)) return; // no point found
         const double wa = 0.1 * (span.along_hi - span.along_lo), we = 0.1 * (span.depression_hi - span.depression_lo);
         span.along_lo -= wa;
         span.along_hi += wa;
@@ -168,7 +179,8 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
         out.push_back(span);
     };
     // Quick rejection before any trace: a point whose straight-line along-track angle lies well outside the
-    // extent, or which lies beyond the line's range (refraction lengthens no path by a twentieth).
+    // extent, or which lies beyond the line's range (the twentieth covers sound speeds up to 5 % above the one
+    // that converts the line's time to range).
     const auto ahead = [&](const vec3<T>& c, double r) {
         const vec3<T> d = c - p.position;
         const double len = double(glm::length(d));
@@ -182,8 +194,20 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
         for (const scene::sphere<T>& sp : o.spheres())
             if (ahead(sp.center_m(), double(sp.radius_m()))) add(&sp.center_m(), 1, double(sp.radius_m()));
         for (const scene::cylinder<T>& c : o.cylinders()) {
-            const vec3<T> ends[2] = {c.end0_m(), c.end1_m()};
-            if (ahead(ends[0], double(c.radius_m())) || ahead(ends[1], double(c.radius_m()))) add(ends, 2, double(c.radius_m()));
+            // Its ends, and where its axis passes closest to the towfish and, horizontally, closest below or above
+            // it: the along-track angle is largest where the distance is least, the depression where the
+            // horizontal distance is.
+            const vec3<T> a = c.end0_m(), d = c.end1_m() - c.end0_m();
+            const auto closest = [&](const vec3<T>& u, const vec3<T>& v) {
+                const T vv = glm::dot(v, v);
+                const T f = vv > T(0) ? std::clamp(glm::dot(u, v) / vv, T(0), T(1)) : T(0);
+                return a + f * d;
+            };
+            const vec3<T> to = p.position - a;
+            const vec3<T> points[4] = {a, c.end1_m(), closest(to, d),
+                                       closest(vec3<T>{to.x, to.y, T(0)}, vec3<T>{d.x, d.y, T(0)})};
+            const double r = double(c.radius_m());
+            if (ahead(points[0], r) || ahead(points[1], r) || ahead(points[2], r) || ahead(points[3], r)) add(points, 4, r);
         }
     }
 }
