@@ -145,8 +145,10 @@ struct ray_density {
     bool along_split_sparse = true;
     /// A small target (a sphere or cylinder of the scene's objects whose launch angles span at most three columns
     /// along track, sampling/target_spans.hpp) divides the columns over it along track, over the launch intervals
-    /// that can meet it, whatever their edges agree on: two columns whose launch cones pass either side of a target
-    /// both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones 0.42 m apart).
+    /// that can meet it, whatever their edges agree on, until the narrowest columns there are a quarter of its
+    /// angular thickness wide (at most two levels past the column's depth): two columns whose launch cones pass either
+    /// side of a target both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones
+    /// 0.42 m apart), and a thin one (a cable, a tether) met by one narrow column is that column's width wide.
     /// Nothing changes where no object lies within the beam. Like the rest of the along-track check, it needs
     /// refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_targets = true;
@@ -472,7 +474,18 @@ private:
             for (std::size_t i = here.first.empty() ? 0 : here.first.back(); i < here.echoes.size(); ++i)
                 visit(here.echoes[i]);
             const auto [lo, hi] = bounds(j);
-            if (!runs.empty()) divide(scene, f, lo, hi, here.angles, here, 1.0, runs, 0, depths[j], b, visit);
+            if (runs.empty()) continue;
+            // A small target lies over the column: its launch intervals divide on until the narrowest columns are a
+            // quarter of its angular thickness wide (a sphere's diameter, a cylinder's), two levels past the column's
+            // depth at most.
+            std::size_t target_depth = depths[j];
+            for (const target_span& t : targets) {
+                if (!(t.along_hi > lo && t.along_lo < hi)) continue;
+                const double need = std::ceil(std::log(4.0 * (hi - lo) / std::max(t.thickness_rad, 1e-12)) / std::log(3.0));
+                if (need > double(target_depth)) target_depth = std::min(levels + 2, static_cast<std::size_t>(need));
+            }
+            if (b.divisions.size() + 1 < target_depth) b.divisions.resize(target_depth - 1);
+            divide(scene, f, lo, hi, here.angles, here, 1.0, runs, 0, depths[j], target_depth, b, visit);
         }
     }
 
@@ -564,6 +577,8 @@ private:
         std::vector<unsigned char> inside;
         std::vector<std::ptrdiff_t> cover;
         std::vector<std::ptrdiff_t> forced; ///< each third's launch intervals over a small target (differences)
+        std::vector<unsigned char> marks;   ///< past the column's depth: the launch intervals over a small target
+        std::vector<std::pair<std::size_t, std::size_t>> rest, deeper; ///< past the depth: runs ending, going on
         std::vector<redo_range> windows;
         std::vector<std::pair<std::size_t, std::size_t>> runs[3];
     };
@@ -619,13 +634,15 @@ private:
 
     /// The launch intervals of the column between along-track angles lo and hi (rad), launched at depressions
     /// `angles`, that can meet a small target of `targets` lying over it, added to `out` (one range per target, one
-    /// interval more either way).
+    /// interval more either way); with `unresolved`, only the targets whose angular thickness is still under four
+    /// times the column's width.
     static void target_windows(const std::vector<target_span>& targets, double lo, double hi,
-                               const std::vector<T>& angles, std::vector<redo_range>& out) {
+                               const std::vector<T>& angles, std::vector<redo_range>& out, bool unresolved = false) {
         const std::size_t intervals = angles.empty() ? 0 : angles.size() - 1;
         if (intervals == 0) return;
         for (const target_span& t : targets) {
             if (!(t.along_hi > lo && t.along_lo < hi)) continue;
+            if (unresolved && !(4.0 * (hi - lo) > t.thickness_rad)) continue;
             std::size_t k0 = intervals, k1 = 0;
             for (std::size_t k = 0; k < intervals; ++k) {
                 const double e0 = double(angles[k]), e1 = double(angles[k + 1]);
@@ -637,6 +654,25 @@ private:
             }
             if (k0 <= k1) out.push_back({k0 - std::min<std::size_t>(k0, 1), k1 + 1});
         }
+    }
+
+    /// Splits `runs` (launch intervals [k0, k1]) into those within `windows` (`deeper`) and the others (`rest`), over
+    /// `intervals` launch intervals; `marks` is scratch.
+    static void split_runs(const std::vector<std::pair<std::size_t, std::size_t>>& runs, const std::vector<redo_range>& windows,
+                           std::size_t intervals, std::vector<unsigned char>& marks,
+                           std::vector<std::pair<std::size_t, std::size_t>>& rest,
+                           std::vector<std::pair<std::size_t, std::size_t>>& deeper) {
+        marks.assign(intervals, 0);
+        for (const redo_range& w : windows)
+            for (std::size_t k = w.k0; k <= std::min(w.k1, intervals - 1); ++k) marks[k] = 1;
+        rest.clear();
+        deeper.clear();
+        for (const auto& [k0, k1] : runs)
+            for (std::size_t k = k0; k <= k1; ++k) {
+                auto& into = marks[k] ? deeper : rest;
+                if (!into.empty() && into.back().second + 1 == k) into.back().second = k;
+                else into.emplace_back(k, k);
+            }
     }
 
     /// Where two neighbouring columns' edges disagree, added to `out`. An edge of either with no edge of the
@@ -801,8 +837,8 @@ private:
     /// trace_over); elsewhere the third's echoes stand.
     template <Scene Sc, class Visitor>
     void divide(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
-                const column_record& rec, double scale, const std::vector<std::pair<std::size_t, std::size_t>>& runs,
-                std::size_t level, std::size_t depth, trace_buffers& b, Visitor& visit) const {
+                const column_record& rec, double scale, const std::vector<std::pair<std::size_t, std::size_t>>& runs_in,
+                std::size_t level, std::size_t depth, std::size_t target_depth, trace_buffers& b, Visitor& visit) const {
         const double width = (hi - lo) / 3.0;
         const double a = lo + width, c = hi - width;
         const double middle = scale * (std::sin(c) - std::sin(a)) / (std::sin(hi) - std::sin(lo));
@@ -813,19 +849,34 @@ private:
                 visit(e);
             }
         };
-        const bool last = level + 1 >= depth;
-        if (last) {
+        const std::vector<std::pair<std::size_t, std::size_t>>* body_runs = &runs_in;
+        if (level + 1 >= depth) {
+            // The last level, but over a small target (down to target_depth): those launch intervals go on dividing.
+            const std::vector<std::pair<std::size_t, std::size_t>>* rest = &runs_in;
+            if (level + 1 < target_depth) {
+                division& d = b.divisions[level];
+                d.windows.clear();
+                target_windows(b.targets, lo, hi, angles, d.windows, true);
+                if (!d.windows.empty()) {
+                    split_runs(runs_in, d.windows, angles.size() - 1, d.marks, d.rest, d.deeper);
+                    rest = &d.rest;
+                    body_runs = &d.deeper;
+                }
+            }
             const std::size_t stride = density_.along_split_sparse ? 2 : 1;
-            in_column(scene, f, lo, a, [&](const Sc& col) {
-                trace_runs(col, f, lo, a, angles, runs, b.scratch, nullptr, visit, stride);
-            });
-            in_column(scene, f, c, hi, [&](const Sc& col) {
-                trace_runs(col, f, c, hi, angles, runs, b.scratch, nullptr, visit, stride);
-            });
-            for (const auto& [k0, k1] : runs)
-                for (std::size_t k = k0; k <= k1; ++k) emit_middle(k);
-            return;
+            if (!rest->empty()) {
+                in_column(scene, f, lo, a, [&](const Sc& col) {
+                    trace_runs(col, f, lo, a, angles, *rest, b.scratch, nullptr, visit, stride);
+                });
+                in_column(scene, f, c, hi, [&](const Sc& col) {
+                    trace_runs(col, f, c, hi, angles, *rest, b.scratch, nullptr, visit, stride);
+                });
+                for (const auto& [k0, k1] : *rest)
+                    for (std::size_t k = k0; k <= k1; ++k) emit_middle(k);
+            }
+            if (body_runs == &runs_in || body_runs->empty()) return;
         }
+        const std::vector<std::pair<std::size_t, std::size_t>>& runs = *body_runs;
         division& d = b.divisions[level];
         for (std::size_t s = 0; s < 2; ++s) {
             column_record& r = d.outer[s];
@@ -909,9 +960,12 @@ private:
                 }
             }
         }
-        if (!d.runs[0].empty()) divide(scene, f, lo, a, angles, d.outer[0], 1.0, d.runs[0], level + 1, depth, b, visit);
-        if (!d.runs[1].empty()) divide(scene, f, a, c, angles, rec, middle, d.runs[1], level + 1, depth, b, visit);
-        if (!d.runs[2].empty()) divide(scene, f, c, hi, angles, d.outer[1], 1.0, d.runs[2], level + 1, depth, b, visit);
+        if (!d.runs[0].empty())
+            divide(scene, f, lo, a, angles, d.outer[0], 1.0, d.runs[0], level + 1, depth, target_depth, b, visit);
+        if (!d.runs[1].empty())
+            divide(scene, f, a, c, angles, rec, middle, d.runs[1], level + 1, depth, target_depth, b, visit);
+        if (!d.runs[2].empty())
+            divide(scene, f, c, hi, angles, d.outer[1], 1.0, d.runs[2], level + 1, depth, target_depth, b, visit);
     }
 
     /// Traces the launch intervals `runs` (each [k0, k1]: the rays at angles[k0] to angles[k1 + 1]) of a column

@@ -47,6 +47,7 @@ namespace sss {
 struct target_span {
     double along_lo = 0, along_hi = 0;
     double depression_lo = 0, depression_hi = 0;
+    double thickness_rad = 0; ///< its least angular width across its axis (a sphere's, a cylinder's far end's) (rad)
 };
 
 namespace detail {
@@ -123,7 +124,8 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
     };
     const auto add = [&](const vec3<T>* points, std::size_t n, double r) {
         target_span span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+                         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                         std::numeric_limits<double>::infinity()};
         // A point whose corners cannot all be found (below the towfish, on the other side, beyond the rays' reach)
         // adds nothing: the span is the other points'.
         for (std::size_t i = 0; i < n; ++i) {
@@ -150,6 +152,7 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
                 corner(r, -r);
             }
             target_span here = span;
+            here.thickness_rad = std::min(here.thickness_rad, 2.0 * std::asin(std::min(1.0, r / std::hypot(rho, z - z0))));
             bool found = true;
             for (std::size_t q = 0; q < n_corners && found; ++q) {
                 const auto e = depression_through(hx, hy, rho + corners[q][0], z + corners[q][1]);
