@@ -146,7 +146,7 @@ struct ray_density {
     /// A small target (a sphere or cylinder of the scene's objects whose launch angles span at most three columns
     /// along track, sampling/target_spans.hpp) divides the columns over it along track, over the launch intervals
     /// that can meet it, whatever their edges agree on, until the narrowest columns there are a quarter of its
-    /// angular thickness wide (at most two levels past the column's depth): two columns whose launch cones pass either
+    /// angular thickness wide (at most two levels past along_split's depth, 1/81 of a column by default): two columns whose launch cones pass either
     /// side of a target both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones
     /// 0.42 m apart), and a thin one (a cable, a tether) met by one narrow column is that column's width wide.
     /// Nothing changes where no object lies within the beam. Like the rest of the along-track check, it needs
@@ -476,8 +476,8 @@ private:
             const auto [lo, hi] = bounds(j);
             if (runs.empty()) continue;
             // A small target lies over the column: its launch intervals divide on until the narrowest columns are a
-            // quarter of its angular thickness wide (a sphere's diameter, a cylinder's), two levels past the column's
-            // depth at most.
+            // quarter of its angular thickness wide (a sphere's diameter, a cylinder's), two levels past along_split's
+            // depth at most (1/81 of a column by default, whatever the column's weight).
             std::size_t target_depth = depths[j];
             for (const target_span& t : targets) {
                 if (!(t.along_hi > lo && t.along_lo < hi)) continue;
@@ -634,15 +634,15 @@ private:
 
     /// The launch intervals of the column between along-track angles lo and hi (rad), launched at depressions
     /// `angles`, that can meet a small target of `targets` lying over it, added to `out` (one range per target, one
-    /// interval more either way); with `unresolved`, only the targets whose angular thickness is still under four
-    /// times the column's width.
+    /// interval more either way); with `finest` > 0 (rad: the narrowest columns there unless these intervals divide
+    /// again), only the targets less than four times that thick.
     static void target_windows(const std::vector<target_span>& targets, double lo, double hi,
-                               const std::vector<T>& angles, std::vector<redo_range>& out, bool unresolved = false) {
+                               const std::vector<T>& angles, std::vector<redo_range>& out, double finest = 0.0) {
         const std::size_t intervals = angles.empty() ? 0 : angles.size() - 1;
         if (intervals == 0) return;
         for (const target_span& t : targets) {
             if (!(t.along_hi > lo && t.along_lo < hi)) continue;
-            if (unresolved && !(4.0 * (hi - lo) > t.thickness_rad)) continue;
+            if (finest > 0.0 && !(4.0 * finest > t.thickness_rad)) continue;
             std::size_t k0 = intervals, k1 = 0;
             for (std::size_t k = 0; k < intervals; ++k) {
                 const double e0 = double(angles[k]), e1 = double(angles[k + 1]);
@@ -856,7 +856,7 @@ private:
             if (level + 1 < target_depth) {
                 division& d = b.divisions[level];
                 d.windows.clear();
-                target_windows(b.targets, lo, hi, angles, d.windows, true);
+                target_windows(b.targets, lo, hi, angles, d.windows, (hi - lo) / 3.0);
                 if (!d.windows.empty()) {
                     split_runs(runs_in, d.windows, angles.size() - 1, d.marks, d.rest, d.deeper);
                     rest = &d.rest;
@@ -921,7 +921,9 @@ private:
             const double third_lo[3] = {lo, a, c}, third_hi[3] = {a, c, hi};
             for (std::size_t t = 0; t < 3; ++t) {
                 d.windows.clear();
-                target_windows(targets, third_lo[t], third_hi[t], angles, d.windows);
+                // Past the column's depth, only the targets the third is still too wide for.
+                target_windows(targets, third_lo[t], third_hi[t], angles, d.windows,
+                               level + 1 >= depth ? third_hi[t] - third_lo[t] : 0.0);
                 std::ptrdiff_t* forced = d.forced.data() + t * (intervals + 1);
                 for (const redo_range& w : d.windows) {
                     ++forced[w.k0];

@@ -167,8 +167,8 @@ TEST_CASE("a thin cable across the track between two columns' launch cones rende
           "converged reference, and that reference as 512 plain columns") {
     // A cable 6 cm across lying 10 m across the track on gentle relief (18 to 28 m out), under the 8 deg fan of 8
     // columns whose cones pass 0.16 to 0.24 m either side of it: both miss it. The check by target divides the columns
-    // over its launch intervals until the narrowest are a quarter of its along-track span wide (two levels past the
-    // columns' own depth). The converged reference is checked against brute force: doubling the columns from 16 to
+    // over its launch intervals until the narrowest are a quarter of its angular thickness wide (two levels past the
+    // columns' own depth here). The converged reference is checked against brute force: doubling the columns from 16 to
     // 128 alone had left a moored mine's tether 0.2 dB off (docs/design/along-track.md).
     const auto relief = [](double x, double y) { return 0.05 * std::sin(0.9 * x + 0.4 * y); };
     const double radius = 0.03;
