@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "sss/core/error.hpp"
@@ -883,6 +884,53 @@ TEST_CASE("A shallower bent ray lies at least the bound's gain times the range a
                     << worst_iso << " of the gap");
     CHECK(checked > 150);
     CHECK(worst_iso < 0.02);
+}
+
+TEST_CASE_TEMPLATE("a ray's height at a horizontal range is where its trace meets a vertical wall there, layered or "
+                   "straight, and none where the trace never gets there", T, float, double) {
+    // A thermocline (rays bend, some turn up), a sound channel (rays trapped) and uniform water; launches up and
+    // down, ranges near and far. The wall faces the source along the ray's heading.
+    const layered<T> thermo(sound_speed_profile<T>({0, 44, 54, 200}, {1500, 1499, 1479, 1481.409f}), exact<T>(T(200)));
+    const layered<T> channel(sound_speed_profile<T>({0, 50, 100, 300}, {1500, 1480, 1500, 1503}), exact<T>(T(300)));
+    const straight<T> uniform;
+    const double tol = std::is_same_v<T, float> ? 2e-3 : 1e-8; // m per 100 m of range
+    std::size_t compared = 0, both_none = 0;
+    const auto check = [&](const auto& water, T surface_z, double depth, double graze_deg, double range_m, T t_max_s) {
+        const double az = 0.7;
+        const ray<T> r = launch<T>(surface_z, T(depth), graze_deg * deg, az);
+        const vec3<T> n{T(std::cos(az)), T(std::sin(az)), T(0)};
+        plane_scene<T> wall;
+        wall.n = n;
+        wall.d = glm::dot(n, r.origin) + T(range_m);
+        const auto traced = water.trace(r, wall, t_max_s);
+        const auto asked = water.height_at_range_m(r, T(range_m), t_max_s);
+        CAPTURE(depth);
+        CAPTURE(graze_deg);
+        CAPTURE(range_m);
+        REQUIRE(bool(traced) == bool(asked));
+        if (!asked) {
+            ++both_none;
+            return;
+        }
+        ++compared;
+        // (Near vertical, the height moves by the slope dz / dx for each error in range: float rounds the range.)
+        const double slope = std::abs(double(*asked) - double(r.origin.z)) / range_m;
+        CHECK(std::abs(double(*asked) - double(traced->surface.point.z)) <= tol * (1 + range_m / 100) * (1 + slope));
+    };
+    for (const double depth : {20.0, 49.0, 60.0})
+        for (const double graze : {-30.0, -4.0, -0.5, 0.0, 0.5, 3.0, 8.0, 20.0, 60.0, 89.0})
+            for (const double range : {0.5, 3.0, 40.0, 250.0, 2000.0}) {
+                check(thermo, T(200), depth, graze, range, T(3));
+                check(channel, T(300), depth + 3, graze, range, T(3));
+                check(uniform, T(0), depth, graze, range, T(3));
+            }
+    // Time runs out: a ray 1 s long reaches about 1500 m, no further.
+    check(thermo, T(200), 30.0, 1.0, 1400.0, T(1));
+    check(thermo, T(200), 30.0, 1.0, 1600.0, T(1));
+    check(uniform, T(0), 30.0, 1.0, 1600.0, T(1));
+    MESSAGE(compared << " heights compared, " << both_none << " rays that never get there");
+    CHECK(compared > 200);
+    CHECK(both_none > 20);
 }
 
 TEST_CASE("absorption integrates Francois-Garrison and Ainslie-McColm along the path") {

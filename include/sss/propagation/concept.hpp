@@ -36,6 +36,16 @@
 /// The simulator then knows the rectangle a side's rays can reach (sampling/reach.hpp) and shows the scene's
 /// geometry over it only (scene/area_view.hpp).
 ///
+/// Optional (`RangeHeightPropagation`): a policy whose rays stay in the vertical plane of their launch also offers
+///
+/// | `p.height_at_range_m(r, range_m, t_max_s)` | `std::optional<T>` | the world height (m) of the ray launched along r |
+/// |                                            |                    | where it has gone range_m horizontally from its  |
+/// |                                            |                    | origin along its heading; none where it does not |
+/// |                                            |                    | get there within one-way time t_max_s            |
+///
+/// with no scene. The simulator asks it for the launch angles that meet a small target (sampling/target_spans.hpp);
+/// without it, the same answer comes from a trace to a vertical wall at that range.
+///
 /// Optional (`GuidedPropagation`): a policy that can use what a neighbouring ray found also offers
 ///
 /// | `p.trace_beside(r, scene, t_max_s, a_launch, a_clear_range_m)` | `std::optional<path<T>>` | p.trace(r, scene, t_max_s), bit for bit |
@@ -94,6 +104,13 @@ template <class P>
 concept ReachBoundedPropagation = Propagation<P> && requires(const P& p, typename P::value_type z) {
     { p.reach_speed_mps(z) } -> std::same_as<typename P::value_type>;
 };
+
+/// A Propagation policy that says where its rays pass a horizontal range, with no scene (see the table above).
+template <class P>
+concept RangeHeightPropagation = Propagation<P> &&
+    requires(const P& p, const ray<typename P::value_type>& r, typename P::value_type t) {
+        { p.height_at_range_m(r, t, t) } -> std::same_as<std::optional<typename P::value_type>>;
+    };
 
 /// A Propagation policy that takes a neighbouring ray's clear time as a guide over scene type `Sc` (see the table
 /// above).

@@ -237,6 +237,51 @@ public:
         }
     }
 
+    /// The world height (m) of the ray launched along r where it has gone range_m horizontally from its origin along
+    /// its heading (RangeHeightPropagation): the arc through that range, layer by layer, with no scene; none where it
+    /// does not get there within one-way time t_max_s (it reached the sea surface or ran out of time first). The ray
+    /// stays in the vertical plane of its launch and its range only grows, so the point is unique. Throws as `trace`
+    /// for a ray starting above the sea surface.
+    [[nodiscard]] std::optional<T> height_at_range_m(const ray<T>& r, T range_m, T t_max_s) const {
+        if (!(range_m >= T(0))) return std::nullopt;
+        const trace_start st = start_above(r.origin.z, std::numeric_limits<T>::infinity()); // no skipping: any range may be asked
+        march m;
+        vec3<T> hdir;
+        if (!launch(r, t_max_s, st, m, hdir)) return std::nullopt;
+        int zero_steps = 0;
+        for (std::size_t n_arcs = 0; n_arcs < (std::size_t(1) << 24); ++n_arcs) {
+            const gradient_layer<T>& layer = layers_[m.layer];
+            if (!m.phi_known) {
+                m.phi = std::atan2(m.sin_phi, m.cos_phi);
+                m.phi_known = true;
+            }
+            layer_step<T> step;
+            if (zero_steps >= 2) { // horizontal along a knot, as `follow` runs it
+                m.phi = m.sin_phi = T(0);
+                m.cos_phi = T(1);
+                step.arc = {m.z, layer.speed_mps(m.z), T(0), T(0), std::numeric_limits<T>::infinity()};
+                step.boundary = layer_exit::none;
+            } else {
+                step = step_through_layer(layer, m.z, std::abs(m.phi), m.phi < T(0) ? vertical_direction::up : vertical_direction::down);
+            }
+            const T left_m = range_m - m.x;
+            if (step.boundary == layer_exit::none || !(step.exit.range_m < left_m)) {
+                const auto at = arc_point_at_range(step.arc, std::max(left_m, T(0)));
+                if (!at || !(m.t + at->time_s <= t_max_s)) return std::nullopt;
+                return p_.surface_z_m - at->depth_m;
+            }
+            const bool top = step.boundary == layer_exit::top;
+            if (top && (layer.z_top_m <= T(0) || m.layer == 0)) return std::nullopt; // reached the sea surface
+            const T g = layer.gradient_per_s, c0 = layer.speed_mps(m.z), xi = m.cos_phi / c0;
+            advance(m, detail::arc_start<T>{m.z, c0, m.phi, m.sin_phi, m.cos_phi, g, xi, xi * g}, step, layer);
+            zero_steps = step.exit.arc_m == T(0) ? zero_steps + 1 : 0;
+            if (top) --m.layer;
+            else ++m.layer;
+            if (!(m.t <= t_max_s)) return std::nullopt;
+        }
+        return std::nullopt;
+    }
+
     /// As `trace`, with the details of the path.
     template <Scene S>
     [[nodiscard]] std::optional<layered_path<T>> trace_path(const ray<T>& r, const S& scene, T t_max_s) const {
@@ -291,6 +336,12 @@ private:
 
     /// The shared start of rays from world z origin_z (throws for an origin above the sea surface).
     template <Scene S> [[nodiscard]] trace_start start_for(T origin_z, const S& scene) const {
+        return start_above(origin_z, scene.top_m());
+    }
+
+    /// The shared start of rays from world z origin_z over geometry no higher than world z top (m); -infinity: no
+    /// geometry, and no chords.
+    [[nodiscard]] trace_start start_above(T origin_z, T top) const {
         constexpr T eps = std::numeric_limits<T>::epsilon();
         trace_start st;
         st.origin_z = origin_z;
@@ -298,8 +349,11 @@ private:
         if (!(st.depth0 >= T(0)))
             throw invalid_parameter("ray.origin", "lies above the sea surface (world z " + std::to_string(origin_z) +
                                                       " > layered.surface_z_m " + std::to_string(p_.surface_z_m) + ")");
+        if (!(top > -std::numeric_limits<T>::infinity())) {
+            st.chord_depth = std::numeric_limits<T>::infinity();
+            return st;
+        }
         // Geometry lies at depths >= top_depth; chords start a margin above it.
-        const T top = scene.top_m();
         const T top_depth = p_.surface_z_m - top;
         const T margin = std::max(p_.chord_tolerance_m, T(64) * eps * (std::abs(p_.surface_z_m) + std::abs(top)));
         st.chord_depth = top_depth - margin;
@@ -804,5 +858,6 @@ private:
 };
 
 static_assert(Propagation<layered<float>> && Propagation<layered<double>>);
+static_assert(RangeHeightPropagation<layered<float>> && RangeHeightPropagation<layered<double>>);
 
 } // namespace sss::propagation

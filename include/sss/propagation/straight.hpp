@@ -46,6 +46,17 @@ public:
         return to_path(r, scene.intersect(r, t_max_s * p_.sound_speed_mps));
     }
 
+    /// The world height (m) of the ray along r where it has gone range_m horizontally from its origin
+    /// (RangeHeightPropagation): origin z + range_m d_z / |d_h| for direction d; none for a vertical ray, or where
+    /// that point lies beyond c t_max_s along the ray.
+    [[nodiscard]] std::optional<T> height_at_range_m(const ray<T>& r, T range_m, T t_max_s) const {
+        const T horizontal = std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
+        const T length = std::sqrt(horizontal * horizontal + r.direction.z * r.direction.z);
+        if (!(range_m >= T(0) && horizontal > T(0))) return std::nullopt;
+        if (!(range_m * length <= t_max_s * p_.sound_speed_mps * horizontal)) return std::nullopt;
+        return r.origin.z + range_m * r.direction.z / horizontal;
+    }
+
     /// trace(r, scene, t_max_s), bit for bit, given that the ray from r's origin along a_launch met nothing within
     /// horizontal distance a_clear_range_m (m) (GuidedPropagation): a GuidedScene is told that it met nothing for
     /// distances along it below a_clear_range_m divided by its horizontal part; any other scene is asked as by trace.
@@ -90,5 +101,6 @@ private:
 
 static_assert(Propagation<straight<float>> && Propagation<straight<double>>);
 static_assert(BatchPropagation<straight<double>, scene::flat_seabed<double>>);
+static_assert(RangeHeightPropagation<straight<float>> && RangeHeightPropagation<straight<double>>);
 
 } // namespace sss::propagation

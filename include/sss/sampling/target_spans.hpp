@@ -13,17 +13,18 @@
 /// of a point on the axis are largest; between those points they change monotonically, short of the far side of a
 /// cylinder passing under the towfish). For each point at horizontal distance rho and height z (world), the launch
 /// depressions of the rays through the corners (rho +- r, z +- r) of its square in the vertical plane of its heading
-/// are found on the ray's world depression, the ray traced by the propagation itself to a vertical wall at that
-/// range (a ray refracted in layered water stays in the vertical plane of its launch; its height at a range falls
-/// monotonically with its launch depression while it does not turn): the rays that meet the primitive near that
-/// point pass between the highest and lowest of them. Those world directions are taken to the body frame (along =
-/// asin b.x, depression = atan2(b.z, s b.y), beam_direction inverted); the along-track span is widened by the
-/// point's angular radius asin(r / rho) either way, and both spans by a tenth of their width (a column's rays at a
-/// slightly different along-track angle lie within that). The depression through a corner is found by Newton's
-/// method from the straight ray's (two or three traces: refraction bends a ray little), by bisection where that
-/// fails; two corners per point where the square lies wholly below or above the towfish. A point whose corners
-/// cannot all be found (under the towfish, on the other side, beyond the rays' reach) adds nothing. Only the
-/// primitives within the line's range and the beam's along-track extent are traced.
+/// are found on the ray's world depression, the ray followed by the propagation itself to that range (its
+/// height_at_range_m, RangeHeightPropagation; else a trace to a vertical wall there). A ray refracted in layered water
+/// stays in the vertical plane of its launch, and its height at a range falls monotonically with its launch
+/// depression while it does not turn: the rays that meet the primitive near that point pass between the highest and
+/// lowest of them. Those world directions are taken to the body frame (along = asin b.x, depression =
+/// atan2(b.z, s b.y), beam_direction inverted); the along-track span is widened by the point's angular radius
+/// asin(r / rho) either way, and both spans by a tenth of their width (a column's rays at a slightly different
+/// along-track angle lie within that). The depression through a corner is found by Newton's method from the straight
+/// ray's (two or three steps: refraction bends a ray little), by bisection where that fails; two corners per point
+/// where the square lies wholly below or above the towfish. A point whose corners cannot all be found (under the
+/// towfish, on the other side, beyond the rays' reach) adds nothing. Only the primitives within the line's range and
+/// the beam's along-track extent are followed.
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +39,7 @@
 #include "sss/core/pose.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/core/types.hpp"
+#include "sss/propagation/concept.hpp"
 #include "sss/scene/object_set.hpp"
 
 namespace sss {
@@ -53,7 +55,8 @@ struct target_span {
 namespace detail {
 
 /// A vertical wall facing the origin's horizontal position at horizontal distance range_m along unit heading
-/// (hx, hy): the Scene through which target_spans asks a propagation where a ray is at that range.
+/// (hx, hy): the Scene through which target_spans asks a propagation that is not a RangeHeightPropagation where a
+/// ray is at that range.
 template <Real T> struct range_wall {
     using value_type = T;
     vec3<T> origin{};
@@ -93,14 +96,19 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
     // at horizontal distance rho; nullopt where no ray in the search interval does.
     constexpr double steepest = 1.565; // rad: 89.7 deg, the steepest ray asked
     const auto depression_through = [&](double hx, double hy, double rho, double z) -> std::optional<double> {
-        detail::range_wall<T> wall{p.position, static_cast<T>(hx), static_cast<T>(hy), static_cast<T>(rho)};
         const double geometric = std::atan2(z0 - z, rho);
-        // Height at the wall of the ray at depression e, or +-infinity where it never gets there (it turned).
+        // Height at range rho of the ray at depression e, or +-infinity where it never gets there (it turned).
         const auto height = [&](double e) {
             const ray<T> r{p.position, vec3<T>{static_cast<T>(std::cos(e) * hx), static_cast<T>(std::cos(e) * hy),
                                                static_cast<T>(-std::sin(e))}};
-            const auto path = propagation.trace(r, wall, t_max_s);
-            if (path) return double(path->surface.point.z);
+            std::optional<T> z_m;
+            if constexpr (RangeHeightPropagation<P>) {
+                z_m = propagation.height_at_range_m(r, static_cast<T>(rho), t_max_s);
+            } else {
+                const detail::range_wall<T> wall{p.position, static_cast<T>(hx), static_cast<T>(hy), static_cast<T>(rho)};
+                if (const auto path = propagation.trace(r, wall, t_max_s)) z_m = path->surface.point.z;
+            }
+            if (z_m) return double(*z_m);
             return e > geometric ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
         };
         // Newton's method from the straight ray, with the straight ray's slope dz/de = -rho / cos^2 e: refraction
