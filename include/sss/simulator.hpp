@@ -26,9 +26,10 @@
 /// edges are traced again as narrower columns, in thirds where they still disagree (ray_density.along_split, deeper
 /// where the beam weights a column more: sampling/division_depths.hpp; the seabed's own shadow edges too with
 /// ray_density.along_split_seabed; the narrowest at every other launch angle: ray_density.along_split_sparse), and
-/// so are the columns over a target narrower than three columns, which two columns passing either side of it would
-/// both miss (sampling/target_spans.hpp; ray_density.along_split_targets). On an open flat seabed nothing is refined
-/// and the line is unchanged.
+/// so are the columns over a small target (narrower than three columns, or a piece of a thin cylinder oblique to
+/// them), which two columns passing either side of it would both miss, and within a column two rays either side of
+/// it (sampling/target_spans.hpp; ray_density.along_split_targets). On an open flat seabed nothing is refined and the
+/// line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
 /// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
@@ -144,13 +145,16 @@ struct ray_density {
     /// more RMS (docs/design/along-track.md); false traces every launch angle there too.
     bool along_split_sparse = true;
     /// A small target (a sphere or cylinder of the scene's objects whose launch angles span at most three columns
-    /// along track, sampling/target_spans.hpp) divides the columns over it along track, over the launch intervals
-    /// that can meet it, whatever their edges agree on, until the narrowest columns there are a quarter of its
-    /// angular thickness wide (at most two levels past along_split's depth, 1/81 of a column by default): two columns whose launch cones pass either
-    /// side of a target both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones
-    /// 0.42 m apart), and a thin one (a cable, a tether) met by one narrow column is that column's width wide.
-    /// Nothing changes where no object lies within the beam. Like the rest of the along-track check, it needs
-    /// refinement (refine_depth > 0), along_split >= 3 and at least two columns.
+    /// along track, or a piece of a longer thin cylinder oblique to the columns, sampling/target_spans.hpp) divides
+    /// the columns over it along track, over the launch intervals that can meet it, whatever their edges agree on,
+    /// until the narrowest columns there are a quarter of its angular thickness wide (at most two levels past
+    /// along_split's depth, 1/81 of a column by default): two columns whose launch cones pass either side of a target
+    /// both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones 0.42 m apart), and a
+    /// thin one (a cable, a tether) met by one narrow column is that column's width wide. Within a column, a launch
+    /// interval over it wider than half its width in depression is halved, as for an edge: two rays on the seabed
+    /// either side of a cable oblique to the track agree and step over it. Nothing changes where no object lies
+    /// within the beam. Like the rest of the along-track check, it needs refinement (refine_depth > 0), along_split >= 3
+    /// and at least two columns.
     bool along_split_targets = true;
 };
 
@@ -377,7 +381,7 @@ private:
                     Visitor&& visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
         const double t_max_s = double(samples_) * dt_;
-        trace_frame f{p, sd, ext, T{}, T{}, T{}, T{}, {}};
+        trace_frame f{p, sd, ext, T{}, T{}, T{}, T{}, {}, nullptr};
         f.t_max_one_way = one_way_limit_s();
         f.max_range_m = static_cast<T>(0.5 * t_max_s * c_ref_);
         f.altitude = p.position.z - scene.seabed_height_m(p.position.x, p.position.y);
@@ -433,8 +437,9 @@ private:
         std::vector<target_span>& targets = b.targets;
         targets.clear();
         if (objects && density_.along_split_targets && !objects->empty())
-            target_spans(propagation_, *objects, p, sd, ext, 3.0 * (a1 - a0) / double(n_along), f.t_max_one_way,
+            target_spans(propagation_, *objects, p, sd, ext, (a1 - a0) / double(n_along), f.t_max_one_way,
                          double(f.max_range_m), targets);
+        if (!targets.empty()) f.targets = &targets;
         trace_into(0);
         for (std::size_t j = 0; j < n_along; ++j) {
             if (j + 1 < n_along) trace_into(j + 1);
@@ -534,6 +539,13 @@ private:
         beam_extent<T> ext;
         T t_max_one_way, max_range_m, altitude, clearance;
         column_density cd;
+        const std::vector<target_span>* targets; ///< the side's small targets (none: null)
+    };
+
+    /// A small target's launch depressions over one column (rad), and the widest launch interval there that cannot
+    /// step over it: half its width in depression (target_span::depression_thickness_rad).
+    struct thin_window {
+        double lo, hi, step;
     };
 
     /// Buffers reused from column to column.
@@ -541,6 +553,7 @@ private:
         std::vector<T> angles;
         std::vector<ray<T>> rays;
         std::vector<std::optional<path<T>>> paths;
+        std::vector<thin_window> thin;
     };
 
     /// One end of a located edge between surfaces: its two-way time (s) and the launch interval it lies in.
@@ -631,6 +644,27 @@ private:
         buffer_pool& pool;
         std::unique_ptr<trace_buffers> buffers;
     };
+
+    /// The small targets of f over the column between along-track angles lo and hi (rad) that a launch interval can
+    /// step over (a finite width in depression), into `out`; null where there are none.
+    static const std::vector<thin_window>* thin_windows(const trace_frame& f, double lo, double hi,
+                                                        std::vector<thin_window>& out) {
+        out.clear();
+        if (!f.targets) return nullptr;
+        for (const target_span& t : *f.targets)
+            if (t.along_hi > lo && t.along_lo < hi && std::isfinite(t.depression_thickness_rad))
+                out.push_back({t.depression_lo, t.depression_hi, 0.5 * t.depression_thickness_rad});
+        return out.empty() ? nullptr : &out;
+    }
+
+    /// Whether the launch interval between depressions e0 and e1 (rad) is wider than a small target of `thin` it
+    /// overlaps allows (thin_window::step).
+    static bool steps_over(const std::vector<thin_window>& thin, double e0, double e1) noexcept {
+        const double lo = std::min(e0, e1), hi = std::max(e0, e1);
+        for (const thin_window& w : thin)
+            if (hi >= w.lo && lo <= w.hi && hi - lo > w.step) return true;
+        return false;
+    }
 
     /// The launch intervals of the column between along-track angles lo and hi (rad), launched at depressions
     /// `angles`, that can meet a small target of `targets` lying over it, added to `out` (one range per target, one
@@ -765,7 +799,8 @@ private:
                                  column_sr,
                                  density_.refine_depth == 0 ? 0 : s.rays.size() / 2 + density_.refine_rays,
                                  density_.refine_depth == 0 ? 0 : shading_budget(s.rays.size()),
-                                 record};
+                                 record,
+                                 thin_windows(f, lo, hi, s.thin)};
         refine_budget budget{col.max_extra, col.max_shading};
         if (record) record->first.resize(angles.size());
         for (std::size_t i = 0; i < angles.size(); ++i) {
@@ -1008,7 +1043,8 @@ private:
                                  column_sr,
                                  angles.size() / 2 + density_.refine_rays,
                                  shading_budget(angles.size()),
-                                 record};
+                                 record,
+                                 thin_windows(f, lo, hi, s.thin)};
         refine_budget budget{col.max_extra, col.max_shading};
         std::size_t q = 0;
         for (const auto& [k0, k1] : runs) {
@@ -1042,6 +1078,7 @@ private:
         std::size_t max_extra;       ///< extra rays this column may trace to locate edges
         std::size_t max_shading;     ///< and to follow an echo that changes fast (facets' edges)
         column_record* record;       ///< where located edges go (none: not recorded)
+        const std::vector<thin_window>* thin; ///< the small targets over the column (none: null)
     };
 
     /// The extra rays a column has left: for edges, and for echoes that change fast. Apart, so that the many facets'
@@ -1083,18 +1120,23 @@ private:
         const ray_end* guide = near ? near : outer;
         const ray_end* fallback = outer != guide ? outer : nullptr;
         const double de = std::abs(b.e - a.e);
-        const detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
-                                                          2.0 * double(col.t_max_one_way), depth == 0 ? intervals : 1);
-        if (v == detail::tube_verdict::continuous) {
-            emit_tube(a, b, de, visit);
-            if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
-            return;
-        }
+        detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
+                                                    2.0 * double(col.t_max_one_way), depth == 0 ? intervals : 1);
+        // Two rays on one surface either side of a small target they both missed agree: where the interval is wider
+        // than a target over the column allows, it is halved until it is not (trace_column, thin_window).
+        const bool over_target =
+            v == detail::tube_verdict::continuous && col.thin && steps_over(*col.thin, a.e, b.e);
+        if (over_target) v = detail::tube_verdict::split;
         const double mid = 0.5 * (a.e + b.e);
         const T e_mid = static_cast<T>(mid);
         std::size_t& left = v == detail::tube_verdict::coarse ? budget.shading : budget.edges;
         const bool can_split = v != detail::tube_verdict::located && depth < density_.refine_depth && left > 0 &&
                                double(e_mid) != a.e && double(e_mid) != b.e;
+        if (v == detail::tube_verdict::continuous || (over_target && !can_split)) {
+            emit_tube(a, b, de, visit);
+            if constexpr (bouncing) emit_tube(a_bounce, b_bounce, de, visit);
+            return;
+        }
         if (!can_split) {
             if ((depth == 0 && v == detail::tube_verdict::split) || v == detail::tube_verdict::coarse)
                 emit_tube(a, b, de, visit); // not refined: as before

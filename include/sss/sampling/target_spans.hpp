@@ -30,6 +30,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/matrix.hpp>
@@ -49,7 +50,14 @@ namespace sss {
 struct target_span {
     double along_lo = 0, along_hi = 0;
     double depression_lo = 0, depression_hi = 0;
-    double thickness_rad = 0; ///< its least angular width across its axis (a sphere's, a cylinder's far end's) (rad)
+    /// Its least angular width across its axis (a sphere's, a cylinder's far end's); for a piece of a long cylinder, its
+    /// width along track at one depression (rad). How finely the columns over it divide.
+    double thickness_rad = 0;
+    /// Its width in depression at one along-track angle (rad): a sphere's angular diameter, a cylinder's thickness_rad
+    /// * hypot(d_along, d_depression) / |d_along| (d the change between its ends' centres); +infinity for a cylinder
+    /// whose ends' centres share their along-track angle (a vertical pole, a cable across the track), which one
+    /// column's rays meet all along it or not at all.
+    double depression_thickness_rad = std::numeric_limits<double>::infinity();
 };
 
 namespace detail {
@@ -81,16 +89,21 @@ template <Real T> struct range_wall {
 } // namespace detail
 
 /// The spans of the spheres and cylinders of `objects` on side `sd` of the ping at pose `p` that lie within the
-/// along-track extent `ext` and within range_m (the line's range) of the towfish, and whose along-track span is at
-/// most max_along_rad wide (wider targets cross columns, whose own comparison sees their edges), appended to `out`.
-/// Rays are followed for one-way time t_max_s.
+/// along-track extent `ext` and within range_m (the line's range) of the towfish, appended to `out`; column_rad is the
+/// along-track width of one column (rad). A primitive whose span is at most three columns wide gives one span. A wider
+/// cylinder (a cable or a pipeline oblique to the columns) is cut along its axis into pieces about half a column wide;
+/// each piece narrower along track at one depression than a column gives a span, its thickness_rad that width (the
+/// band a piece draws over the launch angles is thickness * hypot(d_along, d_depression) / |d_depression| wide along
+/// track, d the change between its ends' centres); the other pieces, and wider spheres, cross columns whose own
+/// comparison sees their edges. Rays are followed for one-way time t_max_s.
 template <class P, Real T>
 void target_spans(const P& propagation, const scene::object_set<T>& objects, const pose<T>& p, side sd,
-                  const beam_extent<T>& ext, double max_along_rad, T t_max_s, double range_m,
+                  const beam_extent<T>& ext, double column_rad, T t_max_s, double range_m,
                   std::vector<target_span>& out) {
     const double s = double(side_sign<T>(sd));
     const mat3<T> to_body = glm::transpose(p.body_to_world);
     const double x0 = double(p.position.x), y0 = double(p.position.y), z0 = double(p.position.z);
+    const double max_along_rad = 3.0 * column_rad;
     const double a_lo = double(ext.along_min_rad) - max_along_rad, a_hi = double(ext.along_max_rad) + max_along_rad;
     // The world depression (down positive) of the ray in the vertical plane of heading (hx, hy) that passes height z
     // at horizontal distance rho; nullopt where no ray in the search interval does.
@@ -130,10 +143,21 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
         }
         return 0.5 * (lo + hi);
     };
-    const auto add = [&](const vec3<T>* points, std::size_t n, double r) {
+    // The launch angles (body frame: along track, depression) of the ray in the vertical plane of heading (hx, hy) that
+    // passes height z at horizontal distance rho; nullopt where none does, or where it leaves on the other side.
+    const auto launch_angles = [&](double hx, double hy, double rho, double z) -> std::optional<std::pair<double, double>> {
+        const auto e = depression_through(hx, hy, rho, z);
+        if (!e) return std::nullopt;
+        const vec3<T> w{static_cast<T>(std::cos(*e) * hx), static_cast<T>(std::cos(*e) * hy), static_cast<T>(-std::sin(*e))};
+        const vec3<T> b = to_body * w;
+        if (!(s * double(b.y) > 0.0)) return std::nullopt;
+        return std::pair{std::asin(std::clamp(double(b.x), -1.0, 1.0)), std::atan2(double(b.z), s * double(b.y))};
+    };
+    // The span of the points of one primitive with radius r, widened; nullopt where no point is found.
+    const auto span_of = [&](const vec3<T>* points, std::size_t n, double r) -> std::optional<target_span> {
         target_span span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                          std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                         std::numeric_limits<double>::infinity()};
+                         std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
         // A point whose corners cannot all be found (below the towfish, on the other side, beyond the rays' reach)
         // adds nothing: the span is the other points'.
         for (std::size_t i = 0; i < n; ++i) {
@@ -163,31 +187,26 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
             here.thickness_rad = std::min(here.thickness_rad, 2.0 * std::asin(std::min(1.0, r / std::hypot(rho, z - z0))));
             bool found = true;
             for (std::size_t q = 0; q < n_corners && found; ++q) {
-                const auto e = depression_through(hx, hy, rho + corners[q][0], z + corners[q][1]);
-                const vec3<T> w = e ? vec3<T>{static_cast<T>(std::cos(*e) * hx), static_cast<T>(std::cos(*e) * hy),
-                                              static_cast<T>(-std::sin(*e))}
-                                    : vec3<T>{};
-                const vec3<T> b = to_body * w;
-                found = e && s * double(b.y) > 0.0;
+                const auto a = launch_angles(hx, hy, rho + corners[q][0], z + corners[q][1]);
+                found = bool(a);
                 if (!found) break;
-                const double along = std::asin(std::clamp(double(b.x), -1.0, 1.0));
-                const double dep = std::atan2(double(b.z), s * double(b.y));
-                here.along_lo = std::min(here.along_lo, along - half);
-                here.along_hi = std::max(here.along_hi, along + half);
-                here.depression_lo = std::min(here.depression_lo, dep);
-                here.depression_hi = std::max(here.depression_hi, dep);
+                here.along_lo = std::min(here.along_lo, a->first - half);
+                here.along_hi = std::max(here.along_hi, a->first + half);
+                here.depression_lo = std::min(here.depression_lo, a->second);
+                here.depression_hi = std::max(here.depression_hi, a->second);
             }
             if (found) span = here;
         }
-        if (!(span.along_lo <= span.along_hi)) return; // no point found
+        if (!(span.along_lo <= span.along_hi)) return std::nullopt; // no point found
         const double wa = 0.1 * (span.along_hi - span.along_lo), we = 0.1 * (span.depression_hi - span.depression_lo);
         span.along_lo -= wa;
         span.along_hi += wa;
         span.depression_lo -= we;
         span.depression_hi += we;
-        if (span.along_hi - span.along_lo > max_along_rad) return;
-        if (span.along_hi < double(ext.along_min_rad) || span.along_lo > double(ext.along_max_rad)) return;
-        out.push_back(span);
+        return span;
+    };
+    const auto within_beam = [&](const target_span& span) {
+        return !(span.along_hi < double(ext.along_min_rad) || span.along_lo > double(ext.along_max_rad));
     };
     // Quick rejection before any trace: a point whose straight-line along-track angle lies well outside the
     // extent, or which lies beyond the line's range (the twentieth covers sound speeds up to 5 % above the one
@@ -201,24 +220,91 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
         const double along = std::asin(std::clamp(double(b.x), -1.0, 1.0)), half = std::asin(std::min(1.0, r / len));
         return along + half >= a_lo && along - half <= a_hi;
     };
+    // Whether a cylinder's axis from a to b, whose points all lie outside the sector, crosses it: its ends' along-track
+    // angles lie either side of the sector, and its point closest to the towfish (closest) within the line's range.
+    const auto across_sector = [&](const vec3<T>& a, const vec3<T>& b, const vec3<T>& closest, double r) {
+        if (!(double(glm::length(closest - p.position)) - r <= 1.05 * range_m)) return false;
+        const auto along = [&](const vec3<T>& q) {
+            const vec3<T> d = q - p.position;
+            const T len = glm::length(d);
+            return len > T(0) ? std::asin(std::clamp(double((to_body * (d / len)).x), -1.0, 1.0)) : 0.0;
+        };
+        const double la = along(a), lb = along(b);
+        return (la < a_lo && lb > a_hi) || (lb < a_lo && la > a_hi);
+    };
+    // A cylinder's points: its ends, and where its axis passes closest to the towfish and, horizontally, closest below
+    // or above it (the along-track angle is largest where the distance is least, the depression where the horizontal
+    // distance is).
+    const auto axis_points = [&](const vec3<T>& a, const vec3<T>& b, vec3<T> (&points)[4]) {
+        const vec3<T> d = b - a;
+        const auto closest = [&](const vec3<T>& u, const vec3<T>& v) {
+            const T vv = glm::dot(v, v);
+            const T f = vv > T(0) ? std::clamp(glm::dot(u, v) / vv, T(0), T(1)) : T(0);
+            return a + f * d;
+        };
+        const vec3<T> to = p.position - a;
+        points[0] = a;
+        points[1] = b;
+        points[2] = closest(to, d);
+        points[3] = closest(vec3<T>{to.x, to.y, T(0)}, vec3<T>{d.x, d.y, T(0)});
+    };
     for (const scene::object<T>& o : objects.objects()) {
-        for (const scene::sphere<T>& sp : o.spheres())
-            if (ahead(sp.center_m(), double(sp.radius_m()))) add(&sp.center_m(), 1, double(sp.radius_m()));
+        for (const scene::sphere<T>& sp : o.spheres()) {
+            if (!ahead(sp.center_m(), double(sp.radius_m()))) continue;
+            auto span = span_of(&sp.center_m(), 1, double(sp.radius_m()));
+            if (!span || span->along_hi - span->along_lo > max_along_rad || !within_beam(*span)) continue;
+            span->depression_thickness_rad = span->thickness_rad;
+            out.push_back(*span);
+        }
         for (const scene::cylinder<T>& c : o.cylinders()) {
-            // Its ends, and where its axis passes closest to the towfish and, horizontally, closest below or above
-            // it: the along-track angle is largest where the distance is least, the depression where the
-            // horizontal distance is.
-            const vec3<T> a = c.end0_m(), d = c.end1_m() - c.end0_m();
-            const auto closest = [&](const vec3<T>& u, const vec3<T>& v) {
-                const T vv = glm::dot(v, v);
-                const T f = vv > T(0) ? std::clamp(glm::dot(u, v) / vv, T(0), T(1)) : T(0);
-                return a + f * d;
-            };
-            const vec3<T> to = p.position - a;
-            const vec3<T> points[4] = {a, c.end1_m(), closest(to, d),
-                                       closest(vec3<T>{to.x, to.y, T(0)}, vec3<T>{d.x, d.y, T(0)})};
+            vec3<T> points[4];
+            axis_points(c.end0_m(), c.end1_m(), points);
             const double r = double(c.radius_m());
-            if (ahead(points[0], r) || ahead(points[1], r) || ahead(points[2], r) || ahead(points[3], r)) add(points, 4, r);
+            if (!(ahead(points[0], r) || ahead(points[1], r) || ahead(points[2], r) || ahead(points[3], r) ||
+                  across_sector(points[0], points[1], points[2], r)))
+                continue;
+            // The launch angles of the centre of an end of (a piece of) its axis, and the band the piece draws over
+            // the launch angles: its change in along-track angle and in depression from end to end.
+            const auto centre = [&](const vec3<T>& q) -> std::optional<std::pair<double, double>> {
+                const double dx = double(q.x) - x0, dy = double(q.y) - y0, rho = std::hypot(dx, dy);
+                if (!(rho > 2.0 * r)) return std::nullopt;
+                return launch_angles(dx / rho, dy / rho, rho, double(q.z));
+            };
+            const auto band = [&](const vec3<T>& qa, const vec3<T>& qb) -> std::optional<std::pair<double, double>> {
+                const auto ea = centre(qa), eb = centre(qb);
+                if (!ea || !eb) return std::nullopt;
+                return std::pair{std::abs(eb->first - ea->first), std::abs(eb->second - ea->second)};
+            };
+            auto whole = span_of(points, 4, r);
+            if (!whole) continue;
+            const double width = whole->along_hi - whole->along_lo;
+            if (width <= max_along_rad) {
+                if (!within_beam(*whole)) continue;
+                if (const auto d = band(c.end0_m(), c.end1_m()); d && d->first > 0.0)
+                    whole->depression_thickness_rad = whole->thickness_rad * std::hypot(d->first, d->second) / d->first;
+                out.push_back(*whole);
+                continue;
+            }
+            // Cut along its axis into pieces about half a column wide along track (at most 1024).
+            const auto pieces = static_cast<std::size_t>(std::min(1024.0, std::ceil(2.0 * width / column_rad)));
+            const vec3<T> a = c.end0_m(), d = c.end1_m() - c.end0_m();
+            for (std::size_t k = 0; k < pieces; ++k) {
+                const vec3<T> pa = a + static_cast<T>(double(k) / double(pieces)) * d;
+                const vec3<T> pb = k + 1 == pieces ? c.end1_m() : a + static_cast<T>(double(k + 1) / double(pieces)) * d;
+                axis_points(pa, pb, points);
+                if (!(ahead(points[0], r) || ahead(points[1], r) || ahead(points[2], r) || ahead(points[3], r))) continue;
+                auto piece = span_of(points, 4, r);
+                if (!piece || piece->along_hi - piece->along_lo > max_along_rad || !within_beam(*piece)) continue;
+                // Its width along track at one depression: columns wider than that may pass either side of it.
+                const auto d = band(pa, pb);
+                if (!d) continue;
+                const double thick = piece->thickness_rad, slant = std::hypot(d->first, d->second);
+                const double along = thick * slant / std::max(d->second, 1e-300);
+                if (!(along < column_rad)) continue;
+                piece->thickness_rad = along;
+                if (d->first > 0.0) piece->depression_thickness_rad = thick * slant / d->first;
+                out.push_back(*piece);
+            }
         }
     }
 }
