@@ -89,7 +89,8 @@ struct ray_density {
     /// (sampling/detail/tube_refinement.hpp). Where the echo changes fast between two rays on one surface (the seabed's
     /// facets' edges, a curved object's shading), and beside a located edge whose ray meets its facet near grazing
     /// incidence (so that its echo lies where that facet does), up to 8 times as many rays as the column has are spent
-    /// apart from those (`refine_rays` bounds only the edges'), so that rough relief never leaves an edge unlocated.
+    /// apart from those (`refine_rays` bounds only the edges'), so that rough relief never leaves an edge unlocated;
+    /// and as many as for edges, apart again, to halve launch intervals over small targets (along_split_targets).
     std::size_t refine_depth = 12;
     std::size_t refine_rays = 64;  ///< extra rays per column for edges at most, on top of half the column's own rays
     /// Refine across the seabed's facets' edges too (sampling/detail/tube_refinement.hpp): between two seabed rays on
@@ -151,7 +152,7 @@ struct ray_density {
     /// along_split's depth, 1/81 of a column by default): two columns whose launch cones pass either side of a target
     /// both miss it and agree, and it vanished from the line (a sphere 0.16 m across between cones 0.42 m apart), and a
     /// thin one (a cable, a tether) met by one narrow column is that column's width wide. Within a column, a launch
-    /// interval over it wider than half its width in depression is halved, as for an edge: two rays on the seabed
+    /// interval over it wider than a fraction of its width in depression is halved, as for an edge: two rays on the seabed
     /// either side of a cable oblique to the track agree and step over it. Nothing changes where no object lies
     /// within the beam. Like the rest of the along-track check, it needs refinement (refine_depth > 0), along_split >= 3
     /// and at least two columns.
@@ -485,7 +486,7 @@ private:
             // depth at most (1/81 of a column by default, whatever the column's weight).
             std::size_t target_depth = depths[j];
             for (const target_span& t : targets) {
-                if (!(t.along_hi > lo && t.along_lo < hi)) continue;
+                if (!t.along || !(t.along_hi > lo && t.along_lo < hi)) continue;
                 const double need = std::ceil(std::log(4.0 * (hi - lo) / std::max(t.thickness_rad, 1e-12)) / std::log(3.0));
                 if (need > double(target_depth)) target_depth = std::min(levels + 2, static_cast<std::size_t>(need));
             }
@@ -543,7 +544,7 @@ private:
     };
 
     /// A small target's launch depressions over one column (rad), and the widest launch interval there that cannot
-    /// step over it: half its width in depression (target_span::depression_thickness_rad).
+    /// step over it, or sample it too coarsely (target_span::depression_step_rad).
     struct thin_window {
         double lo, hi, step;
     };
@@ -652,8 +653,8 @@ private:
         out.clear();
         if (!f.targets) return nullptr;
         for (const target_span& t : *f.targets)
-            if (t.along_hi > lo && t.along_lo < hi && std::isfinite(t.depression_thickness_rad))
-                out.push_back({t.depression_lo, t.depression_hi, 0.5 * t.depression_thickness_rad});
+            if (t.along_hi > lo && t.along_lo < hi && std::isfinite(t.depression_step_rad))
+                out.push_back({t.depression_lo, t.depression_hi, t.depression_step_rad});
         return out.empty() ? nullptr : &out;
     }
 
@@ -675,7 +676,7 @@ private:
         const std::size_t intervals = angles.empty() ? 0 : angles.size() - 1;
         if (intervals == 0) return;
         for (const target_span& t : targets) {
-            if (!(t.along_hi > lo && t.along_lo < hi)) continue;
+            if (!t.along || !(t.along_hi > lo && t.along_lo < hi)) continue;
             if (finest > 0.0 && !(4.0 * finest > t.thickness_rad)) continue;
             std::size_t k0 = intervals, k1 = 0;
             for (std::size_t k = 0; k < intervals; ++k) {
@@ -801,7 +802,7 @@ private:
                                  density_.refine_depth == 0 ? 0 : shading_budget(s.rays.size()),
                                  record,
                                  thin_windows(f, lo, hi, s.thin)};
-        refine_budget budget{col.max_extra, col.max_shading};
+        refine_budget budget{col.max_extra, col.max_shading, col.max_extra};
         if (record) record->first.resize(angles.size());
         for (std::size_t i = 0; i < angles.size(); ++i) {
             const T e = angles[i];
@@ -1045,7 +1046,7 @@ private:
                                  shading_budget(angles.size()),
                                  record,
                                  thin_windows(f, lo, hi, s.thin)};
-        refine_budget budget{col.max_extra, col.max_shading};
+        refine_budget budget{col.max_extra, col.max_shading, col.max_extra};
         std::size_t q = 0;
         for (const auto& [k0, k1] : runs) {
             ray_end prev, prev_bounce;
@@ -1075,17 +1076,19 @@ private:
         T along;
         T t_max_one_way;
         double column_sr;
-        std::size_t max_extra;       ///< extra rays this column may trace to locate edges
+        std::size_t max_extra;       ///< extra rays this column may trace to locate edges (and, apart, over targets)
         std::size_t max_shading;     ///< and to follow an echo that changes fast (facets' edges)
         column_record* record;       ///< where located edges go (none: not recorded)
         const std::vector<thin_window>* thin; ///< the small targets over the column (none: null)
     };
 
-    /// The extra rays a column has left: for edges, and for echoes that change fast. Apart, so that the many facets'
-    /// edges of rough relief never leave an occlusion's edge unlocated.
+    /// The extra rays a column has left: for edges, for echoes that change fast, and for launch intervals over small
+    /// targets. Apart, so that the many facets' edges of rough relief (or a field of boulders) never leave an
+    /// occlusion's edge unlocated.
     struct refine_budget {
         std::size_t edges;
         std::size_t shading;
+        std::size_t targets; ///< and to halve launch intervals over small targets (thin_window), as many as for edges
     };
     /// The extra rays a column of `rays` rays may spend on echoes that change fast: 8 per ray. A tube of a ray per
     /// sample across a facet's edge takes about 3 to reach the eighth of a sample that facets' edges are refined to
@@ -1098,8 +1101,9 @@ private:
     }
 
     /// The energy between adjacent rays a and b (and their bounced paths): one tube where they are neighbours on
-    /// one surface; else, while the depth and the column's budgets allow and the edge between them is not yet
-    /// located to `edge_tolerance` of a sample, the ray between them is traced and each half refined in turn.
+    /// one surface (and their interval is narrow enough for the small targets over the column: thin_window); else,
+    /// while the depth and the column's budgets allow and the edge between them is not yet located to
+    /// `edge_tolerance` of a sample, the ray between them is traced and each half refined in turn.
     /// A located edge closes the tube on each side: each end keeps its own half of the (now tiny) angular step; where
     /// one end meets its facet near grazing incidence, so that its half step still spans more than the edge's
     /// tolerance, the rays between them are traced on (from the shading budget) for where its echo lies, the edge
@@ -1129,7 +1133,9 @@ private:
         if (over_target) v = detail::tube_verdict::split;
         const double mid = 0.5 * (a.e + b.e);
         const T e_mid = static_cast<T>(mid);
-        std::size_t& left = v == detail::tube_verdict::coarse ? budget.shading : budget.edges;
+        std::size_t& left = over_target ? budget.targets
+                            : v == detail::tube_verdict::coarse ? budget.shading
+                                                                : budget.edges;
         const bool can_split = v != detail::tube_verdict::located && depth < density_.refine_depth && left > 0 &&
                                double(e_mid) != a.e && double(e_mid) != b.e;
         if (v == detail::tube_verdict::continuous || (over_target && !can_split)) {

@@ -924,6 +924,9 @@ TEST_CASE_TEMPLATE("a ray's height at a horizontal range is where its trace meet
                 check(channel, T(300), depth + 3, graze, range, T(3));
                 check(uniform, T(0), depth, graze, range, T(3));
             }
+    // Horizontal on the channel's axis (a knot whose layers both bend it back): it runs along the knot.
+    check(channel, T(300), 50.0, 0.0, 40.0, T(3));
+    check(channel, T(300), 50.0, 0.0, 900.0, T(3));
     // Time runs out: a ray 1 s long reaches about 1500 m, no further.
     check(thermo, T(200), 30.0, 1.0, 1400.0, T(1));
     check(thermo, T(200), 30.0, 1.0, 1600.0, T(1));

@@ -266,7 +266,9 @@ public:
             }
             const T left_m = range_m - m.x;
             if (step.boundary == layer_exit::none || !(step.exit.range_m < left_m)) {
-                const auto at = arc_point_at_range(step.arc, std::max(left_m, T(0)));
+                auto at = arc_point_at_range(step.arc, std::max(left_m, T(0)));
+                // (A range within rounding of where the ray leaves the layer: the exit.)
+                if (!at && step.boundary != layer_exit::none) at = step.exit;
                 if (!at || !(m.t + at->time_s <= t_max_s)) return std::nullopt;
                 return p_.surface_z_m - at->depth_m;
             }
@@ -340,7 +342,7 @@ private:
     }
 
     /// The shared start of rays from world z origin_z over geometry no higher than world z top (m); -infinity: no
-    /// geometry, and no chords.
+    /// geometry, and no chords; +infinity: geometry anywhere, chords from the source and no launch table.
     [[nodiscard]] trace_start start_above(T origin_z, T top) const {
         constexpr T eps = std::numeric_limits<T>::epsilon();
         trace_start st;
@@ -351,6 +353,10 @@ private:
                                                       " > layered.surface_z_m " + std::to_string(p_.surface_z_m) + ")");
         if (!(top > -std::numeric_limits<T>::infinity())) {
             st.chord_depth = std::numeric_limits<T>::infinity();
+            return st;
+        }
+        if (!(top < std::numeric_limits<T>::infinity())) {
+            st.chord_depth = -std::numeric_limits<T>::infinity();
             return st;
         }
         // Geometry lies at depths >= top_depth; chords start a margin above it.

@@ -19,12 +19,13 @@
 /// depression while it does not turn: the rays that meet the primitive near that point pass between the highest and
 /// lowest of them. Those world directions are taken to the body frame (along = asin b.x, depression =
 /// atan2(b.z, s b.y), beam_direction inverted); the along-track span is widened by the point's angular radius
-/// asin(r / rho) either way, and both spans by a tenth of their width (a column's rays at a slightly different
+/// asin(r / distance) either way, and both spans by a tenth of their width (a column's rays at a slightly different
 /// along-track angle lie within that). The depression through a corner is found by Newton's method from the straight
 /// ray's (two or three steps: refraction bends a ray little), by bisection where that fails; two corners per point
 /// where the square lies wholly below or above the towfish. A point whose corners cannot all be found (under the
-/// towfish, on the other side, beyond the rays' reach) adds nothing. Only the primitives within the line's range and
-/// the beam's along-track extent are followed.
+/// towfish, on the other side, or where the rays turn before it) adds nothing. Only the primitives within the line's
+/// range and the beam's along-track extent are followed. A cylinder wider than three columns along track is cut into
+/// pieces (target_spans), each its own span where it is thin.
 
 #include <algorithm>
 #include <cmath>
@@ -53,11 +54,19 @@ struct target_span {
     /// Its least angular width across its axis (a sphere's, a cylinder's far end's); for a piece of a long cylinder, its
     /// width along track at one depression (rad). How finely the columns over it divide.
     double thickness_rad = 0;
-    /// Its width in depression at one along-track angle (rad): a sphere's angular diameter, a cylinder's thickness_rad
-    /// * hypot(d_along, d_depression) / |d_along| (d the change between its ends' centres); +infinity for a cylinder
-    /// whose ends' centres share their along-track angle (a vertical pole, a cable across the track), which one
-    /// column's rays meet all along it or not at all.
+    /// Its width in depression at one along-track angle (rad): a sphere's angular diameter, a cylinder's (or a
+    /// piece's) angular thickness * hypot(d_along, d_depression) / |d_along| (d the change between its ends' centres);
+    /// +infinity for a cylinder whose ends' centres share their along-track angle (a vertical pole, a cable across the
+    /// track), which one column's rays meet all along it or not at all, or whose ends' launch angles are not found.
     double depression_thickness_rad = std::numeric_limits<double>::infinity();
+    /// The widest launch interval over it within a column (rad): half a sphere's depression_thickness_rad, an eighth of
+    /// a cylinder's (a cylinder's echo across its width, from glint to grazing, wants eight rays there: at half, a
+    /// cable nearly along the track came out 6 dB low at its glint; spheres at an eighth cost a dense boulder field 1.8
+    /// times the time instead of 1.5); +infinity with depression_thickness_rad.
+    double depression_step_rad = std::numeric_limits<double>::infinity();
+    /// Whether the columns over it divide along track; false for a piece of a cylinder wider along track at one
+    /// depression than a column, whose launch intervals alone are halved (depression_thickness_rad).
+    bool along = true;
 };
 
 namespace detail {
@@ -91,11 +100,13 @@ template <Real T> struct range_wall {
 /// The spans of the spheres and cylinders of `objects` on side `sd` of the ping at pose `p` that lie within the
 /// along-track extent `ext` and within range_m (the line's range) of the towfish, appended to `out`; column_rad is the
 /// along-track width of one column (rad). A primitive whose span is at most three columns wide gives one span. A wider
-/// cylinder (a cable or a pipeline oblique to the columns) is cut along its axis into pieces about half a column wide;
-/// each piece narrower along track at one depression than a column gives a span, its thickness_rad that width (the
-/// band a piece draws over the launch angles is thickness * hypot(d_along, d_depression) / |d_depression| wide along
-/// track, d the change between its ends' centres); the other pieces, and wider spheres, cross columns whose own
-/// comparison sees their edges. Rays are followed for one-way time t_max_s.
+/// cylinder (a cable or a pipeline oblique to the columns, or one crossing the beam with its ends either side of it) is
+/// cut along its axis, over the part within the line's range, into pieces whose ends and middle lie within half a
+/// column of each other along track (seen along straight lines; 4096 at most);
+/// each piece gives a span, its thickness_rad its width along track at one depression (the band a piece draws over the
+/// launch angles is thickness * hypot(d_along, d_depression) / |d_depression| wide along track, d the change between
+/// its ends' centres); a piece wider than a column there is marked `along = false` (its columns meet it; only their
+/// launch intervals over it are halved). Wider spheres cross columns whose own comparison sees their edges. Rays are followed for one-way time t_max_s.
 template <class P, Real T>
 void target_spans(const P& propagation, const scene::object_set<T>& objects, const pose<T>& p, side sd,
                   const beam_extent<T>& ext, double column_rad, T t_max_s, double range_m,
@@ -157,7 +168,8 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
     const auto span_of = [&](const vec3<T>* points, std::size_t n, double r) -> std::optional<target_span> {
         target_span span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                          std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                         std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+                         std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                         std::numeric_limits<double>::infinity(), true};
         // A point whose corners cannot all be found (below the towfish, on the other side, beyond the rays' reach)
         // adds nothing: the span is the other points'.
         for (std::size_t i = 0; i < n; ++i) {
@@ -165,7 +177,7 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
             const double rho = std::hypot(dx, dy);
             if (!(rho > 2.0 * r)) continue; // under the towfish
             const double hx = dx / rho, hy = dy / rho;
-            const double half = std::asin(std::min(1.0, r / rho));
+            const double half = std::asin(std::min(1.0, r / std::hypot(rho, z - z0))); // its angular radius
             // The corners that bound the rays through the square: below the towfish the flattest passes its far top
             // corner and the steepest its near bottom one; above it, the near top and far bottom; else all four.
             double corners[4][2];
@@ -220,8 +232,8 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
         const double along = std::asin(std::clamp(double(b.x), -1.0, 1.0)), half = std::asin(std::min(1.0, r / len));
         return along + half >= a_lo && along - half <= a_hi;
     };
-    // Whether a cylinder's axis from a to b, whose points all lie outside the sector, crosses it: its ends' along-track
-    // angles lie either side of the sector, and its point closest to the towfish (closest) within the line's range.
+    // Whether a cylinder's axis from a to b, none of whose points passes `ahead`, may still cross the sector: its ends'
+    // along-track angles span part of it, and its point closest to the towfish (closest) lies within the line's range.
     const auto across_sector = [&](const vec3<T>& a, const vec3<T>& b, const vec3<T>& closest, double r) {
         if (!(double(glm::length(closest - p.position)) - r <= 1.05 * range_m)) return false;
         const auto along = [&](const vec3<T>& q) {
@@ -230,7 +242,7 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
             return len > T(0) ? std::asin(std::clamp(double((to_body * (d / len)).x), -1.0, 1.0)) : 0.0;
         };
         const double la = along(a), lb = along(b);
-        return (la < a_lo && lb > a_hi) || (lb < a_lo && la > a_hi);
+        return std::min(la, lb) <= a_hi && std::max(la, lb) >= a_lo;
     };
     // A cylinder's points: its ends, and where its axis passes closest to the towfish and, horizontally, closest below
     // or above it (the along-track angle is largest where the distance is least, the depression where the horizontal
@@ -254,12 +266,37 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
             auto span = span_of(&sp.center_m(), 1, double(sp.radius_m()));
             if (!span || span->along_hi - span->along_lo > max_along_rad || !within_beam(*span)) continue;
             span->depression_thickness_rad = span->thickness_rad;
+            span->depression_step_rad = 0.5 * span->depression_thickness_rad;
             out.push_back(*span);
         }
         for (const scene::cylinder<T>& c : o.cylinders()) {
-            vec3<T> points[4];
-            axis_points(c.end0_m(), c.end1_m(), points);
             const double r = double(c.radius_m());
+            // The part of its axis within reach of the towfish (1.05 range_m + r / 2) and on this side of it (at least 4 r
+            // out, in the towfish's frame, so that its near end is not taken for one under the towfish): a cable
+            // passing under the towfish, or far beyond the line's range, is followed where the side's rays can meet it.
+            const vec3<T> a = c.end0_m(), d = c.end1_m() - c.end0_m();
+            double f0 = 0.0, f1 = 1.0;
+            {
+                const vec3<T> w = a - p.position;
+                const double dd = double(glm::dot(d, d)), wd = double(glm::dot(w, d));
+                const double reach = 1.05 * range_m + 0.5 * r, disc = wd * wd - dd * (double(glm::dot(w, w)) - reach * reach);
+                if (dd > 0.0) {
+                    if (!(disc > 0.0)) continue;
+                    const double root = std::sqrt(disc);
+                    f0 = std::max(f0, (-wd - root) / dd);
+                    f1 = std::min(f1, (-wd + root) / dd);
+                }
+                // s y(f) >= 4 r, y(f) = ya + f yd the body-frame y of a + f d.
+                const double ya = s * double((to_body * w).y), yd = s * double((to_body * d).y);
+                if (yd > 0.0) f0 = std::max(f0, (4.0 * r - ya) / yd);
+                else if (yd < 0.0) f1 = std::min(f1, (4.0 * r - ya) / yd);
+                else if (!(ya >= 4.0 * r)) continue;
+                if (!(f0 <= f1)) continue;
+            }
+            const auto at = [&](double f) { return f == 1.0 ? c.end1_m() : a + static_cast<T>(f) * d; };
+            const vec3<T> end0 = at(f0), end1 = at(f1);
+            vec3<T> points[4];
+            axis_points(end0, end1, points);
             if (!(ahead(points[0], r) || ahead(points[1], r) || ahead(points[2], r) || ahead(points[3], r) ||
                   across_sector(points[0], points[1], points[2], r)))
                 continue;
@@ -276,33 +313,55 @@ void target_spans(const P& propagation, const scene::object_set<T>& objects, con
                 return std::pair{std::abs(eb->first - ea->first), std::abs(eb->second - ea->second)};
             };
             auto whole = span_of(points, 4, r);
-            if (!whole) continue;
-            const double width = whole->along_hi - whole->along_lo;
-            if (width <= max_along_rad) {
+            if (whole && whole->along_hi - whole->along_lo <= max_along_rad) {
                 if (!within_beam(*whole)) continue;
-                if (const auto d = band(c.end0_m(), c.end1_m()); d && d->first > 0.0)
-                    whole->depression_thickness_rad = whole->thickness_rad * std::hypot(d->first, d->second) / d->first;
+                if (const auto dn = band(end0, end1); dn && dn->first > 0.0)
+                    whole->depression_thickness_rad = whole->thickness_rad * std::hypot(dn->first, dn->second) / dn->first;
+                whole->depression_step_rad = 0.125 * whole->depression_thickness_rad;
                 out.push_back(*whole);
                 continue;
             }
-            // Cut along its axis into pieces about half a column wide along track (at most 1024).
-            const auto pieces = static_cast<std::size_t>(std::min(1024.0, std::ceil(2.0 * width / column_rad)));
-            const vec3<T> a = c.end0_m(), d = c.end1_m() - c.end0_m();
-            for (std::size_t k = 0; k < pieces; ++k) {
-                const vec3<T> pa = a + static_cast<T>(double(k) / double(pieces)) * d;
-                const vec3<T> pb = k + 1 == pieces ? c.end1_m() : a + static_cast<T>(double(k + 1) / double(pieces)) * d;
+            // Cut along its axis, that part, halving each piece until the straight lines from the towfish to its ends
+            // and middle lie within half a column of each other along track (at most max_pieces pieces).
+            const auto along_at = [&](double f) {
+                const vec3<T> q = at(f) - p.position;
+                const T len = glm::length(q);
+                return len > T(0) ? std::asin(std::clamp(double((to_body * (q / len)).x), -1.0, 1.0)) : 0.0;
+            };
+            constexpr std::size_t max_pieces = 4096;
+            std::vector<std::pair<double, double>> todo{{f0, f1}};
+            std::size_t pieces = 1;
+            while (!todo.empty()) {
+                const auto [lo, hi] = todo.back();
+                todo.pop_back();
+                const double mid = 0.5 * (lo + hi);
+                const double al = along_at(lo), am = along_at(mid), ah = along_at(hi);
+                if (std::max({al, am, ah}) - std::min({al, am, ah}) > 0.5 * column_rad && pieces < max_pieces &&
+                    mid > lo && mid < hi) {
+                    todo.emplace_back(mid, hi);
+                    todo.emplace_back(lo, mid);
+                    ++pieces;
+                    continue;
+                }
+                const vec3<T> pa = at(lo), pb = at(hi);
                 axis_points(pa, pb, points);
                 if (!(ahead(points[0], r) || ahead(points[1], r) || ahead(points[2], r) || ahead(points[3], r))) continue;
                 auto piece = span_of(points, 4, r);
                 if (!piece || piece->along_hi - piece->along_lo > max_along_rad || !within_beam(*piece)) continue;
                 // Its width along track at one depression: columns wider than that may pass either side of it.
-                const auto d = band(pa, pb);
-                if (!d) continue;
-                const double thick = piece->thickness_rad, slant = std::hypot(d->first, d->second);
-                const double along = thick * slant / std::max(d->second, 1e-300);
-                if (!(along < column_rad)) continue;
+                const auto band_of = band(pa, pb);
+                if (!band_of) continue;
+                const double thick = piece->thickness_rad, slant = std::hypot(band_of->first, band_of->second);
+                const double along = std::max(thick, thick * slant / std::max(band_of->second, 1e-300));
+                if (band_of->first > 0.0) piece->depression_thickness_rad = thick * slant / band_of->first;
+                if (!(along < column_rad)) {
+                    // Wider along track than a column (a cable nearly along the track): the columns meet it, but two
+                    // rays of one may still step over it.
+                    if (!std::isfinite(piece->depression_thickness_rad)) continue;
+                    piece->along = false;
+                }
                 piece->thickness_rad = along;
-                if (d->first > 0.0) piece->depression_thickness_rad = thick * slant / d->first;
+                piece->depression_step_rad = 0.125 * piece->depression_thickness_rad;
                 out.push_back(*piece);
             }
         }
