@@ -310,8 +310,9 @@ public:
     /// reach (ReachBoundedPropagation), the rays see the scene over the rectangle they can reach
     /// (sampling/reach.hpp, scene/area_view.hpp): the same geometry, with the top of what lies there; and where that
     /// view can narrow (area_view::within), each column's rays see the objects only where the rectangle of that
-    /// column reaches one. The launch angles still follow the whole scene's top (sampling/launch_angles.hpp), so the
-    /// rays traced are the same either way.
+    /// column reaches one. The launch angles follow the whole seabed's top (sampling/launch_angles.hpp), so the rays
+    /// traced are the same either way, and the top of the objects over the rectangle: an object no ray of the side can
+    /// reach (a moored mine elsewhere in a large scene) changes no ray, as if it were not there (launch_top_m).
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
@@ -320,7 +321,7 @@ public:
             const scene::object_set<T>* objects = objects_of(scene);
             if constexpr (requires { view.objects_near(); })
                 if (!view.objects_near()) objects = nullptr;
-            trace_over(view, scene.top_m(), p, sd, objects, visit);
+            trace_over(view, launch_top_m(scene, r), p, sd, objects, visit);
         } else {
             trace_over(scene, scene.top_m(), p, sd, objects_of(scene), visit);
         }
@@ -328,7 +329,7 @@ public:
 
     /// trace over the seabed of `sc` alone, with the rays trace(sc, p, sd, visit) launches: the echo the seabed
     /// would return along the same rays if the objects were taken away (labels/ground_truth.hpp compares the two).
-    /// The launch angles follow the whole scene's top, objects included, as in trace(sc, ...).
+    /// The launch angles follow the top trace(sc, ...) launches for (launch_top_m).
     template <Scene Seabed, class Visitor>
     void trace_seabed_alone(const scene::scene<Seabed>& sc, const pose<T>& p, side sd, Visitor&& visit) const {
         // The columns over a small target divide as trace(sc, ...) divides them (ray_density::along_split_targets),
@@ -336,8 +337,8 @@ public:
         if constexpr (AreaScene<Seabed> && ReachBoundedPropagation<P>) {
             const plane_rectangle<T> r = *side_area(p, sd);
             const bool near = std::isfinite(sc.objects().top_m(r.lo, r.hi));
-            trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), sc.top_m(), p, sd, near ? &sc.objects() : nullptr,
-                       visit);
+            trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), launch_top_m(sc, r), p, sd,
+                       near ? &sc.objects() : nullptr, visit);
         } else {
             trace_over(sc.seabed(), sc.top_m(), p, sd, &sc.objects(), visit);
         }
@@ -373,6 +374,18 @@ private:
             return &s.objects();
         else
             return nullptr;
+    }
+
+    /// The top the rays of one side launch for, where they stay over rectangle r: a scene with objects
+    /// (scene::scene), the higher of its whole seabed's top and the top of its objects that reach over r (one
+    /// moored mine in a 1 km field had made every ping launch rays for its height); any other scene, its own top.
+    template <Scene Sc> [[nodiscard]] static T launch_top_m(const Sc& s, const plane_rectangle<T>& r) {
+        if constexpr (requires { s.seabed(); { s.objects() } -> std::same_as<const scene::object_set<T>&>; }) {
+            const T seabed = s.seabed().top_m(), objects = s.objects().top_m(r.lo, r.hi);
+            return std::isfinite(objects) ? std::max(seabed, objects) : seabed;
+        } else {
+            return s.top_m();
+        }
     }
 
     /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`; the

@@ -349,7 +349,8 @@ private:
     using propagation::straight<double>::reach_speed_mps;
 };
 
-TEST_CASE("Labels are the same whether or not the bare seabed's pass is skipped on sides no object reaches, under a raised top") {
+TEST_CASE("Labels are the same whether or not the bare seabed's pass is skipped on sides no object reaches, and a "
+          "moored mine no side reaches changes none") {
     namespace sb = sss::seabed;
     auto bed = sss_test::rough_field<double>(161, 321, 0.25, {0.0, 0.0}, 11); // 40 m x 80 m
     const auto h = sb::seabed_height_of(bed);
@@ -362,28 +363,35 @@ TEST_CASE("Labels are the same whether or not the bare seabed's pass is skipped 
     pipe.radius_m = 0.15;
     pipe.ids = {.material = 1, .object = 2, .label = 2};
     objs.push_back(sb::pipeline(pipe, h));
-    // A moored mine near the far end raises the scene's top, and with it every side's launch angles.
+    // A moored mine beyond the far end, 4 m up: it would raise the scene's top, but no side of these pings reaches
+    // it, so no side launches for its height (simulator::trace: the top of the objects over the side's area).
     sb::tethered_mine_params<double> mine;
     mine.anchor_m = {12.0, 70.0};
     mine.case_height_m = 4.0;
     mine.object_id = 3;
     mine.class_id = 3;
-    objs.push_back(sb::tethered_mine(mine, h));
+    std::vector<object<double>> with_mine = objs;
+    with_mine.push_back(sb::tethered_mine(mine, h));
     const double z0 = bed.seabed_height_m(8.0, 10.0);
+    const scene::scene world_mine(bed, object_set<double>(std::move(with_mine)));
     const scene::scene world(std::move(bed), object_set<double>(std::move(objs)));
-    REQUIRE(world.top_m() > world.seabed().top_m() + 1.0);
+    REQUIRE(world_mine.top_m() > world.seabed().top_m() + 1.0);
+    // Without the mine, the two objects lie below the seabed's highest crest: an unbounded simulator, which launches for
+    // the whole scene's top, launches the same rays.
+    REQUIRE(world.top_m() == world.seabed().top_m());
     const motion::straight_line_params<double> tow{.start_m = {8.0, 5.0}, .heading_deg = 0.0, .speed_mps = 2.5,
                                                    .altitude_m = z0 + 9.0, .ping_interval_s = 1.0};
     const auto sim = make_simulator(30.0, 1.0, tow);
     using unbounded_t = simulator<scattering::lambertian<double>, unbounded_straight, beam::ideal_fan<double>, motion::straight_line<double>>;
     static_assert(!ReachBoundedPropagation<unbounded_straight>);
     const unbounded_t whole(sim.scattering(), unbounded_straight{}, sim.beam(), sim.motion(), sim.receiver(), sim.density());
-    const std::size_t pings = 24; // y = 5 .. 62.5 m: the mine beyond, only its top shared
+    const std::size_t pings = 24; // y = 5 .. 62.5 m: the mine beyond
     std::size_t skipped = 0, traced = 0;
     for (std::size_t i = 0; i < pings; ++i)
         for (side sd : {side::port, side::starboard}) {
             const bool skip = sss::detail::bare_pass_repeats_first(sim, world, sim.motion().pose_at(i), sd);
             (skip ? skipped : traced) += 1;
+            CHECK(sss::detail::bare_pass_repeats_first(sim, world_mine, sim.motion().pose_at(i), sd) == skip);
             CHECK_FALSE(sss::detail::bare_pass_repeats_first(whole, world, whole.motion().pose_at(i), sd));
         }
     CHECK(skipped > 20u); // most sides see no object ...
@@ -392,6 +400,9 @@ TEST_CASE("Labels are the same whether or not the bare seabed's pass is skipped 
     const label_image full = label_render(whole, world, 0, pings, {.threads = 1});
     CHECK(fast.values == full.values);
     CHECK(render_labelled(sim, world, 0, pings, {.threads = 2}).labels.values == full.values);
+    const auto mined = render_labelled(sim, world_mine, 0, pings, {.threads = 2});
+    CHECK(mined.labels.values == full.values);
+    CHECK(mined.image.values == render_labelled(sim, world, 0, pings, {.threads = 1}).image.values);
     std::size_t highlights = 0, shadows = 0;
     for (const sample_label& l : full.values) {
         highlights += l.kind == sample_class::highlight;

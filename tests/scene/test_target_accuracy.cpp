@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <glm/matrix.hpp>
@@ -248,5 +249,34 @@ TEST_CASE("a thin cable oblique to the track, crossing every column, renders at 
         CHECK(e.p99_db <= 0.3);
         CHECK(e.shadow_misses == 0);
         if (c.angle_deg != 30.0) CHECK(e_off.p99_db > 1.0); // at 30 deg the columns alone reach 0.9 dB
+    }
+}
+
+TEST_CASE("objects outside the beam, beyond the line's range or moored out of it leave both lines bit for bit as with "
+          "no objects") {
+    // The check by target follows only what lies within the beam and the range, and the rays launch for the top of the
+    // objects a side can reach (a moored mine elsewhere raises no ray): the scene's objects are otherwise met by no
+    // ray. Behind and ahead of the 8 deg fan (0.25 rad off its axis), 45 m out on a 30 m line, and a mine moored 5 m up
+    // 6 m ahead.
+    const auto relief = [](double x, double y) { return 0.05 * std::sin(0.9 * x + 0.4 * y); };
+    // Each its own object: an object counts as near a side where its bounds reach over the side's area.
+    const sss::scene::surface_ids ids{.material = 1, .object = 1, .label = 1};
+    std::vector<sss::scene::object<double>> objs;
+    for (const auto& [centre, radius] : {std::pair{sss::vec3<double>{23.0, -6.0, 0.2}, 0.2}, std::pair{sss::vec3<double>{-20.0, 5.5, 0.2}, 0.2},
+                                         std::pair{sss::vec3<double>{45.0, 0.0, 0.2}, 0.2}, std::pair{sss::vec3<double>{-44.0, 1.0, 0.2}, 0.2}})
+        objs.push_back(sss::scene::object<double>({sss::scene::sphere<double>(centre, radius, ids)}, {}));
+    objs.push_back(sss::scene::object<double>({}, {sss::scene::cylinder<double>({18.0, 8.0, 0.03}, {28.0, 8.0, 0.03}, 0.03, ids)}));
+    objs.push_back(sss::scene::object<double>({}, {sss::scene::cylinder<double>({-30.0, -7.0, 0.03}, {-15.0, -9.0, 0.03}, 0.03, ids)}));
+    objs.push_back(sss::scene::object<double>({sss::scene::sphere<double>({20.0, 6.0, 5.0}, 0.5, ids)},
+                                              {sss::scene::cylinder<double>({20.0, 6.0, 0.0}, {20.0, 6.0, 4.5}, 0.01, ids)}));
+    const auto with = sss::scene::scene(sss_test::footprint_field<double>(relief), sss::scene::object_set<double>(std::move(objs)));
+    const auto without = sss::scene::scene(sss_test::footprint_field<double>(relief), sss::scene::object_set<double>());
+    const auto sim = cable_sim({});
+    for (const bool tilted : {false, true}) {
+        CAPTURE(tilted);
+        const auto pose = sss_test::rough_pose<double>(tilted);
+        const auto a = sim.ping_at(with, pose), b = sim.ping_at(without, pose);
+        CHECK(a.port == b.port);
+        CHECK(a.starboard == b.starboard);
     }
 }

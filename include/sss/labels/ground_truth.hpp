@@ -9,8 +9,8 @@
 ///    material) and each object (by id). render_labelled takes these echoes from the trace that renders the
 ///    image (simulator::ping with an observer), so image and labels cost two traces, not three;
 /// 2. through the seabed alone (`scene.seabed()`), with the rays of the first pass (`simulator::trace_seabed_alone`:
-///    the same launch angles, which follow the whole scene's top): the echo the seabed would return if no object
-///    were there.
+///    the same launch angles, which follow the top of the seabed and of the objects the side can reach): the echo
+///    the seabed would return if no object were there.
 ///    For each such tube, the ray of its first end (`tube_echo::launch`) is traced again through the objects alone,
 ///    by the simulator's own propagation, up to the time it took to meet the seabed (`tube_echo::first_leg_s`): an
 ///    object it meets first blocks that energy, and the blocked energy is counted against that object. So shadows
