@@ -310,9 +310,9 @@ public:
     /// reach (ReachBoundedPropagation), the rays see the scene over the rectangle they can reach
     /// (sampling/reach.hpp, scene/area_view.hpp): the same geometry, with the top of what lies there; and where that
     /// view can narrow (area_view::within), each column's rays see the objects only where the rectangle of that
-    /// column reaches one. The launch angles follow the whole seabed's top (sampling/launch_angles.hpp), so the rays
-    /// traced are the same either way, and the top of the objects over the rectangle: an object no ray of the side can
-    /// reach (a moored mine elsewhere in a large scene) changes no ray, as if it were not there (launch_top_m).
+    /// column reaches one. The rays launch (sampling/launch_angles.hpp) for the higher of the whole seabed's top and
+    /// the top of the objects over the rectangle (launch_top_m): an object no ray of the side can reach (a moored
+    /// mine elsewhere in a large scene) changes no ray, as if it were not there.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
         if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
@@ -334,11 +334,16 @@ public:
     void trace_seabed_alone(const scene::scene<Seabed>& sc, const pose<T>& p, side sd, Visitor&& visit) const {
         // The columns over a small target divide as trace(sc, ...) divides them (ray_density::along_split_targets),
         // so that the rays the labels test against the objects include those that meet it.
-        if constexpr (AreaScene<Seabed> && ReachBoundedPropagation<P>) {
+        // A scene::scene is an AreaScene whatever its seabed (scene.hpp): trace(sc, ...) launches for launch_top_m
+        // wherever the propagation bounds its reach, and so does this, over the seabed's own view where it has one.
+        if constexpr (ReachBoundedPropagation<P>) {
             const plane_rectangle<T> r = *side_area(p, sd);
             const bool near = std::isfinite(sc.objects().top_m(r.lo, r.hi));
-            trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), launch_top_m(sc, r), p, sd,
-                       near ? &sc.objects() : nullptr, visit);
+            const scene::object_set<T>* objects = near ? &sc.objects() : nullptr;
+            if constexpr (AreaScene<Seabed>)
+                trace_over(scene::area_view<Seabed>(sc.seabed(), r.lo, r.hi), launch_top_m(sc, r), p, sd, objects, visit);
+            else
+                trace_over(sc.seabed(), launch_top_m(sc, r), p, sd, objects, visit);
         } else {
             trace_over(sc.seabed(), sc.top_m(), p, sd, &sc.objects(), visit);
         }
@@ -376,9 +381,10 @@ private:
             return nullptr;
     }
 
-    /// The top the rays of one side launch for, where they stay over rectangle r: a scene with objects
-    /// (scene::scene), the higher of its whole seabed's top and the top of its objects that reach over r (one
-    /// moored mine in a 1 km field had made every ping launch rays for its height); any other scene, its own top.
+    /// The top the rays of one side launch for, where they stay over rectangle r: a scene with a seabed and objects
+    /// (scene::scene, or a wrapper that shows both: seabed() and objects()), the higher of its whole seabed's top and
+    /// the top of its objects whose bounds reach over r (one moored mine in a 1 km field had made every ping launch
+    /// rays for its height); any other scene, its own top (correct, but an object elsewhere then adds rays).
     template <Scene Sc> [[nodiscard]] static T launch_top_m(const Sc& s, const plane_rectangle<T>& r) {
         if constexpr (requires { s.seabed(); { s.objects() } -> std::same_as<const scene::object_set<T>&>; }) {
             const T seabed = s.seabed().top_m(), objects = s.objects().top_m(r.lo, r.hi);

@@ -153,18 +153,12 @@ sss::scene::object_set<double> one(std::vector<sss::scene::sphere<double>> spher
     return sss::scene::object_set<double>(std::move(objs));
 }
 
-// A cable 6 cm thick and `length_m` long lying on z = 0, its middle at (24, 0.1) on the starboard side of a towfish
-// heading north, turned `turned_deg` from straight across the track towards it.
-sss::scene::cylinder<double> cable(double turned_deg, double length_m, vec3<double> middle = {24.0, 0.1, 0.03}) {
-    const vec3<double> half = 0.5 * length_m * vec3<double>{std::cos(turned_deg * deg), std::sin(turned_deg * deg), 0.0};
-    return sss::scene::cylinder<double>(middle - half, middle + half, 0.03, {.material = 1, .object = 1, .label = 1});
-}
-
 template <class P> void check_every_target(const P& water) {
     for (const bool tilted : {false, true}) {
         CAPTURE(tilted);
         const auto p = towfish(tilted);
-        // The towfish heads north (yaw 20 deg when tilted): starboard is east. Targets ahead of it along its heading.
+        // The towfish heads north (yaw 20 deg when tilted): starboard is east. Targets placed across and along its
+        // heading (along: ahead positive).
         const auto at = [&](double across_m, double along_m, double z_m) {
             const vec3<double> fwd{std::sin(p.yaw_rad), std::cos(p.yaw_rad), 0.0};
             const vec3<double> right{std::cos(p.yaw_rad), -std::sin(p.yaw_rad), 0.0};
@@ -214,12 +208,13 @@ template <class P> void check_every_target(const P& water) {
                 }
             }
         }
-        {   // a moored mine, abeam and ahead: its case (0.3 m in radius at 5 m) and its tether
+        {   // a moored mine, abeam and ahead: its case (0.15 m in radius, 5 m up: narrower than three columns, a span
+            // of its own) and its tether
             for (const double ahead_m : {0.0, 0.2}) {
                 CAPTURE(ahead_m);
                 const vec3<double> anchor = at(30.0, ahead_m, 0.0);
                 const auto objects =
-                    one({{anchor + vec3<double>{0.0, 0.0, 5.0}, 0.3, {.material = 1}}},
+                    one({{anchor + vec3<double>{0.0, 0.0, 5.0}, 0.15, {.material = 1}}},
                         {sss::scene::cylinder<double>(anchor, anchor + vec3<double>{0.0, 0.0, 4.7}, 0.01, {.material = 1})});
                 const auto spans = spans_of(water, objects, p, sss::side::starboard);
                 CHECK(check_covered(water, objects, p, sss::side::starboard, spans, 0.5) > 1000);
@@ -243,7 +238,7 @@ TEST_CASE("every ray that meets a small target leaves within its span, straight 
 TEST_CASE("targets beyond the line's range, outside the beam along track or on the other side give no span") {
     const auto water = sss::propagation::straight<double>{};
     const auto p = towfish(false);
-    // 1.1 times the range out, 5 m behind the towfish (0.2 rad outside the beam), and to port.
+    // 1.1 times the range out, 5 m behind the towfish (0.19 rad off the beam's axis, 0.16 rad outside it), and to port.
     const auto objects = one({{{std::sqrt(1.1 * range_m * 1.1 * range_m - 100.0), 0.0, 0.0}, 0.05, {.material = 1}},
                               {{24.0, -5.0, 0.0}, 0.05, {.material = 1}},
                               {{-24.0, 0.0, 0.0}, 0.05, {.material = 1}}},
@@ -259,11 +254,14 @@ TEST_CASE("targets beyond the line's range, outside the beam along track or on t
 TEST_CASE("a cable is never cut into more than 4096 pieces, however narrow the columns") {
     const auto water = sss::propagation::straight<double>{};
     const auto p = towfish(false);
-    const auto objects = one({}, {cable(45.0, 400.0)});
-    // Columns of a microradian: halving stops at the cap; the pieces still wider than three columns are left to the
-    // columns' own comparison.
-    const auto spans = spans_of(water, objects, p, sss::side::starboard, 1e-6);
-    CHECK(spans.size() <= 4096);
-    // At the array's own columns, far fewer.
-    CHECK(spans_of(water, objects, p, sss::side::starboard).size() < 64);
+    // A wire 0.2 mm across, 400 m long at 45 deg to the track through the beam, under columns of 10 urad: each piece
+    // half a column wide along track is thin enough to be a target, and the 0.06 rad beam alone would take about
+    // 12,000 of them (more than 4096 spans without the cap).
+    const vec3<double> mid{24.0, 0.1, 0.0001}, half{141.42, 141.42, 0.0};
+    const auto wire = one({}, {sss::scene::cylinder<double>(mid - half, mid + half, 0.0001, {.material = 1})});
+    CHECK(spans_of(water, wire, p, sss::side::starboard, 1e-5).size() <= 4096);
+    // At a 5 mrad column the same wire's pieces in the beam are a few dozen.
+    const auto spans = spans_of(water, wire, p, sss::side::starboard);
+    CHECK(spans.size() > 0);
+    CHECK(spans.size() < 64);
 }

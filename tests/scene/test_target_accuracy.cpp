@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -269,12 +270,20 @@ TEST_CASE("objects outside the beam, beyond the line's range or moored out of it
     objs.push_back(sss::scene::object<double>({}, {sss::scene::cylinder<double>({-30.0, -7.0, 0.03}, {-15.0, -9.0, 0.03}, 0.03, ids)}));
     objs.push_back(sss::scene::object<double>({sss::scene::sphere<double>({20.0, 6.0, 5.0}, 0.5, ids)},
                                               {sss::scene::cylinder<double>({20.0, 6.0, 0.0}, {20.0, 6.0, 4.5}, 0.01, ids)}));
+    // Within the area the starboard rays can reach, so that the columns ask the objects and the check by target
+    // looks at them, but below the seabed's crests (no higher launch): 2 m ahead at 10 m (0.14 rad off the beam's axis,
+    // outside it) and 31 m out on the 30 m line.
+    objs.push_back(sss::scene::object<double>({sss::scene::sphere<double>({10.0, 2.0, -0.05}, 0.04, ids)}, {}));
+    objs.push_back(sss::scene::object<double>({sss::scene::sphere<double>({29.5, 0.0, -0.02}, 0.01, ids)}, {}));
     const auto with = sss::scene::scene(sss_test::footprint_field<double>(relief), sss::scene::object_set<double>(std::move(objs)));
     const auto without = sss::scene::scene(sss_test::footprint_field<double>(relief), sss::scene::object_set<double>());
     const auto sim = cable_sim({});
     for (const bool tilted : {false, true}) {
         CAPTURE(tilted);
         const auto pose = sss_test::rough_pose<double>(tilted);
+        const auto r = *sim.side_area(pose, sss::side::starboard);
+        REQUIRE(sss::scene::area_view<std::remove_cvref_t<decltype(with)>>(with, r.lo, r.hi).objects_near());
+        REQUIRE(with.top_m(r.lo, r.hi) == with.seabed().top_m(r.lo, r.hi));
         const auto a = sim.ping_at(with, pose), b = sim.ping_at(without, pose);
         CHECK(a.port == b.port);
         CHECK(a.starboard == b.starboard);

@@ -6,8 +6,9 @@
 /// up to the seabed hit (so objects behind the seabed, and the boxes they sit in, cost nothing); an object
 /// hit at exactly the seabed's distance wins. Shadows need nothing more: a ray stopped by an object never
 /// reaches the seabed behind it. `seabed_height_m` is the seabed's (objects do not change the nominal
-/// altitude that steers ray sampling); `top_m` is the higher of the seabed's top and the objects' tops,
-/// so that the simulator launches rays towards everything that can return an echo.
+/// altitude that steers ray sampling); `top_m` is the higher of the seabed's top and the objects' tops, and
+/// `top_m(lo, hi)` the same over a rectangle: the simulator launches a side's rays for the seabed's top and the
+/// objects' over the area those rays can reach, towards everything that can return an echo.
 
 #include <algorithm>
 #include <cstddef>
