@@ -203,6 +203,10 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto untargeted_again = switched_off(&sss::scene_file::render::along_split_targets);
     CHECK_FALSE(untargeted_again.run.along_split_targets);
     CHECK_FALSE(sss::scene_file::rays_of(untargeted_again).along_split_targets);
+    CHECK(sss::scene_file::rays_of(again).along_split_nadir);
+    const auto nadir_again = switched_off(&sss::scene_file::render::along_split_nadir);
+    CHECK_FALSE(nadir_again.run.along_split_nadir);
+    CHECK_FALSE(sss::scene_file::rays_of(nadir_again).along_split_nadir);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
     const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
     CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));

@@ -402,6 +402,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.boolean("bracket_facet_edges", d.run.bracket_facet_edges);
         r.boolean("along_split_sparse", d.run.along_split_sparse);
         r.boolean("along_split_targets", d.run.along_split_targets);
+        r.boolean("along_split_nadir", d.run.along_split_nadir);
         r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }

@@ -193,6 +193,7 @@ struct render {
     bool bracket_facet_edges = true;         ///< there, the rays either side of where the edge lies (not halving)
     bool along_split_sparse = true;          ///< the narrowest columns at every other launch angle
     bool along_split_targets = true;         ///< small targets divide the columns over them along track
+    bool along_split_nadir = true;           ///< near the first return, columns over a seabed not one plane divide
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 
