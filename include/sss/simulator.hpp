@@ -28,7 +28,8 @@
 /// ray_density.along_split_seabed; the narrowest at every other launch angle: ray_density.along_split_sparse), and
 /// so are the columns over a small target (narrower than three columns, or a piece of a thin cylinder oblique to
 /// them), which two columns passing either side of it would both miss, and within a column two rays either side of
-/// it (sampling/target_spans.hpp; ray_density.along_split_targets). On an open flat seabed nothing is refined and the
+/// it (sampling/target_spans.hpp; ray_density.along_split_targets), and near the first return, over a seabed that is not
+/// one plane there, every column (ray_density.along_split_nadir). On an open flat seabed nothing is refined and the
 /// line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
@@ -159,16 +160,19 @@ struct ray_density {
     bool along_split_targets = true;
     /// Near the first return (echoes that begin before the two-way time of a slant range of sqrt(2) times the towfish's
     /// altitude: 45 degrees from the vertical over a level seabed), a column over a seabed that is not one plane there is divided
-    /// into thirds along track, whatever its edges agree on (deeper where the thirds' edges disagree). There the time
+    /// into thirds along track, whatever its edges agree on (deeper, to the column's depth, where the thirds' edges
+    /// disagree). There the time
     /// along a column turns at every facet the rays meet square on (dt/de = 0, where the echo per sample peaks as a
     /// caustic, and Jackson's model its Kirchhoff term), each column at its own time: summed, a few columns make a
     /// comb of such peaks a sample or two apart that the along-track integral smooths, and no edge marks it. On the
-    /// 1 km survey of bench/bench_survey.cpp (72 lines against a converged render) it takes the worst line from 0.45 to
-    /// 0.15 dB RMS and 2.9 to 0.6 dB at the 99th percentile, the RMS of the lines' RMS from 0.182 to 0.155 dB and the
+    /// 1 km survey of bench/bench_survey.cpp (72 lines against a converged render) it takes the line of the worst 99th
+    /// percentile from 0.45 to 0.15 dB RMS and 2.9 to 0.6 dB there, the RMS of the lines' RMS from 0.182 to 0.155 dB and the
     /// lines above 0.3 dB RMS or 1 dB at the 99th percentile from 9 to 5, no line worse, for about 3 % more time
-    /// (docs/design/along-track.md). A level or sloping plane seabed is unchanged bit for bit. Where the line ends
-    /// before that time (a range under 1.4 times the altitude) the whole of each column is divided so. Like the rest of
-    /// the along-track check, it needs refinement (refine_depth > 0), along_split >= 3 and at least two columns.
+    /// (docs/design/along-track.md). A level or sloping plane seabed is unchanged bit for bit where its facets' normals
+    /// agree to rounding (any plane in double; in float, heights within about 250 m of zero at 0.05 m cells, as for
+    /// refine_facets). Where the line ends before that time (a range under 1.4 times the altitude) the whole of each
+    /// column's launch intervals is divided so. Like the rest of the along-track check, it needs refinement
+    /// (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_nadir = true;
 };
 
@@ -408,7 +412,8 @@ private:
     }
 
     /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`; the
-    /// small targets among `objects` (none: nullptr) divide the columns over them (ray_density::along_split_targets).
+    /// small targets among `objects` (none: nullptr) divide the columns over them (ray_density::along_split_targets), and
+    /// the stretch of each column near the first return over a seabed that is not one plane (ray_density::along_split_nadir).
     template <Scene Sc, class Visitor>
     void trace_over(const Sc& scene, T top_m, const pose<T>& p, side sd, const scene::object_set<T>* objects,
                     Visitor&& visit) const {
