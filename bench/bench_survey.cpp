@@ -16,7 +16,8 @@
 // by the rays either side of where each edge lies, what bracketing saves;
 // with the division's last level at every launch angle (ray_density::along_split_sparse = false), what tracing
 // every other one saves; with the columns near the first return left whole (ray_density::along_split_nadir = false),
-// what dividing them there costs; and the echo pieces per ping of each (about one per ray traced), what the refinements
+// what dividing them there costs; with no column divided where its echo departs from its neighbours' (ray_density::
+// along_split_echo = 0), what that check costs; and the echo pieces per ping of each (about one per ray traced), what the refinements
 // spend in rays;
 // what clearing chords in open water saves in layered water (in the survey's and in one with strong gradients
 // down to the seabed), and what following a steeper neighbour saves (layered_params::follow_neighbours). It also prints the scene's build time and the process's peak resident memory after the build,
@@ -129,6 +130,7 @@ int main(int argc, char** argv) {
     const auto full_dense = full({.along_split_sparse = false});
     const auto full_halving = full({.bracket_facet_edges = false});
     const auto full_nadir_whole = full({.along_split_nadir = false});
+    const auto full_echo_off = full({.along_split_echo = 0.0});
 
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
@@ -173,6 +175,10 @@ int main(int argc, char** argv) {
     std::printf("full: dividing the columns near the first return (the default) takes %.2f times the time per ping of "
                 "leaving them whole\n",
                 nadir_whole_1 / layered_1);
+    const double echo_off_1 = row("full, no column divided where its echo departs (along_split_echo = 0)", full_echo_off);
+    std::printf("full: dividing where a column's echo departs from its neighbours' (the default) takes %.2f times the "
+                "time per ping of not\n",
+                echo_off_1 / layered_1);
     {
         // What the refinements spend: echo pieces per ping (about one per ray traced: a tube per pair of rays, a
         // point per end at a located edge), over the first few pings, both sides.
@@ -186,9 +192,10 @@ int main(int argc, char** argv) {
         };
         std::printf("echo pieces per ping (pings 0 to %zu): full %.0f; the seabed's edges out %.0f; thirds only %.0f; "
                     "even division %.0f; facets' edges not refined %.0f; facets' edges halved %.0f; the last level at "
-                    "every angle %.0f; near the first return whole %.0f; straight rays %.0f; minimal %.0f\n",
+                    "every angle %.0f; near the first return whole %.0f; no division where the echo departs %.0f; "
+                    "straight rays %.0f; minimal %.0f\n",
                     counted - 1, pieces(full_sim), pieces(full_objects_only), pieces(full_thirds), pieces(full_even),
-                    pieces(full_plain_facets), pieces(full_halving), pieces(full_dense), pieces(full_nadir_whole), pieces(straight_sim),
+                    pieces(full_plain_facets), pieces(full_halving), pieces(full_dense), pieces(full_nadir_whole), pieces(full_echo_off), pieces(straight_sim),
                     pieces(minimal));
     }
     {
@@ -277,12 +284,13 @@ int main(int argc, char** argv) {
                     "shadows missed | even division: RMS / median / p99 | shadows missed | facets not refined: RMS / "
                     "median / p99 | shadows missed | last level at every angle: RMS / median / p99 | shadows missed | "
                     "facets' edges halved: RMS / median / p99 | shadows missed | near the first return whole: RMS / "
-                    "median / p99 | shadows missed |\n"
-                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                    "median / p99 | shadows missed | no division where the echo departs: RMS / median / p99 | shadows "
+                    "missed |\n"
+                    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         struct total {
             double sum_sq = 0, worst_p99 = 0;
             std::size_t misses = 0, shadows = 0, within = 0;
-        } totals[8];
+        } totals[9];
         std::size_t lines = 0;
         for (std::size_t k = 0; k < error_pings; ++k) {
             const auto pose = sv.motion.pose_at(k * step);
@@ -295,7 +303,7 @@ int main(int argc, char** argv) {
                 int v = 0;
                 for (const auto* sim :
                      {&full_sim, &full_thirds, &full_objects_only, &full_even, &full_plain_facets, &full_dense,
-                      &full_halving, &full_nadir_whole}) {
+                      &full_halving, &full_nadir_whole, &full_echo_off}) {
                     const auto e = sss_test::compare_lines(sss_bench::side_line(*sim, sv.scene, pose, sd), ref.values);
                     std::printf(" %.3f / %.3f / %.3f | %zu of %zu |", e.rms_db, e.median_db, e.p99_db, e.shadow_misses,
                                 e.shadow_samples);
@@ -310,7 +318,7 @@ int main(int argc, char** argv) {
                 ++lines;
             }
         }
-        for (int v = 0; v < 8; ++v)
+        for (int v = 0; v < 9; ++v)
             std::printf("%s: RMS over the lines' RMS %.3f dB, worst p99 %.3f dB, %zu of %zu shadow samples missed; %zu of %zu "
                         "lines within 0.3 dB RMS and 1 dB p99 with no shadow missed\n",
                         v == 0   ? "default"
@@ -320,7 +328,8 @@ int main(int argc, char** argv) {
                         : v == 4 ? "facets' edges not refined (refine_facets = false)"
                         : v == 5 ? "the division's last level at every angle (along_split_sparse = false)"
                         : v == 6 ? "facets' edges halved (bracket_facet_edges = false)"
-                                 : "the columns near the first return whole (along_split_nadir = false)",
+                        : v == 7 ? "the columns near the first return whole (along_split_nadir = false)"
+                                 : "no division where a column's echo departs (along_split_echo = 0)",
                         std::sqrt(totals[v].sum_sq / double(lines)), totals[v].worst_p99, totals[v].misses,
                         totals[v].shadows, totals[v].within, lines);
     }

@@ -207,6 +207,12 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto nadir_again = switched_off(&sss::scene_file::render::along_split_nadir);
     CHECK_FALSE(nadir_again.run.along_split_nadir);
     CHECK_FALSE(sss::scene_file::rays_of(nadir_again).along_split_nadir);
+    CHECK(sss::scene_file::rays_of(again).along_split_echo == 0.1);
+    auto echo_changed = d;
+    echo_changed.run.along_split_echo = 0.25;
+    const auto echo_again = sss::scene_file::parse(sss::scene_file::to_toml(echo_changed), "resolved.toml");
+    CHECK(echo_again.run.along_split_echo == 0.25);
+    CHECK(sss::scene_file::rays_of(echo_again).along_split_echo == 0.25);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
     const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
     CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));

@@ -85,5 +85,9 @@ TEST_CASE("propagation, scattering, motion and ray density parameters are reject
     CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {8, 1, 1.0}); }) == "ray_density.across");
     CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {8, 0, nan_v}); }) == "ray_density.per_sample");
     CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_split = 6562}); }) == "ray_density.along_split");
+    CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_split_echo = -0.1}); }) ==
+          "ray_density.along_split_echo");
+    CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_split_echo = nan_v}); }) ==
+          "ray_density.along_split_echo");
     CHECK(named([] { sss::scene::flat_seabed<double>{nan_v}; }) == "flat_seabed.height_m");
 }
