@@ -185,10 +185,18 @@ struct ray_density {
     /// sloping seabed is unchanged bit for bit, as for along_split_nadir). This catches what the edges miss: where
     /// the beam's axis columns are in shadow and the line is the faint columns of its skirts, an edge crossing one of
     /// them obliquely agrees within a sample with its neighbours' and left a step where the along-track integral
-    /// ramps. On the 1 km survey of bench/bench_survey.cpp (72 lines against a converged render) 0.1 takes 448 port
-    /// from 0.21 to 0.13 dB RMS and 900 starboard from 0.21 to 0.10 dB, the RMS of the lines' RMS from 0.148 to 0.143
-    /// dB, no line worse, for 0.06 % more echo pieces (docs/design/along-track.md). 0 switches it off. Like the rest
-    /// of the along-track check, it needs refinement (refine_depth > 0), along_split >= 3 and at least two columns.
+    /// ramps. Where such a faint column (one that along_split_by_weight divides less deeply than a column of even
+    /// weight) departs in a sample where it carries more than a fifth of the line, those intervals divide to an even
+    /// column's depth; the line there is the side's columns' first echoes summed, so under such a beam every column of
+    /// the side (up to 64) is traced and held before any is divided. On the 1 km survey of bench/bench_survey.cpp (72
+    /// lines against a converged render) 0.1 takes the RMS of the lines' RMS from 0.148 to 0.133 dB and the worst
+    /// 99th percentile from 1.74 to 1.11 dB (300 port 0.23 to 0.10 dB RMS, 448 port 0.21 to 0.13, 900 starboard 0.21
+    /// to 0.10), the shadow samples missed from 50 to 33, for 4.7 % more echo pieces and about 7 % more time
+    /// (docs/design/along-track.md). It compares only where the columns are more than two range samples apart at the
+    /// end of the line (where along_split_seabed takes part by default): closer, facet by facet the columns' echoes
+    /// differ more than the line does (fractal relief under a fan 1 deg wide at 30 m, bench/bench_rough_accuracy.cpp:
+    /// 1.5 times the rays for no less error). 0 switches it off. Like the rest of the along-track check, it needs
+    /// refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     double along_split_echo = 0.1;
 };
 
@@ -461,12 +469,17 @@ private:
             return;
         }
         // Columns j - 1, j and j + 1, in turn. Column j's echoes wait until column j + 1 is traced.
-        column_record* records = b.records;
+        // Three columns in turn; or, where a faint column's share of the line decides how deep it divides
+        // (ray_density::along_split_echo), every column of the side, traced before any is divided (set below).
+        std::vector<column_record>& records = b.records;
+        bool hold_all = false;
+        auto rec = [&](std::size_t j) -> column_record& { return records[hold_all ? j : j % 3]; };
         // The columns' spacing at the end of the line against the range sample.
         const bool coarse = double(f.max_range_m) * (a1 - a0) / double(n_along) > 2.0 * 0.5 * c_ref_ * dt_;
-        for (std::size_t i = 0; i < 3; ++i) records[i].seabed_edges = density_.along_split_seabed.value_or(coarse);
+        // The columns' echoes compared sample by sample there too (ray_density::along_split_echo).
+        const bool echo_check = density_.along_split_echo > 0.0 && coarse;
         auto trace_into = [&](std::size_t j) {
-            column_record& r = records[j % 3];
+            column_record& r = rec(j);
             r.echoes.clear();
             r.edges.clear();
             const auto [lo, hi] = bounds(j);
@@ -474,17 +487,21 @@ private:
             in_column(scene, f, lo, hi, [&](const Sc& col) { trace_column(col, f, lo, hi, scratch, &r, keep); });
             std::swap(r.angles, scratch.angles);
             std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& a, const column_edge& b) { return a.t < b.t; });
-            if (density_.along_split_echo > 0.0) echo_per_sample(r);
+            if (echo_check) echo_per_sample(r);
         };
         // How deep each column may be divided: by its weight under the beam, or alike.
         std::vector<std::size_t>& depths = b.depths;
         depths.assign(n_along, levels);
         std::vector<double>& weights = b.weights;
-        if (density_.along_split_by_weight || density_.along_split_echo > 0.0) {
+        if (density_.along_split_by_weight || echo_check) {
             weights.assign(n_along, 0.0);
             for (std::size_t j = 0; j < n_along; ++j) weights[j] = column_weight(f.ext, sd, bounds(j));
         }
         if (density_.along_split_by_weight) division_depths(weights, levels, depths);
+        hold_all = echo_check && n_along <= max_held_columns &&
+                   std::any_of(depths.begin(), depths.end(), [&](std::size_t d) { return d < levels; });
+        if (records.size() < (hold_all ? n_along : 3)) records.resize(hold_all ? n_along : 3);
+        for (column_record& r : records) r.seabed_edges = density_.along_split_seabed.value_or(coarse);
         const std::size_t deepest = *std::max_element(depths.begin(), depths.end());
         if (b.divisions.size() + 1 < deepest) b.divisions.resize(deepest - 1); // before divide takes references
         std::vector<redo_range>& windows = b.windows;
@@ -496,21 +513,32 @@ private:
             target_spans(propagation_, *objects, p, sd, ext, (a1 - a0) / double(n_along), f.t_max_one_way,
                          double(f.max_range_m), targets);
         if (!targets.empty()) f.targets = &targets;
-        trace_into(0);
+        std::vector<double>& line = b.line;
+        if (hold_all) {
+            line.assign(samples_, 0.0);
+            for (std::size_t j = 0; j < n_along; ++j) {
+                trace_into(j);
+                for (std::size_t k = 0; k < samples_; ++k) line[k] += rec(j).per_sample[k];
+            }
+        } else {
+            trace_into(0);
+        }
+        std::vector<redo_range>& deep = b.deep;
         for (std::size_t j = 0; j < n_along; ++j) {
-            if (j + 1 < n_along) trace_into(j + 1);
-            const column_record& here = records[j % 3];
+            if (!hold_all && j + 1 < n_along) trace_into(j + 1);
+            const column_record& here = rec(j);
             windows.clear();
-            if (j > 0) disagreements(here.edges, records[(j + 2) % 3].edges, windows);
-            if (j + 1 < n_along) disagreements(here.edges, records[(j + 1) % 3].edges, windows);
+            deep.clear();
+            if (j > 0) disagreements(here.edges, rec(j - 1).edges, windows);
+            if (j + 1 < n_along) disagreements(here.edges, rec(j + 1).edges, windows);
             if (!targets.empty()) {
                 const auto [lo, hi] = bounds(j);
                 target_windows(targets, lo, hi, here.angles, windows);
             }
             if (density_.along_split_nadir) nadir_windows(here, nadir_end_s(f), windows);
-            if (density_.along_split_echo > 0.0)
-                echo_windows(here, j > 0 ? &records[(j + 2) % 3] : nullptr, j + 1 < n_along ? &records[(j + 1) % 3] : nullptr,
-                             weights, j, b.flags, windows);
+            if (echo_check)
+                echo_windows(here, j > 0 ? &rec(j - 1) : nullptr, j + 1 < n_along ? &rec(j + 1) : nullptr, weights, j,
+                             b.flags, windows, hold_all && depths[j] < levels ? &line : nullptr, deep);
             if (windows.empty()) {
                 for (const tube_echo<T>& t : here.echoes) visit(t);
                 continue;
@@ -524,22 +552,35 @@ private:
                 ++cover[w.k0];
                 --cover[std::min(w.k1 + 1, intervals)];
             }
+            // Within the faint column's stretches where it carries a share of the line (`deep`), the runs divide to an
+            // even column's depth (deep_runs).
+            std::vector<std::ptrdiff_t>& deep_cover = b.deep_cover;
+            std::vector<std::pair<std::size_t, std::size_t>>& deep_runs = b.deep_runs;
+            deep_cover.assign(intervals + 1, 0);
+            for (const redo_range& w : deep) {
+                if (w.k0 >= intervals) continue;
+                ++deep_cover[w.k0];
+                --deep_cover[std::min(w.k1 + 1, intervals)];
+            }
             runs.clear();
-            std::ptrdiff_t within = 0;
+            deep_runs.clear();
+            std::ptrdiff_t within = 0, deep_within = 0;
             for (std::size_t k = 0; k < intervals; ++k) {
                 within += cover[k];
+                deep_within += deep_cover[k];
                 const bool redo = within > 0 && !std::isnan(here.angles[k]) && !std::isnan(here.angles[k + 1]);
                 if (!redo) {
                     for (std::size_t i = here.first[k]; i < here.first[k + 1]; ++i) visit(here.echoes[i]);
                     continue;
                 }
-                if (!runs.empty() && runs.back().second + 1 == k) runs.back().second = k;
-                else runs.emplace_back(k, k);
+                auto& into = deep_within > 0 ? deep_runs : runs;
+                if (!into.empty() && into.back().second + 1 == k) into.back().second = k;
+                else into.emplace_back(k, k);
             }
             for (std::size_t i = here.first.empty() ? 0 : here.first.back(); i < here.echoes.size(); ++i)
                 visit(here.echoes[i]);
             const auto [lo, hi] = bounds(j);
-            if (runs.empty()) continue;
+            if (runs.empty() && deep_runs.empty()) continue;
             // A small target lies over the column: its launch intervals divide on until the narrowest columns are a
             // quarter of its angular thickness wide (a sphere's diameter, a cylinder's), two levels past along_split's
             // depth at most (1/81 of a column by default, whatever the column's weight).
@@ -549,8 +590,11 @@ private:
                 const double need = std::ceil(std::log(4.0 * (hi - lo) / std::max(t.thickness_rad, 1e-12)) / std::log(3.0));
                 if (need > double(target_depth)) target_depth = std::min(levels + 2, static_cast<std::size_t>(need));
             }
-            if (b.divisions.size() + 1 < target_depth) b.divisions.resize(target_depth - 1);
-            divide(scene, f, lo, hi, here.angles, here, 1.0, runs, 0, depths[j], target_depth, b, visit);
+            if (b.divisions.size() + 1 < std::max(target_depth, levels)) b.divisions.resize(std::max(target_depth, levels) - 1);
+            if (!runs.empty()) divide(scene, f, lo, hi, here.angles, here, 1.0, runs, 0, depths[j], target_depth, b, visit);
+            if (!deep_runs.empty())
+                divide(scene, f, lo, hi, here.angles, here, 1.0, deep_runs, 0, levels, std::max(target_depth, levels), b,
+                       visit);
         }
     }
 
@@ -662,7 +706,11 @@ private:
     /// The buffers of one trace call.
     struct trace_buffers {
         column_scratch scratch;
-        column_record records[3];
+        std::vector<column_record> records = std::vector<column_record>(3); ///< three columns in turn, or the side's
+        std::vector<double> line;        ///< the side's columns' echoes summed, per sample (a faint column's share)
+        std::vector<redo_range> deep;    ///< the stretches a faint column divides to an even column's depth
+        std::vector<std::ptrdiff_t> deep_cover;
+        std::vector<std::pair<std::size_t, std::size_t>> deep_runs;
         std::vector<redo_range> windows;
         std::vector<std::pair<std::size_t, std::size_t>> runs;
         std::vector<std::ptrdiff_t> cover;
@@ -815,6 +863,14 @@ private:
         }
     }
 
+    /// The most columns per side whose echoes are held at once, so that a faint column's share of the line can decide
+    /// how deep it divides (ray_density::along_split_echo); under a beam that needs more, three are held in turn.
+    static constexpr std::size_t max_held_columns = 64;
+    /// A column divided less deeply than an even column, by its weight, whose echo departs in a sample where it carries
+    /// more than this share of the line (the side's columns' first echoes summed) divides there to an even column's
+    /// depth: where the beam's axis is in shadow, the faint columns make the line.
+    static constexpr double faint_share = 0.2;
+
     /// Two facet normals the same to 1e-3 rad (as ray_density::along_split_nadir judges one plane).
     static bool same_normal(const vec3<T>& a, const vec3<T>& b) noexcept {
         const double dx = double(a.x) - double(b.x), dy = double(a.y) - double(b.y), dz = double(a.z) - double(b.z);
@@ -827,7 +883,7 @@ private:
         const double x = std::min(e.t0_s, e.t1_s) / dt_, y = std::max(e.t0_s, e.t1_s) / dt_;
         if (!(x < double(samples_)) || !(y >= 0.0)) return false;
         k0 = static_cast<std::size_t>(std::max(0.0, x));
-        k1 = std::min(samples_ - 1, static_cast<std::size_t>(y));
+        k1 = static_cast<std::size_t>(std::min(y, double(samples_ - 1)));
         return true;
     }
 
@@ -850,11 +906,11 @@ private:
             std::size_t k0 = 0, k1 = 0;
             if (!samples_of(e, k0, k1)) continue;
             const double x = std::min(e.t0_s, e.t1_s) / dt_, y = std::max(e.t0_s, e.t1_s) / dt_;
-            if (k0 == k1 || !(y > x)) {
+            if (!(y > x)) { // a point
                 rec.per_sample[k0] += e.power;
                 continue;
             }
-            for (std::size_t k = k0; k <= k1; ++k) {
+            for (std::size_t k = k0; k <= k1; ++k) { // its share of each sample, none beyond the line
                 const double lo = std::max(x, double(k)), hi = std::min(y, double(k + 1));
                 if (hi > lo) rec.per_sample[k] += e.power * (hi - lo) / (y - x);
             }
@@ -868,7 +924,7 @@ private:
     /// then not its width's, and thirds sample it where it changes.
     void echo_windows(const column_record& here, const column_record* left, const column_record* right,
                       const std::vector<double>& weights, std::size_t j, std::vector<unsigned char>& flags,
-                      std::vector<redo_range>& out) const {
+                      std::vector<redo_range>& out, const std::vector<double>* line, std::vector<redo_range>& deep) const {
         // One plane under all three (a level or sloping seabed and nothing else): nothing to divide.
         auto on_plane = [&](const column_record* r) {
             return !r || r->echoes.empty() || (r->planar && (here.echoes.empty() || same_normal(r->normal, here.normal)));
@@ -892,31 +948,34 @@ private:
             const double il = wl > 0.0 ? left->per_sample[k] / wl : 0.0, ir = wr > 0.0 ? right->per_sample[k] / wr : 0.0;
             const double expected = both ? 0.5 * (il + ir) : (wl > 0.0 ? il : ir);
             if (std::abs(here.per_sample[k] - wj * expected) > density_.along_split_echo * s3) {
-                flags[k] = 1;
+                flags[k] = line && here.per_sample[k] > faint_share * (*line)[k] ? 2 : 1;
                 any = true;
             }
         }
         if (!any) return;
         const std::size_t intervals = here.first.empty() ? 0 : here.first.size() - 1;
         for (std::size_t k = 0; k < intervals; ++k) {
-            bool departs = false;
-            for (std::size_t i = here.first[k]; i < here.first[k + 1] && !departs; ++i) {
+            unsigned char departs = 0; // 2: where the column carries a share of the line
+            for (std::size_t i = here.first[k]; i < here.first[k + 1] && departs < 2; ++i) {
                 std::size_t k0 = 0, k1 = 0;
                 if (!samples_of(here.echoes[i], k0, k1)) continue;
-                for (std::size_t q = k0; q <= k1 && !departs; ++q) departs = flags[q] != 0;
+                for (std::size_t q = k0; q <= k1 && departs < 2; ++q) departs = std::max(departs, flags[q]);
             }
-            if (!departs) continue;
-            if (!out.empty() && out.back().k1 + 1 == k) out.back().k1 = k;
-            else out.push_back({k, k});
+            if (departs == 0) continue;
+            for (std::vector<redo_range>* into : {&out, departs == 2 ? &deep : nullptr}) {
+                if (!into) continue;
+                if (!into->empty() && into->back().k1 + 1 == k) into->back().k1 = k;
+                else into->push_back({k, k});
+            }
         }
     }
 
     /// Where two neighbouring columns' edges disagree, added to `out`. The edges are paired one to one in order of
     /// time (each with the earliest unpaired edge of the other within a sample of two-way time), so that where one
     /// column has two edges and the other one, one of the two is unpaired even if both lie within a sample of it
-    /// (an edge matched by any of the other's within a sample, as before, hid such disagreements where edges are
-    /// dense: on the 1 km survey's 72 lines one to one takes the RMS of the lines' RMS from 0.155 to 0.148 dB, no
-    /// line worse, for 3 % more echo pieces). An unpaired edge moved between them, by about the distance to the
+    /// (matching an edge with any of the other's within a sample hides such disagreements where edges are dense:
+    /// on the 1 km survey's 72 lines one to one takes the RMS of the lines' RMS from 0.155 to 0.148 dB, no line
+    /// worse, for 3 % more echo pieces). An unpaired edge moved between them, by about the distance to the
     /// other's nearest edge, so within a column it lies within that distance of where the column's centre sees it,
     /// either way: that stretch of launch intervals (the columns' launch angles nearly coincide), one interval more,
     /// is traced again. If the other column has no edge at all (an object ending between them), the stretch spans

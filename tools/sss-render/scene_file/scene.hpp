@@ -194,7 +194,8 @@ struct render {
     bool along_split_sparse = true;          ///< the narrowest columns at every other launch angle
     bool along_split_targets = true;         ///< small targets divide the columns over them along track
     bool along_split_nadir = true;           ///< near the first return, columns over a seabed not one plane divide
-    double along_split_echo = 0.1;           ///< columns divide where their echo departs from their neighbours' by more
+    double along_split_echo = 0.1;           ///< columns divide where their echo departs from their neighbours' by
+                                             ///< more than this fraction of the three columns' echo
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 
