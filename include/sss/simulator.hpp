@@ -190,7 +190,7 @@ struct ray_density {
     /// column's depth; the line there is the side's columns' first echoes summed, so under such a beam every column of
     /// the side (up to 64) is traced and held before any is divided. On the 1 km survey of bench/bench_survey.cpp (72
     /// lines against a converged render) 0.1 takes the RMS of the lines' RMS from 0.148 to 0.133 dB and the worst
-    /// 99th percentile from 1.74 to 1.11 dB (300 port 0.23 to 0.10 dB RMS, 448 port 0.21 to 0.13, 900 starboard 0.21
+    /// 99th percentile from 1.74 to 1.11 dB (300 port 0.23 to 0.11 dB RMS, 448 port 0.21 to 0.09, 900 starboard 0.21
     /// to 0.10), the shadow samples missed from 50 to 33, for 4.7 % more echo pieces and about 7 % more time
     /// (docs/design/along-track.md). It compares only where the columns are more than two range samples apart at the
     /// end of the line (where along_split_seabed takes part by default): closer, facet by facet the columns' echoes
