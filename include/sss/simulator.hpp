@@ -415,6 +415,24 @@ public:
     }
 
 private:
+    /// Where the tracing below hands each piece of echo: a reference to the caller's visitor (or to a column's record
+    /// of its echoes), its type erased. The tracing is then compiled once per scene type, not once per visitor as
+    /// well (trace, render, the labels and the held columns each have their own): about one indirect call per echo
+    /// piece, a few nanoseconds against the microseconds a ray costs. Refers to the visitor, which must outlive it.
+    class echo_sink {
+    public:
+        template <class F>
+            requires(!std::same_as<std::remove_cvref_t<F>, echo_sink> && std::invocable<F&, const tube_echo<T>&>)
+        echo_sink(F& f) noexcept // NOLINT(google-explicit-constructor): a visitor converts where it is passed
+            : target_(const_cast<void*>(static_cast<const void*>(std::addressof(f)))),
+              call_([](void* t, const tube_echo<T>& e) { (*static_cast<F*>(t))(e); }) {}
+        void operator()(const tube_echo<T>& e) const { call_(target_, e); }
+
+    private:
+        void* target_;
+        void (*call_)(void*, const tube_echo<T>&);
+    };
+
     /// The objects of a scene that has them (scene::scene), else none.
     template <Scene Sc> [[nodiscard]] static const scene::object_set<T>* objects_of(const Sc& s) noexcept {
         if constexpr (requires { { s.objects() } -> std::same_as<const scene::object_set<T>&>; })
@@ -439,9 +457,9 @@ private:
     /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`; the
     /// small targets among `objects` (none: nullptr) divide the columns over them (ray_density::along_split_targets), and
     /// the stretch of each column near the first return over a seabed that is not one plane (ray_density::along_split_nadir).
-    template <Scene Sc, class Visitor>
+    template <Scene Sc>
     void trace_over(const Sc& scene, T top_m, const pose<T>& p, side sd, const scene::object_set<T>* objects,
-                    Visitor&& visit) const {
+                    echo_sink visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
         const double t_max_s = double(samples_) * dt_;
         trace_frame f{p, sd, ext, T{}, T{}, T{}, T{}, {}, nullptr};
@@ -1046,9 +1064,9 @@ private:
     /// Traces the column between along-track angles lo and hi (rad) and visits its echoes; with a record given, the
     /// two-way times of the edges its refinement located go to its `edges`, and its `interval` follows the launch
     /// interval being refined.
-    template <Scene Sc, class Visitor>
+    template <Scene Sc>
     void trace_column(const Sc& scene, const trace_frame& f, double lo, double hi, column_scratch& s,
-                      column_record* record, Visitor& visit) const {
+                      column_record* record, echo_sink visit) const {
         const pose<T>& p = f.p;
         const side sd = f.sd;
         const T along = static_cast<T>(0.5 * (lo + hi));
@@ -1148,10 +1166,10 @@ private:
     /// outer two are traced. Where a third's located edges disagree with its neighbouring third's (as columns'
     /// do in trace_over), the stretch is divided again, `depth` levels deep at most (the column's depth from
     /// trace_over); elsewhere the third's echoes stand.
-    template <Scene Sc, class Visitor>
+    template <Scene Sc>
     void divide(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
                 const column_record& rec, double scale, const std::vector<std::pair<std::size_t, std::size_t>>& runs_in,
-                std::size_t level, std::size_t depth, std::size_t target_depth, trace_buffers& b, Visitor& visit) const {
+                std::size_t level, std::size_t depth, std::size_t target_depth, trace_buffers& b, echo_sink visit) const {
         const double width = (hi - lo) / 3.0;
         const double a = lo + width, c = hi - width;
         const double middle = scale * (std::sin(c) - std::sin(a)) / (std::sin(hi) - std::sin(lo));
@@ -1289,10 +1307,10 @@ private:
     /// edges go to its `edges`, and where interval k's echoes begin to its `first[k]` (and where the last
     /// interval of a run ends to `first[k1 + 1]`). Without one, `stride` > 1 traces every stride-th angle of each
     /// run and its last (ray_density::along_split_sparse).
-    template <Scene Sc, class Visitor>
+    template <Scene Sc>
     void trace_runs(const Sc& scene, const trace_frame& f, double lo, double hi, const std::vector<T>& angles,
                     const std::vector<std::pair<std::size_t, std::size_t>>& runs, column_scratch& s,
-                    column_record* record, Visitor& visit, std::size_t stride = 1) const {
+                    column_record* record, echo_sink visit, std::size_t stride = 1) const {
         const T along = static_cast<T>(0.5 * (lo + hi));
         const double column_sr = std::sin(hi) - std::sin(lo);
         if (record || stride < 1) stride = 1; // a record's intervals each need their own rays
@@ -1388,9 +1406,9 @@ private:
     /// another edge draws on the edges' budget, as any edge). `intervals`: the launch intervals between a and b at
     /// depth 0 (more than one in a sparse column, ray_density::along_split_sparse). `bracket`: whether a pair across a
     /// facet's edge may be bracketed (facet_bracket) rather than halved; not within a bracket's own pairs.
-    template <Scene Sc, class Visitor>
+    template <Scene Sc>
     void refine(const Sc& scene, const column_context& col, const ray_end& a, const ray_end& a_bounce, const ray_end& b,
-                const ray_end& b_bounce, std::size_t depth, refine_budget& budget, Visitor& visit,
+                const ray_end& b_bounce, std::size_t depth, refine_budget& budget, echo_sink visit,
                 bool recorded = false, std::size_t intervals = 1, const ray_end* outer = nullptr,
                 bool bracket = true) const {
         // The guide of a ray launched between a and b: the steeper of the two (the steeper end of the interval refined
@@ -1551,14 +1569,14 @@ private:
     }
 
     /// Two rays on either side of an edge: each keeps its half of the step as a point.
-    template <class Visitor> static void emit_ends(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
+    static void emit_ends(const ray_end& a, const ray_end& b, double de, echo_sink visit) {
         if (a.valid) visit(a.piece(a.t, 0.5 * a.power_per_rad * de));
         if (b.valid) visit(b.piece(b.t, 0.5 * b.power_per_rad * de));
     }
 
     /// The energy between two adjacent rays: a tube spread over their times when both ends meet the same surface
     /// (and bounced on the same surface), else each end's half as a point.
-    template <class Visitor> static void emit_tube(const ray_end& a, const ray_end& b, double de, Visitor& visit) {
+    static void emit_tube(const ray_end& a, const ray_end& b, double de, echo_sink visit) {
         const bool joined = a.valid && b.valid && same_surface(a.surface, b.surface) && same_surface(a.via, b.via);
         if (joined) {
             visit(a.piece(b.t, 0.5 * (a.power_per_rad + b.power_per_rad) * de));
