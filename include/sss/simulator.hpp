@@ -357,7 +357,10 @@ public:
     /// mine elsewhere in a large scene) changes no ray, as if it were not there.
     template <Scene Sc, class Visitor>
     void trace(const Sc& scene, const pose<T>& p, side sd, Visitor&& visit) const {
-        if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
+        if constexpr (std::is_function_v<std::remove_reference_t<Visitor>>) { // a plain function: through an object
+            auto call = [&visit](const tube_echo<T>& e) { visit(e); };
+            trace(scene, p, sd, call);
+        } else if constexpr (AreaScene<Sc> && ReachBoundedPropagation<P>) {
             const plane_rectangle<T> r = *side_area(p, sd);
             const scene::area_view<Sc> view(scene, r.lo, r.hi);
             const scene::object_set<T>* objects = objects_of(scene);
@@ -378,7 +381,10 @@ public:
         // so that the rays the labels test against the objects include those that meet it.
         // A scene::scene is an AreaScene whatever its seabed (scene.hpp): trace(sc, ...) launches for launch_top_m
         // wherever the propagation bounds its reach, and so does this, over the seabed's own view where it has one.
-        if constexpr (ReachBoundedPropagation<P>) {
+        if constexpr (std::is_function_v<std::remove_reference_t<Visitor>>) { // a plain function: through an object
+            auto call = [&visit](const tube_echo<T>& e) { visit(e); };
+            trace_seabed_alone(sc, p, sd, call);
+        } else if constexpr (ReachBoundedPropagation<P>) {
             const plane_rectangle<T> r = *side_area(p, sd);
             const bool near = std::isfinite(sc.objects().top_m(r.lo, r.hi));
             const scene::object_set<T>* objects = near ? &sc.objects() : nullptr;
@@ -415,17 +421,22 @@ public:
     }
 
 private:
-    /// Where the tracing below hands each piece of echo: a reference to the caller's visitor (or to a column's record
-    /// of its echoes), its type erased. The tracing is then compiled once per scene type, not once per visitor as
-    /// well (trace, render, the labels and the held columns each have their own): about one indirect call per echo
-    /// piece, a few nanoseconds against the microseconds a ray costs. Refers to the visitor, which must outlive it.
+    /// Where the tracing below hands each piece of echo: a reference to the caller's visitor object (or to a column's
+    /// record of its echoes), its type erased. The tracing is then compiled once per scene type, not once per
+    /// visitor as well (trace, render, the labels and the held columns each have their own): one or two indirect
+    /// calls per echo piece (two where a column's record keeps it first), a few nanoseconds against the microseconds
+    /// a ray costs. Refers to the visitor, which must outlive it; it binds to no temporary.
     class echo_sink {
     public:
         template <class F>
-            requires(!std::same_as<std::remove_cvref_t<F>, echo_sink> && std::invocable<F&, const tube_echo<T>&>)
+            requires(std::is_object_v<F> && !std::same_as<std::remove_cv_t<F>, echo_sink> &&
+                     std::invocable<F&, const tube_echo<T>&>)
         echo_sink(F& f) noexcept // NOLINT(google-explicit-constructor): a visitor converts where it is passed
             : target_(const_cast<void*>(static_cast<const void*>(std::addressof(f)))),
               call_([](void* t, const tube_echo<T>& e) { (*static_cast<F*>(t))(e); }) {}
+        template <class F>
+            requires(!std::same_as<std::remove_cv_t<F>, echo_sink>)
+        echo_sink(const F&&) = delete; // a const temporary would bind to F& above and dangle
         void operator()(const tube_echo<T>& e) const { call_(target_, e); }
 
     private:

@@ -42,3 +42,25 @@ TEST_CASE("rendering is deterministic: one thread and several give identical wat
     CHECK(a.at(5, 0) == one.port[a.samples - 1]);
     CHECK(a.at(5, a.samples + 7) == one.starboard[7]);
 }
+
+namespace {
+double function_visitor_power = 0.0;
+void add_power(const sss::tube_echo<double>& e) { function_visitor_power += e.power; }
+} // namespace
+
+TEST_CASE("trace hands a plain function every echo piece it hands a callable object") {
+    const sss::simulator<> sim;
+    const sss::scene::flat_seabed<double> seabed;
+    const auto pose = sim.motion().pose_at(0);
+    double object_power = 0.0;
+    std::size_t pieces = 0;
+    const auto visit = [&](const sss::tube_echo<double>& e) {
+        object_power += e.power;
+        ++pieces;
+    };
+    sim.trace(seabed, pose, sss::side::starboard, visit); // a const lvalue object
+    function_visitor_power = 0.0;
+    sim.trace(seabed, pose, sss::side::starboard, add_power);
+    CHECK(pieces > 100);
+    CHECK(function_visitor_power == object_power);
+}

@@ -439,7 +439,7 @@ private:
         }
     }
 
-    /// How many of a wedge run's hits intersect_many turns into hits at once (grid_hits).
+    /// How many of a wedge run's grid hits intersect_many turns into hits at once (grid_hits).
     static constexpr std::size_t wedge_batch = 16;
 
     /// The hits of rays rays[k] at grid hits g, for each (k, g) of `found` (at most wedge_batch), into hits[k]: as
