@@ -632,12 +632,12 @@ TEST_CASE_TEMPLATE("clearing chords in open water finds the plain chord walk's h
 namespace {
 
 // A scene that hands every query to `s` and counts the chords it is asked about; with `guided`, it is a GuidedScene
-// too and counts the bent rays it clears some distance for.
+// and a ResumableScene too, and counts the bent rays it clears some distance for and the chords it resumes.
 template <class S, bool guided> struct counting_scene {
     using value_type = typename S::value_type;
     using T = value_type;
     const S* s;
-    mutable long intersects = 0, cleared = 0, asked = 0;
+    mutable long intersects = 0, cleared = 0, asked = 0, resumed = 0;
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max) const {
         ++intersects;
         return s->intersect(r, t_max);
@@ -647,6 +647,13 @@ template <class S, bool guided> struct counting_scene {
         requires guided
     {
         return s->intersect_beside(r, t, a, a_clear);
+    }
+    [[nodiscard]] std::optional<hit<T>> intersect_after(const ray<T>& r, T t_max, T clear) const
+        requires guided
+    {
+        ++intersects;
+        ++resumed;
+        return s->intersect_after(r, t_max, clear);
     }
     [[nodiscard]] T clear_range_beside_m(const scene::beside_rays<T>& b) const
         requires guided
@@ -694,9 +701,9 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
                    T, float, double) {
     const auto sc = rough_scene_with_objects<T>();
     using Sc = scene::scene<scene::height_field<T>>;
-    static_assert(GuidedScene<Sc> && GuidedPropagation<layered<T>, Sc>);
+    static_assert(GuidedScene<Sc> && ResumableScene<Sc> && GuidedPropagation<layered<T>, Sc>);
     std::size_t pairs = 0, hits = 0, objects = 0;
-    long guided_chords = 0, plain_chords = 0, cleared = 0;
+    long guided_chords = 0, plain_chords = 0, cleared = 0, resumed = 0;
     for (const layered<T>& water : guided_waters<T>()) {
         // Towfish 10 m and 3 m above the mean seabed, and one below the mound's top.
         for (const vec3<T> fish : {vec3<T>{T(-45), T(-20), T(10)}, vec3<T>{T(-40), T(10), T(3)}, vec3<T>{T(18), T(4), T(1.1)}})
@@ -722,6 +729,7 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
                     guided_chords += guided.intersects;
                     plain_chords += plain.intersects;
                     cleared += guided.cleared;
+                    resumed += guided.resumed;
                     // The wrong way round: the shallower ray is no guide for the steeper one.
                     if (want) {
                         const counting_scene<Sc, true> back{&sc};
@@ -731,11 +739,14 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
                 }
     }
     MESSAGE(pairs << " pairs, " << hits << " hits (" << objects << " on objects), " << cleared << " guided; chords "
-                  << guided_chords << " guided against " << plain_chords << " plain");
+                  << guided_chords << " guided against " << plain_chords << " plain, " << resumed
+                  << " of them resumed past what the guide vouches for");
     CHECK(hits > pairs / 2);
     CHECK(objects > 20);
     CHECK(cleared > std::int64_t(pairs) / 3);
     CHECK(guided_chords < plain_chords);
+    // Most guided rays hand the scene the chord that reaches past the guide's vouching with its first part known clear.
+    CHECK(resumed > cleared / 2);
 }
 
 TEST_CASE_TEMPLATE("A bent ray too close to its steeper neighbour for the bound is guided by a farther one, and still "
@@ -822,6 +833,9 @@ struct bound_probe {
         return scene::flat_seabed<double>(z).intersect(r, t);
     }
     [[nodiscard]] std::optional<hit<double>> intersect_beside(const ray<double>& r, double t, const ray<double>&, double) const {
+        return intersect(r, t);
+    }
+    [[nodiscard]] std::optional<hit<double>> intersect_after(const ray<double>& r, double t, double) const {
         return intersect(r, t);
     }
     [[nodiscard]] double clear_range_beside_m(const scene::beside_rays<double>& b) const {

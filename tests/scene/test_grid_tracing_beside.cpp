@@ -1,5 +1,6 @@
 // A ray traced beside a steeper neighbour from the same origin (height_field_beside.hpp, intersect_beside): its walk
-// starts about where the neighbour's first hit is, and it gets the single-ray tracer's hit to the last bit.
+// starts about where the neighbour's first hit is, and it gets the single-ray tracer's hit to the last bit. So does a
+// ray resumed past a distance it is known clear for (intersect_after).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -82,6 +83,41 @@ TEST_CASE_TEMPLATE("A ray traced beside a steeper neighbour's first hit gets the
     MESSAGE(compared << " rays, " << hits << " hits, " << guided << " guided");
     CHECK(hits > compared / 2);
     CHECK(guided > compared / 20);
+}
+
+TEST_CASE_TEMPLATE("A ray resumed past a distance it is known to stay above the surface for gets the plain tracer's hit "
+                   "to the last bit",
+                   T, float, double) {
+    // intersect_after: what bent rays hand the height field for the chord that reaches past what a neighbour vouches
+    // for. Rays from 0.5 to 15 m above the top, 2 to 80 degrees down, any heading; the clear distance anywhere from 0
+    // to just short of the plain hit (or of t_max for a miss). The promise is that the ray is above the surface before
+    // that distance: origins over the footprint and above its top keep it (from beside the footprint a ray can enter
+    // it through its side below the surface, where no walk reports a crossing, and the promise would be broken).
+    const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
+    rng gen{43};
+    long hits = 0, resumed_far = 0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+        const vec3<double> o{gen.uniform(-15, 75), gen.uniform(15, 80), double(hf.top_m()) + gen.uniform(0.5, 15)};
+        const double e = gen.uniform(2, 80) * deg, h = gen.uniform(0, 360) * deg;
+        const ray<T> r{vec3<T>(o), vec3<T>(vec3<double>{std::cos(e) * std::sin(h), std::cos(e) * std::cos(h), -std::sin(e)})};
+        const T t_max = T(gen.uniform() < 0.2 ? gen.uniform(5, 40) : 150);
+        const auto want = hf.intersect(r, t_max);
+        const double u = i % 4 == 0 ? 1.0 - std::ldexp(1.0, -int(10 + gen.next() % 12)) : gen.uniform();
+        const T clear = T(u * double(want ? want->distance_m : t_max));
+        hits += want.has_value();
+        resumed_far += want && clear > T(0.9) * want->distance_m;
+        REQUIRE(same_hit(hf.intersect_after(r, t_max, clear), want));
+        // It trusts the caller: told clear to 4 m past the hit (at least 0.69 m on horizontally at 80 degrees down, so
+        // past a grid line of the 0.25 m cells), it does not look there.
+        if (want) {
+            const auto past = hf.intersect_after(r, t_max, want->distance_m + T(4));
+            REQUIRE((!past || past->distance_m > want->distance_m));
+        }
+    }
+    MESSAGE(n << " rays, " << hits << " hits, " << resumed_far << " resumed within a tenth of their hit");
+    CHECK(hits > n / 2);
+    CHECK(resumed_far > n / 5);
 }
 
 TEST_CASE_TEMPLATE("The clear distance beside a neighbour is never past the ray's own first hit, and is 0 where the "

@@ -61,7 +61,8 @@ TEST_CASE_TEMPLATE("a flat height field matches the quadrature oracle as closely
 }
 
 namespace {
-/// A scene with every optional method of `Inner` but the guide (GuidedScene), or with it and a count of its calls.
+/// A scene with every optional method of `Inner` but the guide (GuidedScene, ResumableScene), or with it and a count of
+/// the guide's uses.
 template <class Inner, bool guided> struct guide_probe {
     using value_type = typename Inner::value_type;
     using T = value_type;
@@ -77,6 +78,11 @@ template <class Inner, bool guided> struct guide_probe {
     {
         guided_calls->fetch_add(1, std::memory_order_relaxed);
         return inner->intersect_beside(r, t, a, a_clear);
+    }
+    [[nodiscard]] std::optional<sss::hit<T>> intersect_after(const sss::ray<T>& r, T t, T clear) const
+        requires guided
+    {
+        return inner->intersect_after(r, t, clear);
     }
     [[nodiscard]] T clear_range_beside_m(const sss::scene::beside_rays<T>& b) const
         requires guided

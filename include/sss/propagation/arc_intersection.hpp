@@ -143,16 +143,21 @@ template <Real T> struct arc_hit {
 /// there, and the horizontal distance from the arc's start up to which the chords met nothing (the chord's own hit:
 /// the scene reports the nearest, so nothing lies on the chord before it; the walk's earlier chords met nothing).
 /// Returns whether there was a hit (on_hit called once) or not (not called). The arc starts at inclination phi0, given
-/// as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the calls to scene.intersect.
+/// as (sin_phi0, cos_phi0), with signed curvature kappa_per_m (1/m); `chords` counts the chords handed to the scene
+/// (scene.intersect or scene.intersect_after).
 /// With clear_open_water, a ClearanceScene is first asked to clear windows of chords (file comment); the hit is the
-/// same. The caller may know that the arc meets nothing up to arc length s_clear_m (m; 0 when it does not): the chords
-/// that end there or before are skipped (all of them, with no set-up, when the span ends there), and the rest are the
-/// plain walk's, so the hit is the same (on a straight arc, one chord, it is unused). s_end_m may be +infinity only
+/// same. The caller may know that the arc and every chord of it meet nothing within horizontal distance x_clear_m (m)
+/// of the arc's start, and so up to arc length s_clear_m (m) (both 0 when it does not): the chords that end at
+/// s_clear_m or before are skipped (all of them, with no set-up, when the span ends there), and the rest are the plain
+/// walk's, so the hit is the same. Over a ResumableScene a chord traced that starts within x_clear_m (the one that
+/// reaches past s_clear_m, and any after it that s_clear_m's bound still left inside) starts its query past its own
+/// points within x_clear_m (intersect_after), as does the one chord of a straight arc. s_end_m may be +infinity only
 /// for a straight arc (zero curvature). (The callback lets a caller build its result from the scene's hit where it
 /// lies, with no intermediate copy: a hit is about a hundred bytes.)
 template <Scene S, Real T, class OnHit>
 bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_phi0, T kappa_per_m, T s_begin_m,
-                   T s_end_m, T tolerance_m, bool clear_open_water, T s_clear_m, std::size_t& chords, OnHit&& on_hit) {
+                   T s_end_m, T tolerance_m, bool clear_open_water, T s_clear_m, T x_clear_m, std::size_t& chords,
+                   OnHit&& on_hit) {
     if (!(s_end_m > s_begin_m)) return false;
     // Every chord ends within what the caller knows clear (a piece of the arc before its neighbour's hit): no hit.
     if (kappa_per_m != T(0) && s_clear_m >= s_end_m) return false;
@@ -160,12 +165,28 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
     const vec3<T> down{T(0), T(0), T(-1)};
     const auto world = [&](const arc_offset<T>& o) { return frame.start + frame.horizontal * o.range_m + down * o.depth_m; };
     const T eps = std::numeric_limits<T>::epsilon();
+    // The chord from p along dir (unit) to distance t_max_m, handed to the scene past its points that lie within
+    // x_clear_m horizontally of the arc's start (a few roundings of the world coordinates and of the distances short
+    // of them), where the scene can start there (ResumableScene).
+    const auto query = [&](const vec3<T>& p, const vec3<T>& dir, T t_max_m) -> std::optional<hit<T>> {
+        if constexpr (ResumableScene<S>) {
+            const T dir_h = glm::dot(dir, frame.horizontal);
+            if (x_clear_m > T(0) && dir_h > T(1e-3)) {
+                const T x_p = glm::dot(p - frame.start, frame.horizontal);
+                const T rounding =
+                    T(16) * eps * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + x_clear_m + std::abs(x_p) + t_max_m);
+                const T clear = (x_clear_m - x_p - rounding) / dir_h;
+                if (clear > T(0)) return scene.intersect_after(ray<T>{p, dir}, t_max_m, clear);
+            }
+        }
+        return scene.intersect(ray<T>{p, dir}, t_max_m);
+    };
 
     if (kappa == T(0)) { // one chord: the ray itself
         const arc_offset<T> o = offset_along_arc(sin0, cos0, kappa, s_begin_m);
-        const ray<T> chord{world(o), frame.horizontal * cos0 + down * sin0};
+        const vec3<T> chord_start = world(o);
         ++chords;
-        const auto h = scene.intersect(chord, s_end_m - s_begin_m);
+        const auto h = query(chord_start, frame.horizontal * cos0 + down * sin0, s_end_m - s_begin_m);
         if (!h) return false;
         const T arc_m = s_begin_m + h->distance_m;
         const arc_offset<T> at = offset_along_arc(sin0, cos0, kappa, arc_m);
@@ -303,7 +324,7 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
         // A hit exactly on a chord joint must not slip between the two chords: reach a few roundings past the end.
         const T scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::max(std::abs(p.z), len));
         ++chords;
-        const auto h = scene.intersect(ray<T>{p, dir}, len + T(16) * eps * scale);
+        const auto h = query(p, dir, len + T(16) * eps * scale);
         if (h) {
             // Newton on f(s) = n . (X(s) - H) from the chord's estimate, kept within the chord's neighbourhood.
             const vec3<T> n_hat = h->normal;
@@ -350,7 +371,7 @@ template <Scene S, Real T>
                                                       T kappa_per_m, T s_begin_m, T s_end_m, T tolerance_m,
                                                       std::size_t& chords) {
     std::optional<arc_hit<T>> out;
-    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, true, T(0), chords,
+    visit_arc_hit(scene, frame, sin_phi0, cos_phi0, kappa_per_m, s_begin_m, s_end_m, tolerance_m, true, T(0), T(0), chords,
                   [&](const hit<T>& h, const vec3<T>& point, T arc_m, const arc_offset<T>& at, T) {
                       out.emplace(h, arc_m, at);
                       out->surface.point = point;

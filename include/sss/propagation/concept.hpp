@@ -54,7 +54,8 @@
 /// scene within horizontal distance a_clear_range_m (m) of the origin (its path's `clear_range_m`), save what the
 /// scene's guided query leaves out (scene/concept.hpp). The simulator's refinement passes the steeper of the two rays
 /// it traces a new one between (straight rays hand it to a GuidedScene's intersect_beside; bent rays ask a
-/// GuidedScene's clear_range_beside_m how many chords they may skip). A policy may also take a second guide, asked
+/// GuidedScene's clear_range_beside_m how many chords they may skip, and hand a ResumableScene the chord that reaches
+/// past them with its part within that distance known clear). A policy may also take a second guide, asked
 /// where the first gives nothing: `p.trace_beside(r, scene, t_max_s, a_launch, a_clear_range_m, b_launch,
 /// b_clear_range_m)`, p.trace(r, scene, t_max_s) bit for bit. The simulator then passes the steeper ray of the first
 /// interval it refines as b (layered water: a very close neighbour gains too little over its chords' tolerance).

@@ -15,7 +15,9 @@
 /// (arc_intersection.hpp): on planar facets the hit point, path length and time are exact to rounding.
 /// The arrival direction is the bent ray's tangent at the hit, so grazing angles come out right. Over a GuidedScene
 /// a ray traced beside a steeper neighbour from the same origin (the rays of a column in trace_many, the refinement's
-/// rays in trace_beside) skips the chords its neighbour's path vouches for: the same hit, in fewer chords.
+/// rays in trace_beside) skips the chords its neighbour's path vouches for, and a ResumableScene starts its walk along the
+/// chord that reaches past them after the part of it vouched for too (intersect_after): the same hit, in fewer chords
+/// and cells.
 ///
 /// Absorption. alpha(z) (dB/km) from Francois & Garrison (1982, JASA 72, 896-907 and 1879-1890) or Ainslie &
 /// McColm (1998, JASA 103, 1671-1672) (absorption.hpp), with temperature, salinity and pH held constant and the
@@ -91,7 +93,7 @@ template <Real T> struct layered_path {
     T range_m{};                ///< horizontal distance from the source to the hit (m)
     T path_length_m{};          ///< arc length from the source to the hit (m)
     std::size_t arcs = 0;       ///< layer arcs followed, the last one included
-    std::size_t chords = 0;     ///< calls to the scene's intersect
+    std::size_t chords = 0;     ///< chords handed to the scene (its intersect or intersect_after)
 };
 
 template <Real T> class layered {
@@ -515,7 +517,7 @@ private:
         T absorption_ratio;         ///< absorption (intensity ratio) up to where absorption_db starts counting
         T absorption_db;            ///< absorption (dB) since then
         ray_tube<T> tube;           ///< its source_speed_mps is c at the source
-        std::size_t arcs, chords;   ///< layer arcs followed, calls to the scene's intersect
+        std::size_t arcs, chords;   ///< layer arcs followed, chords handed to the scene
 
         /// The set-up every trace starts from (launch and the launch table's descents): at depth z_m, inclination
         /// (sin_phi0, cos_phi0) with the angle not yet known, nothing travelled. The caller sets layer and tube.
@@ -538,9 +540,10 @@ private:
 
     /// Follows the ray from `m` arc by arc until it meets the scene (true, the path in `out` and, when `more` is not
     /// null, the details in *more), leaves the water or runs out of time (false, `out` untouched).
-    template <Scene S>
     /// Chords that lie wholly within horizontal distance clear_range_m (m) of the origin are known to meet nothing
-    /// (trace_beside) and are skipped.
+    /// (trace_beside) and are skipped; a chord that reaches past it is handed to the scene with its part within it
+    /// known clear (visit_arc_hit).
+    template <Scene S>
     [[nodiscard]] bool follow(march& m, const ray<T>& r, const vec3<T>& hdir, const S& scene, T t_max_s, T chord_depth,
                               std::optional<path<T>>& out, details* more, T clear_range_m = T(0)) const {
         constexpr T inf = std::numeric_limits<T>::infinity();
@@ -571,6 +574,7 @@ private:
             // The arc length within which this arc stays within clear_range_m: it goes at most cos(phi) = xi c <=
             // xi c_max horizontally per metre (Snell), a few roundings less.
             T s_clear = T(0);
+            const T x_clear = clear_range_m > m.x ? clear_range_m - m.x : T(0);
             if (clear_range_m > m.x) {
                 const T cos_hi = std::min(T(1), xi * c_max);
                 if (cos_hi > T(1e-3))
@@ -589,7 +593,7 @@ private:
                 if (a.kappa != T(0) && first > T(0) && T(256) * k_first2 >= T(8) * p_.chord_tolerance_m) {
                     if (k_first2 > T(8) * p_.chord_tolerance_m) first = chord_arc_length_m(a.kappa, p_.chord_tolerance_m);
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, T(0), first, p_.chord_tolerance_m,
-                                      p_.clear_open_water, s_clear, m.chords, done))
+                                      p_.clear_open_water, s_clear, x_clear, m.chords, done))
                         return in_time;
                     s_done = first;
                 }
@@ -600,7 +604,7 @@ private:
                 const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
                 if (stay > s_done) {
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, s_done, stay, p_.chord_tolerance_m,
-                                      p_.clear_open_water, s_clear, m.chords, done))
+                                      p_.clear_open_water, s_clear, x_clear, m.chords, done))
                         return in_time;
                     s_done = stay;
                 }
@@ -624,7 +628,7 @@ private:
             if (s_done < s_end) {
                 if (const auto s_begin = chord_start(st, a.kappa, chord_depth, s_end)) {
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
-                                      p_.chord_tolerance_m, p_.clear_open_water, s_clear, m.chords, done))
+                                      p_.chord_tolerance_m, p_.clear_open_water, s_clear, x_clear, m.chords, done))
                         return in_time;
                 }
             }

@@ -37,6 +37,11 @@ public:
     {
         return scene_->intersect_beside(r, t_max_m, a, a_clear_m);
     }
+    [[nodiscard]] std::optional<hit<T>> intersect_after(const ray<T>& r, T t_max_m, T clear_m) const
+        requires ResumableScene<S>
+    {
+        return scene_->intersect_after(r, t_max_m, clear_m);
+    }
     [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const
         requires GuidedScene<S>
     {
@@ -86,6 +91,12 @@ public:
     {
         if (objects_near_) return scene_->intersect_beside(r, t_max_m, a, a_clear_m);
         return scene_->seabed().intersect_beside(r, t_max_m, a, a_clear_m);
+    }
+    [[nodiscard]] std::optional<hit<T>> intersect_after(const ray<T>& r, T t_max_m, T clear_m) const
+        requires ResumableScene<Seabed>
+    {
+        if (objects_near_) return scene_->intersect_after(r, t_max_m, clear_m);
+        return scene_->seabed().intersect_after(r, t_max_m, clear_m);
     }
     [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const
         requires GuidedScene<Seabed>

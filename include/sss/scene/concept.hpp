@@ -51,6 +51,15 @@
 /// has traced (sampling/detail/tube_refinement.hpp) and passes the steeper of them: a height field starts the new
 /// ray's walk about where the neighbour's ended (height_field_beside.hpp); bent rays skip the chords within rho
 /// (propagation/layered.hpp).
+///
+/// Optional (`ResumableScene`): a scene that can start a ray's walk past a distance the caller knows clear also offers
+///
+/// | `s.intersect_after(r, t_max_m, clear_m)` | `std::optional<hit<T>>` | s.intersect(r, t_max_m), bit for bit |
+///
+/// given that r stays in open water (above the seabed, outside every object) for distances below clear_m (m), with
+/// the same exception as above. Bent rays hand a chord that starts within what a neighbour vouches for
+/// (clear_range_beside_m) to it, with the part of the chord within rho as clear_m: the chord's walk then starts about
+/// where the neighbour's path ended instead of at the chord's start.
 
 #include <concepts>
 #include <cstddef>
@@ -97,6 +106,12 @@ concept GuidedScene = Scene<S> && requires(const S& s, const ray<typename S::val
                                            const scene::beside_rays<typename S::value_type>& b) {
     { s.intersect_beside(r, t, r, t) } -> std::same_as<std::optional<hit<typename S::value_type>>>;
     { s.clear_range_beside_m(b) } -> std::same_as<typename S::value_type>;
+};
+
+/// A Scene that starts a ray's walk past a distance the caller knows clear (see the table above).
+template <class S>
+concept ResumableScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t) {
+    { s.intersect_after(r, t, t) } -> std::same_as<std::optional<hit<typename S::value_type>>>;
 };
 
 /// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.

@@ -127,6 +127,15 @@ public:
         const T s_clear = clear_beside_m(grid_, pyramid_, bounds_, r, neighbour, neighbour_clear_m);
         return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m, s_clear));
     }
+    /// intersect(r, t_max_m), bit for bit, given that r stays above the surface for distances below clear_m (m)
+    /// (ResumableScene): the walk starts at the entry crossing of the cell that holds that distance, as
+    /// intersect_beside's does, with the same one exception (height_field_beside.hpp). A ray that is under the surface
+    /// there (from inside the sediment, or into the footprint through its side below the surface) breaks the promise:
+    /// it is taken to be above, and its first crossing after is reported. Bent rays hand the scene a chord that starts
+    /// within what a neighbour vouches for this way (propagation/layered.hpp).
+    [[nodiscard]] std::optional<hit<T>> intersect_after(const ray<T>& r, T t_max_m, T clear_m) const noexcept {
+        return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m, clear_m));
+    }
     /// Horizontal distance (m) from b.origin within which ray r of b surely stays above the surface, from what b
     /// says of r and a neighbour that met nothing (GuidedScene; bent rays use it: propagation/layered.hpp): the chain
     /// of height_field_beside.hpp; 0 where it does not apply.

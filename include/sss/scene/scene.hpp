@@ -55,6 +55,18 @@ public:
         return h;
     }
 
+    /// intersect(r, t_max_m), bit for bit, given that r stays in open water (above the seabed, outside every object)
+    /// for distances below clear_m (m) (ResumableScene, when the seabed is one): the seabed's walk starts there; the
+    /// objects are asked as by intersect.
+    [[nodiscard]] std::optional<hit<T>> intersect_after(const ray<T>& r, T t_max_m, T clear_m) const
+        requires ResumableScene<Seabed>
+    {
+        std::optional<hit<T>> h = seabed_.intersect_after(r, t_max_m, clear_m);
+        if (objects_.empty()) return h;
+        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
+        return h;
+    }
+
     /// Horizontal distance (m) from b.origin within which ray r of b surely meets nothing (GuidedScene, when the seabed
     /// is one): the shorter of the seabed's and the objects' (object_set::clear_range_beside_m).
     [[nodiscard]] T clear_range_beside_m(const beside_rays<T>& b) const
