@@ -217,7 +217,14 @@ public:
                                         out[k].reset();
                                         return;
                                     }
-                                    pending[held++] = {k, *g};
+                                    // Field by field: *g was just stored that way, and one wide load of it
+                                    // would wait for the stores to retire instead of taking them forwarded.
+                                    auto& [slot_k, slot] = pending[held++];
+                                    slot_k = k;
+                                    slot.distance_m = g->distance_m;
+                                    slot.ix = g->ix;
+                                    slot.iy = g->iy;
+                                    slot.triangle = g->triangle;
                                     if (held == wedge_batch) {
                                         grid_hits(part, std::span(pending).first(held), out);
                                         held = 0;

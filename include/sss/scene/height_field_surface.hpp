@@ -31,16 +31,18 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "sss/core/detail/force_inline.hpp"
 #include "sss/core/types.hpp"
 #include "sss/scene/detail/border_gradients.hpp"
 #include "sss/scene/height_grid.hpp"
 
 namespace sss::scene {
 
-/// The gradients of a hit at local coordinates (a, b) of cell (ix, iy) in triangle `tri` (see hit_gradients).
-template <Real T> [[nodiscard]] inline hit_gradients<T> gradients_at(const height_grid_view<T>& g, std::int32_t ix,
-                                                                     std::int32_t iy, cell_triangle tri, T a,
-                                                                     T b) noexcept {
+/// The gradients of a hit at local coordinates (a, b) of cell (ix, iy) in triangle `tri` (see hit_gradients). Always
+/// inlined: the batched hit builders read the heights of many hits in one loop.
+template <Real T>
+[[nodiscard]] SSS_FORCE_INLINE hit_gradients<T> gradients_at(const height_grid_view<T>& g, std::int32_t ix,
+                                                             std::int32_t iy, cell_triangle tri, T a, T b) noexcept {
     if (!(ix >= 1 && iy >= 1 && ix + 2 <= g.nx - 1 && iy + 2 <= g.ny - 1))
         return detail::gradients_at_border(g, ix, iy, tri, a, b);
     const std::ptrdiff_t nx = g.nx;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 
+#include "sss/core/detail/force_inline.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/core/types.hpp"
 #include "sss/scene/grid_hit.hpp"
@@ -177,9 +178,11 @@ enum class step_outcome : unsigned char { next, done, found };
 /// Walks one cell: from the state's breakpoint through the cell's diagonal (when the ray crosses it) to
 /// the cell's exit (or to s_hi), calling `visit(w, s, f)` at each new breakpoint while `w` still holds the
 /// previous one (so [w.s, s] is a segment inside cell (w.ix, w.iy)); `visit` returns true to stop the walk.
-/// Then moves the state into the next cell.
-template <Real T, class Visit> inline step_outcome cell_step(const height_grid_view<T>& g, const grid_ray<T>& q,
-                                                             walk_state<T>& w, Visit&& visit) noexcept {
+/// Then moves the state into the next cell. Always inlined: it runs once or twice per ray in the sweeps, where a
+/// call cost a fifth of the time.
+template <Real T, class Visit>
+SSS_FORCE_INLINE step_outcome cell_step(const height_grid_view<T>& g, const grid_ray<T>& q, walk_state<T>& w,
+                                        Visit&& visit) noexcept {
     constexpr T inf = std::numeric_limits<T>::infinity();
     const T sx = q.su > 0 ? cross_u(q, w.ix + 1) : (q.su < 0 ? cross_u(q, w.ix) : inf);
     const T sy = q.sv > 0 ? cross_v(q, w.iy + 1) : (q.sv < 0 ? cross_v(q, w.iy) : inf);

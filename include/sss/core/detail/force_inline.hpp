@@ -1,0 +1,13 @@
+#pragma once
+/// \file
+/// Internal: SSS_FORCE_INLINE, for the few small functions of the tracers' inner loops that the compiler would
+/// otherwise keep out of line (a call there passes the walk's state through memory, and the loads that follow
+/// wait on its stores). Plain `inline` where the compiler has no such hint.
+
+#if defined(__GNUC__) || defined(__clang__)
+#define SSS_FORCE_INLINE [[gnu::always_inline]] inline
+#elif defined(_MSC_VER)
+#define SSS_FORCE_INLINE __forceinline
+#else
+#define SSS_FORCE_INLINE inline
+#endif
