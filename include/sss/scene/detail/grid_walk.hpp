@@ -178,8 +178,8 @@ enum class step_outcome : unsigned char { next, done, found };
 /// Walks one cell: from the state's breakpoint through the cell's diagonal (when the ray crosses it) to
 /// the cell's exit (or to s_hi), calling `visit(w, s, f)` at each new breakpoint while `w` still holds the
 /// previous one (so [w.s, s] is a segment inside cell (w.ix, w.iy)); `visit` returns true to stop the walk.
-/// Then moves the state into the next cell. Always inlined: it runs once or twice per ray in the sweeps, where a
-/// call cost a fifth of the time.
+/// Then moves the state into the next cell. Always inlined: it runs once or twice per ray in the sweeps, where the
+/// call took about a sixth of the time.
 template <Real T, class Visit>
 SSS_FORCE_INLINE step_outcome cell_step(const height_grid_view<T>& g, const grid_ray<T>& q, walk_state<T>& w,
                                         Visit&& visit) noexcept {
