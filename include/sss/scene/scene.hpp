@@ -39,8 +39,7 @@ public:
     /// Nearest hit over seabed and objects with 0 < distance <= t_max_m.
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const {
         std::optional<hit<T>> h = seabed_.intersect(r, t_max_m);
-        if (objects_.empty()) return h;
-        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
+        nearer_object(r, t_max_m, h);
         return h;
     }
 
@@ -50,8 +49,7 @@ public:
         requires GuidedScene<Seabed>
     {
         std::optional<hit<T>> h = seabed_.intersect_beside(r, t_max_m, a, a_clear_m);
-        if (objects_.empty()) return h;
-        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
+        nearer_object(r, t_max_m, h);
         return h;
     }
 
@@ -62,8 +60,7 @@ public:
         requires ResumableScene<Seabed>
     {
         std::optional<hit<T>> h = seabed_.intersect_after(r, t_max_m, clear_m);
-        if (objects_.empty()) return h;
-        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
+        nearer_object(r, t_max_m, h);
         return h;
     }
 
@@ -111,6 +108,12 @@ public:
     }
 
 private:
+    /// Replaces the seabed's hit h by the objects' nearest hit before it (within t_max_m when h is none), if any.
+    void nearer_object(const ray<T>& r, T t_max_m, std::optional<hit<T>>& h) const {
+        if (objects_.empty()) return;
+        if (auto o = objects_.intersect(r, h ? h->distance_m : t_max_m)) h = *o;
+    }
+
     Seabed seabed_;
     object_set<T> objects_;
 };
