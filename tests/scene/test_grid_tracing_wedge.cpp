@@ -70,11 +70,11 @@ std::vector<std::optional<sss::hit<T>>> trace_wedges(const height_field<T>& hf, 
 
 } // namespace
 
-TEST_CASE_TEMPLATE("Columns of a tilted cone traced as wedges give the reference hits: same cell, same distance", T,
+TEST_CASE_TEMPLATE("Columns of a tilted cone traced as wedges give the reference hits to the last bit: same cell, same distance", T,
                    float, double) {
     const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
     rng gen{31};
-    long compared = 0, hits = 0, in_runs = 0, cell_differs = 0;
+    long compared = 0, hits = 0, in_runs = 0;
     for (int p = 0; p < 24; ++p) {
         // Towfish over and around the footprint, from just above the top to 15 m above it; any heading, roll and
         // pitch up to 20 deg; a few pings start under the top (among the hills) or outside the grid.
@@ -95,17 +95,14 @@ TEST_CASE_TEMPLATE("Columns of a tilted cone traced as wedges give the reference
                     REQUIRE(bool(got[k]) == bool(want));
                     if (!want) continue;
                     ++hits;
-                    const double d = double(want->distance_m);
-                    REQUIRE(std::abs(double(got[k]->distance_m) - d) <= 1e-6 * d);
-                    if (got[k]->label != want->label) ++cell_differs; // only for a hit on a cell's edge
+                    REQUIRE(got[k]->distance_m == want->distance_m);
+                    REQUIRE(got[k]->label == want->label);
                 }
             }
     }
-    MESSAGE(compared << " rays, " << hits << " hits, " << in_runs << " in wedge runs, " << cell_differs
-                     << " on a shared cell edge");
+    MESSAGE(compared << " rays, " << hits << " hits, " << in_runs << " in wedge runs");
     CHECK(in_runs > compared / 2);
     CHECK(hits > compared / 3);
-    CHECK(cell_differs * 10000 <= compared);
 }
 
 TEST_CASE("A wedge run ends where the rays leave the origin, turn the other way in depression or spread too wide") {
@@ -130,7 +127,7 @@ TEST_CASE("A wedge run ends where the rays leave the origin, turn the other way 
     CHECK(run.count == 61);
 }
 
-TEST_CASE_TEMPLATE("intersect_many on columns of a rolled, pitched towfish gives intersect's hits, every field", T, float,
+TEST_CASE_TEMPLATE("intersect_many on columns of a rolled, pitched towfish gives intersect's hits, every field to the last bit", T, float,
                    double) {
     const auto hf = rough_field<T>(401, 301, 0.25, {-20, 10}, 7);
     rng gen{5};
@@ -153,13 +150,12 @@ TEST_CASE_TEMPLATE("intersect_many on columns of a rolled, pitched towfish gives
             REQUIRE(bool(got[k]) == bool(want));
             if (!want) continue;
             ++hits;
-            const double d = double(want->distance_m);
-            REQUIRE(std::abs(double(got[k]->distance_m) - d) <= 1e-6 * d);
+            REQUIRE(got[k]->distance_m == want->distance_m);
             REQUIRE(got[k]->label == want->label);
             REQUIRE(got[k]->object == want->object);
-            REQUIRE(glm::length(vec3<double>(got[k]->point - want->point)) <= 1e-5 * (1 + d));
-            REQUIRE(glm::dot(vec3<double>(got[k]->normal), vec3<double>(want->normal)) >= 1 - 1e-5);
-            REQUIRE(glm::dot(vec3<double>(got[k]->shading_normal), vec3<double>(want->shading_normal)) >= 1 - 1e-5);
+            REQUIRE(got[k]->point == want->point);
+            REQUIRE(got[k]->normal == want->normal);
+            REQUIRE(got[k]->shading_normal == want->shading_normal);
         }
     }
     CHECK(hits > compared / 2);

@@ -167,10 +167,12 @@ public:
     /// Hits for many rays: hits[k] = intersect(rays[k], t_max_m), up to rounding. Runs of at least
     /// `min_fan_rays` consecutive rays that share their origin and horizontal heading (a sidescan fan at one
     /// along-track angle, ordered by depression either way) are traced together in one sweep along the
-    /// surface under them (height_field_fan.hpp), at a small cost per ray. Runs that share the origin but not
+    /// surface under them (height_field_fan.hpp), at a small cost per ray; the sweep evaluates the surface along
+    /// the fan's plane, so its hits differ from intersect's by rounding. Runs that share the origin but not
     /// the vertical plane (a column of a rolled, pitched or conical beam: headings within
     /// detail::wedge_max_spread_rad) go through the wedge sweep (height_field_wedge.hpp): an envelope per ring
-    /// of the wedge, then a short exact walk per ray. Other rays go one by one.
+    /// of the wedge, then a short exact walk per ray, whose hits are intersect's bit for bit. Other rays go one by
+    /// one.
     /// Throws invalid_parameter unless hits.size() == rays.size().
     void intersect_many(std::span<const ray<T>> rays, T t_max_m, std::span<std::optional<hit<T>>> hits) const {
         sss::require(hits.size() == rays.size(), "height_field.intersect_many.hits",

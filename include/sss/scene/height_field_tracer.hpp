@@ -69,8 +69,10 @@ trace_reference(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>&
 /// descends a level where it cannot skip, goes up a level after a skip or a cell only into a parent block
 /// not tested yet, and gives the cells it cannot skip the same exact test as trace_reference. Skips and
 /// jumps resume at crossings that are breakpoints of the reference walk too, evaluated by the same
-/// formulas, so both traversals return the same hit to the last bit, in float and in double (they could
-/// differ only for a ray passing within rounding of a skipped block's highest vertex).
+/// formulas, in the cell the reference walk is in there (on the axis not crossed, the cell is found by comparing
+/// the lines' crossings, as the walk does: the exit point's coordinate alone can round into the next cell, and the
+/// walk would then miss that line's breakpoint), so both traversals return the same hit to the last bit, in float
+/// and in double (they could differ only for a ray passing within rounding of a skipped block's highest vertex).
 ///
 /// A caller that knows the ray stays above the surface for every distance below `s_clear_m` (m; see
 /// clear_beside_m, and its file comment for the one way rounding can still differ) lets the walk resume at the
@@ -107,18 +109,13 @@ template <Real T>
         guided = true;
     }
     if (s_skip > q.s_lo) {
-        const T s_top = s_skip;
-        const detail::walk_state<T> c = detail::start_at(g, q, s_top);
-        const T s_in_u = q.su > 0 ? detail::cross_u(q, c.ix) : (q.su < 0 ? detail::cross_u(q, c.ix + 1) : -inf);
-        const T s_in_v = q.sv > 0 ? detail::cross_v(q, c.iy) : (q.sv < 0 ? detail::cross_v(q, c.iy + 1) : -inf);
-        const T s_in = std::max(s_in_u, s_in_v);
-        if (s_in > q.s_lo && s_in <= s_top) {
-            w.ix = c.ix;
-            w.iy = c.iy;
-            w.s = s_in;
+        if (const auto e = detail::entry_of_cell_at(g, q, s_skip)) {
+            w.ix = e->ix;
+            w.iy = e->iy;
+            w.s = e->s;
             w.above = true;
-            kind = s_in_u >= s_in_v ? at_kind::u_line : at_kind::v_line;
-            line = s_in_u >= s_in_v ? (q.su > 0 ? c.ix : c.ix + 1) : (q.sv > 0 ? c.iy : c.iy + 1);
+            kind = e->on_u ? at_kind::u_line : at_kind::v_line;
+            line = e->line;
         }
     }
     const std::int32_t top_level = p.levels();
@@ -149,20 +146,25 @@ template <Real T>
             }
             // The ray is above everything in this block: skip to its exit, across the exit line on the
             // crossed axis; on the other axis into the cell holding the exit point, kept inside the block
-            // and never moved backwards.
+            // and never moved backwards (made the reference walk's cell where the exact walk resumes).
             if (!(se < q.s_hi)) return std::nullopt;
             const std::int32_t old_ix = w.ix, old_iy = w.iy;
             const bool cross_x = sx <= sy, cross_y = sy <= sx;
+            // A block whose exit line the ray crossed before where the walk already is (the cell on the axis not
+            // crossed was one too far, by rounding) leaves the walk at the crossing it was at.
+            const bool moved = !(std::min(sx, sy) < w.s);
             if (cross_x) {
                 w.ix = ux - 1 + pu;
-                kind = at_kind::u_line;
-                line = ux;
+                if (moved) {
+                    kind = at_kind::u_line;
+                    line = ux;
+                }
             } else if (q.su != 0) {
                 w.ix = detail::exit_cell_in_block(q.u0 + q.du * se, g.nx - 2, bx, level, q.su, w.ix);
             }
             if (cross_y) {
                 w.iy = vy - 1 + pv;
-                if (!cross_x) {
+                if (moved && !cross_x) {
                     kind = at_kind::v_line;
                     line = vy;
                 }
@@ -179,14 +181,17 @@ template <Real T>
         }
 
         if (!f_known) {
+            // At a line crossing, the cell on the other axis is made the one the reference walk is in there.
             switch (kind) {
             case at_kind::point:
                 w.f = detail::f_at(g, q, w.s);
                 break;
             case at_kind::u_line:
+                w.iy = detail::walk_cell(q.v0, q.dv, q.inv_dv, q.sv, g.ny - 2, w.s);
                 w.f = detail::f_on_u_line(g, q, line, w.s);
                 break;
             case at_kind::v_line:
+                w.ix = detail::walk_cell(q.u0, q.du, q.inv_du, q.su, g.nx - 2, w.s);
                 w.f = detail::f_on_v_line(g, q, line, w.s);
                 break;
             }

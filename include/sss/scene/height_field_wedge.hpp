@@ -20,9 +20,11 @@
 /// Exact part. From where the pointer stopped, each ray is walked exactly, cell by cell, with the same breakpoints
 /// and the same rule as the single-ray tracer (height_field_tracer.hpp): a hit where f = z_ray - h goes from > 0 to
 /// <= 0, the linear root on that segment. Whenever the walk enters a ring and finds it and the following rings clear
-/// for this ray, it jumps to the first ring that is not, as the accelerated tracer skips pyramid blocks. Jumps
-/// land only on points where the ray is above the envelope, hence above the surface, so no hit is skipped; f is
-/// evaluated afresh at such a point (a plain point, as at a ray's start), which can move a hit by rounding only.
+/// for this ray, it jumps to the first ring that is not, as the accelerated tracer skips pyramid blocks. A walk
+/// starts (or resumes after a jump) at the entry crossing of the cell that holds the ring's start: a breakpoint of
+/// the single-ray walk, in a clear ring (a cell spans less than two rings, and a jump passes two or more), so the ray
+/// is above the surface there and no hit is skipped, and f there is evaluated by the same formula, so the walk sees
+/// the same numbers from there on and the hit is the single-ray tracer's to the last bit, in float and in double.
 ///
 /// Chain. Neighbouring rays of a column differ much more in slope than in heading (a cone column turns its heading
 /// by about tan(along) sin(e) de per de of depression e), so the previous, steeper ray's knowledge carries over: if
@@ -155,52 +157,42 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
         detail::walk_state<T> w{};
         bool walking = false;
         int grace = 0; // cells to walk before looking for jumps
-        if (s_chain > static_cast<T>(shared) * to_s) {
-            // Resume at the entry crossing of the cell that holds the chain's point: a breakpoint of the
-            // single-ray walk, evaluated by the same formula.
-            const detail::walk_state<T> c = detail::start_at(g, q, s_chain);
-            constexpr T inf = std::numeric_limits<T>::infinity();
-            const T s_in_u = q.su > 0 ? detail::cross_u(q, c.ix) : (q.su < 0 ? detail::cross_u(q, c.ix + 1) : -inf);
-            const T s_in_v = q.sv > 0 ? detail::cross_v(q, c.iy) : (q.sv < 0 ? detail::cross_v(q, c.iy + 1) : -inf);
-            const T s_in = std::max(s_in_u, s_in_v);
-            if (s_in > q.s_lo && s_in <= s_chain && s_in > T(0)) {
-                w = c;
-                w.s = s_in;
-                w.f = s_in_u >= s_in_v ? detail::f_on_u_line(g, q, q.su > 0 ? c.ix : c.ix + 1, s_in)
-                                       : detail::f_on_v_line(g, q, q.sv > 0 ? c.iy : c.iy + 1, s_in);
-                if (!(w.f > T(0))) {
-                    // Above just before: only rounding puts f <= 0 here, and then this is the hit.
-                    found = detail::segment_root(q, s_in, T(1), s_in, w.f, w.ix, w.iy, out);
-                    clean = false;
-                }
-                w.above = w.f > T(0);
-                ring = static_cast<std::int32_t>(s_in * to_rho);
-                walking = true;
-                grace = 3;
+        // Resuming at the entry crossing of the cell that holds distance s, known above the surface before s: a
+        // breakpoint of the single-ray walk, f there by the same formula, so the walk sees the same numbers from
+        // there on. False when that cell is where the ray comes over the grid.
+        auto resume_at_entry = [&](T s) {
+            const auto e = detail::entry_of_cell_at(g, q, s);
+            if (!e) return false;
+            w = detail::walk_state<T>{.s = e->s, .f = detail::f_on_entry(g, q, *e), .ix = e->ix, .iy = e->iy, .above = false};
+            if (!(w.f > T(0))) {
+                // Above just before: only rounding puts f <= 0 here, and then this is the hit.
+                found = detail::segment_root(q, w.s, T(1), w.s, w.f, w.ix, w.iy, out);
+                clean = false;
             }
+            w.above = w.f > T(0);
+            return true;
+        };
+        if (s_chain > static_cast<T>(shared) * to_s && resume_at_entry(s_chain)) {
+            ring = static_cast<std::int32_t>(w.s * to_rho);
+            walking = true;
+            grace = 3;
         }
         while (!found) {
             if (!walking) {
                 const T s_ring = static_cast<T>(ring) * to_s;
-                const bool at_entry = !(s_ring > q.s_lo);
-                const T s = at_entry ? q.s_lo : s_ring;
-                if (!(s < q.s_hi)) break;
-                w = detail::start_at(g, q, s);
-                w.f = detail::f_at(g, q, s);
-                if (at_entry) {
+                if (s_ring > q.s_lo && !(s_ring < q.s_hi)) break;
+                if (!(s_ring > q.s_lo && resume_at_entry(s_ring))) {
+                    // From where the ray comes over the grid (through its side, or from an origin over it), as the
+                    // single-ray walk does. The chain needs the ray to have been over the grid, and above the
+                    // envelope, before its walk, so it ends here.
+                    w = detail::start_at(g, q, q.s_lo);
+                    w.f = detail::f_at(g, q, q.s_lo);
                     w.above = w.f > T(0);
-                    // Entering the grid here (through its side, or from an origin over it): the chain needs the
-                    // ray to have been over the grid, and above the envelope, before its walk, so it ends here.
                     clean = false;
-                } else {
-                    // Above the envelope just before: only rounding can put f <= 0 here, and then this is the hit.
-                    if (!(w.f > T(0)) && detail::segment_root(q, s, T(1), s, w.f, w.ix, w.iy, out)) {
-                        found = true;
-                        clean = false;
-                        break;
-                    }
-                    w.above = w.f > T(0);
-                    if (!w.above) clean = false;
+                } else if (found) {
+                    break;
+                } else if (!w.above) {
+                    clean = false;
                 }
                 walking = true;
             }

@@ -238,6 +238,62 @@ template <Real T>
     return w;
 }
 
+/// The cell along one axis that the walk is in at distance s (m), the axis being c(s) = c0 + d s with 1/d = inv and
+/// the walk's step `step` on it: the cell entered by the last line crossed at a distance <= s (by cross_u / cross_v's
+/// formula, a tie crossed, as cell_step does). cell_of(c(s)) alone can put a point a rounding error from a line in
+/// the cell beyond it while the walk, comparing the lines' crossings, is still before it; a walk resumed there would
+/// miss that line's breakpoint.
+template <Real T>
+[[nodiscard]] inline std::int32_t walk_cell(T c0, T d, T inv, std::int32_t step, std::int32_t last_cell, T s) noexcept {
+    std::int32_t i = cell_of(c0 + d * s, last_cell);
+    auto crossed = [&](std::int32_t line) { return (static_cast<T>(line) - c0) * inv <= s; };
+    if (step > 0) {
+        if (i > 0 && !crossed(i))
+            --i;
+        else if (i < last_cell && crossed(i + 1))
+            ++i;
+    } else if (step < 0) {
+        if (i < last_cell && !crossed(i + 1))
+            ++i;
+        else if (i > 0 && crossed(i))
+            --i;
+    }
+    return i;
+}
+
+/// A breakpoint where the single-ray walk enters cell (ix, iy): across the line u = line (on_u) or v = line, at
+/// distance s (m).
+template <Real T> struct cell_entry {
+    T s;
+    std::int32_t ix, iy;
+    std::int32_t line;
+    bool on_u;
+};
+
+/// The crossing where the walk enters the cell that holds distance s (m). It is a breakpoint of the walk from the
+/// ray's start, so a walk resumed there, with f by the line's formula (f_on_entry), sees the same numbers from
+/// there on as the walk from the start: the hit is the same to the last bit. Empty when that cell is the one where
+/// the ray comes over the grid (the crossing lies at or before s_lo); a walk then starts at s_lo, as that one does.
+template <Real T>
+[[nodiscard]] inline std::optional<cell_entry<T>> entry_of_cell_at(const height_grid_view<T>& g, const grid_ray<T>& q,
+                                                                   T s) noexcept {
+    constexpr T inf = std::numeric_limits<T>::infinity();
+    const std::int32_t ix = walk_cell(q.u0, q.du, q.inv_du, q.su, g.nx - 2, s);
+    const std::int32_t iy = walk_cell(q.v0, q.dv, q.inv_dv, q.sv, g.ny - 2, s);
+    const T s_in_u = q.su > 0 ? cross_u(q, ix) : (q.su < 0 ? cross_u(q, ix + 1) : -inf);
+    const T s_in_v = q.sv > 0 ? cross_v(q, iy) : (q.sv < 0 ? cross_v(q, iy + 1) : -inf);
+    const T s_in = std::max(s_in_u, s_in_v);
+    if (!(s_in > q.s_lo && s_in <= s)) return std::nullopt;
+    const bool on_u = s_in_u >= s_in_v;
+    return cell_entry<T>{s_in, ix, iy, on_u ? (q.su > 0 ? ix : ix + 1) : (q.sv > 0 ? iy : iy + 1), on_u};
+}
+
+/// f at a cell's entry crossing, by the formula the walk uses there.
+template <Real T>
+[[nodiscard]] inline T f_on_entry(const height_grid_view<T>& g, const grid_ray<T>& q, const cell_entry<T>& e) noexcept {
+    return e.on_u ? f_on_u_line(g, q, e.line, e.s) : f_on_v_line(g, q, e.line, e.s);
+}
+
 /// The cell along one axis (0 to last_cell) that holds grid coordinate c, kept inside block b of 2^level cells
 /// and never moved against the walk's step (step > 0: not below current; step < 0: not above it).
 template <Real T>
