@@ -191,13 +191,14 @@ template <template <class> class Tracer, class T, bool cones = false> void trace
     const auto& p = all_pings<T>(cones);
     const Tracer<T> tracer{hf};
     std::vector<std::optional<sss::hit<T>>> hits(p[0].size());
-    std::size_t k = 0, rays = 0, hit_count = 0;
+    std::size_t k = 0, rays = 0, hit_count = 0, traced = 0;
     for (auto _ : state) {
         tracer.trace(p[k], T(1.5 * range_m), hits);
         for (const auto& h : hits) hit_count += h ? 1 : 0;
         rays += hits.size();
         benchmark::ClobberMemory();
         k = (k + 1) % p.size();
+        ++traced;
     }
     state.SetItemsProcessed(std::int64_t(rays));
     state.SetLabel(std::string(Tracer<T>::name()) + (cones ? " (cone columns)" : ""));
@@ -208,7 +209,7 @@ template <template <class> class Tracer, class T, bool cones = false> void trace
         // rays whose hit differs in any bit (distance or cell). The wedge sweep (cone columns) gives intersect's
         // hits exactly; the fan sweep evaluates the surface along the fan's plane, so rounding moves its hits.
         std::size_t compared = 0, differ = 0;
-        for (std::size_t j = 0; j < std::min(p.size(), std::max<std::size_t>(k, 1)); ++j) {
+        for (std::size_t j = 0; j < std::min(p.size(), std::max<std::size_t>(traced, 1)); ++j) {
             tracer.trace(p[j], T(1.5 * range_m), hits);
             for (std::size_t i = 0; i < hits.size(); ++i) {
                 const auto one = hf.intersect(p[j][i], T(1.5 * range_m));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "sss/scene/height_field.hpp"
@@ -22,6 +23,18 @@ namespace {
 
 constexpr double deg = 3.141592653589793 / 180;
 
+// intersect() against the reference traversal: the same hit or miss, and for a hit the same cell and the same
+// distance to the last bit. True for a hit.
+template <class T> bool same_as_reference(const height_field<T>& hf, const ray<T>& r, T t_max) {
+    const auto a = hf.intersect(r, t_max);
+    const auto b = hf.intersect_reference(r, t_max);
+    REQUIRE(bool(a) == bool(b));
+    if (!a) return false;
+    REQUIRE(a->label == b->label);
+    REQUIRE(a->distance_m == b->distance_m);
+    return true;
+}
+
 } // namespace
 
 TEST_CASE_TEMPLATE("The accelerated and the reference traversal find the same cell and distance, to the last bit, for a million rays", T,
@@ -33,14 +46,8 @@ TEST_CASE_TEMPLATE("The accelerated and the reference traversal find the same ce
     const long n = std::is_same_v<T, double> ? 600000 : 150000;
     long hits = 0, compared = 0;
     auto compare = [&](const ray<T>& r, T t_max) {
-        const auto a = hf.intersect(r, t_max);
-        const auto b = hf.intersect_reference(r, t_max);
         ++compared;
-        REQUIRE(bool(a) == bool(b));
-        if (!a) return;
-        ++hits;
-        REQUIRE(a->label == b->label);
-        REQUIRE(a->distance_m == b->distance_m);
+        hits += same_as_reference(hf, r, t_max);
     };
     // Random rays: origins over and around the footprint, some under the surface; all directions.
     for (long k = 0; k < n; ++k) {
@@ -69,14 +76,14 @@ TEST_CASE_TEMPLATE("The accelerated and the reference traversal find the same ce
     MESSAGE(compared << " rays compared, " << hits << " hits");
 }
 
-TEST_CASE_TEMPLATE("Rays nearly along a grid axis resume their walks in the reference walk's cell: the same hits to the last bit",
+TEST_CASE_TEMPLATE("Rays nearly along a grid axis, passing a hair from a block-edge vertex, get the reference hits to the last bit",
                    T, float, double) {
     // A ray turned a hair from a grid axis crosses that axis's lines far apart, at ill-conditioned distances. Where
     // a skipped block ends (on a line of the other axis) within rounding of such a crossing, the exit point's own
     // coordinate can round into the next cell while the reference walk, comparing the two lines' crossings, has not
     // entered it; resumed there, the walk would miss that line's breakpoint and interpolate the hit over a longer
-    // segment. Each ray here passes a vertex (on a block's edge) a hair to one side, 2 to 30 cm above the surface
-    // and coming down, and hits the surface a few cells on.
+    // segment. Each ray here passes a vertex (on a block's edge) a hair to one side (down to float's or double's
+    // rounding), 2 to 30 cm above the surface and coming down, and hits the surface a few cells on.
     const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10}, 42);
     rng gen{29};
     const long n = 40000;
@@ -90,18 +97,32 @@ TEST_CASE_TEMPLATE("Rays nearly along a grid axis resume their walks in the refe
         // the point beside it a hair along the other axis.
         const double i = double(8 + gen.next() % 584), j = double(8 + gen.next() % 394);
         const bool along_v = axis % 2 == 1;
-        const double hair = (gen.uniform() < 0.5 ? -1 : 1) * std::pow(10.0, gen.uniform(-6, -2));
+        const double hair =
+            (gen.uniform() < 0.5 ? -1 : 1) * std::pow(10.0, gen.uniform(std::is_same_v<T, float> ? -6 : -14, -2));
         const double u = along_v ? i + hair : std::round(i / 4) * 4, v = along_v ? std::round(j / 4) * 4 : j + hair;
         const double x = -20 + 0.25 * u, y = 10 + 0.25 * v;
         const vec3<double> p{x, y, double(hf.seabed_height_m(T(x), T(y))) + gen.uniform(0.02, 0.3)};
-        const auto r = make_ray<T>(p - gen.uniform(5, 40) * d, d);
-        const auto a = hf.intersect(r, T(150));
-        const auto b = hf.intersect_reference(r, T(150));
-        REQUIRE(bool(a) == bool(b));
-        if (!a) continue;
-        ++hits;
-        REQUIRE(a->label == b->label);
-        REQUIRE(a->distance_m == b->distance_m);
+        hits += same_as_reference(hf, make_ray<T>(p - gen.uniform(5, 40) * d, d), T(150));
+    }
+    CHECK(hits > n / 2);
+}
+
+TEST_CASE_TEMPLATE("Rays through the grid's vertices (u and v lines crossed at once) get the reference hits to the last bit",
+                   T, float, double) {
+    // Headings at 45 degrees to the axes from a point on a vertex's diagonal line: the ray meets every vertex on its
+    // path, where it crosses a u line and a v line at the same distance (exactly, where the rounding of the two
+    // coordinates agrees), and block exits tie. Both tracers must settle each tie the same way.
+    const auto hf = rough_field<T>(601, 411, 0.25, {-20, 10}, 42);
+    rng gen{37};
+    long hits = 0;
+    const long n = 20000;
+    for (long k = 0; k < n; ++k) {
+        const double f = gen.uniform() < 0.5 ? 0.0 : gen.uniform(), along = gen.uniform(-40, 40);
+        const double i = double(20 + gen.next() % 560), j = double(20 + gen.next() % 370);
+        const int sx = gen.next() % 2 ? 1 : -1, sy = gen.next() % 2 ? 1 : -1;
+        const double x = -20 + 0.25 * (i + f) + along * sx * 0.25, y = 10 + 0.25 * (j + f) + along * sy * 0.25;
+        const double h = std::sqrt(0.5) * std::cos(gen.uniform(3, 40) * deg), dz = -std::sqrt(1 - 2 * h * h);
+        hits += same_as_reference(hf, make_ray<T>({x, y, double(hf.top_m()) + gen.uniform(0.1, 6)}, {sx * h, sy * h, dz}), T(150));
     }
     CHECK(hits > n / 2);
 }

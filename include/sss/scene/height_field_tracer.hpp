@@ -71,8 +71,10 @@ trace_reference(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>&
 /// jumps resume at crossings that are breakpoints of the reference walk too, evaluated by the same
 /// formulas, in the cell the reference walk is in there (on the axis not crossed, the cell is found by comparing
 /// the lines' crossings, as the walk does: the exit point's coordinate alone can round into the next cell, and the
-/// walk would then miss that line's breakpoint), so both traversals return the same hit to the last bit, in float
-/// and in double (they could differ only for a ray passing within rounding of a skipped block's highest vertex).
+/// walk would then miss that line's breakpoint; at a vertex, where a u and a v line are crossed at the same distance,
+/// by the u line's formula, as the walk), so both traversals return the same hit to the last bit, in float and in
+/// double (they could differ only for a ray passing within rounding of a skipped block's highest vertex, or entering
+/// the grid's footprint within rounding of a block's edge).
 ///
 /// A caller that knows the ray stays above the surface for every distance below `s_clear_m` (m; see
 /// clear_beside_m, and its file comment for the one way rounding can still differ) lets the walk resume at the
@@ -146,13 +148,15 @@ template <Real T>
             }
             // The ray is above everything in this block: skip to its exit, across the exit line on the
             // crossed axis; on the other axis into the cell holding the exit point, kept inside the block
-            // and never moved backwards (made the reference walk's cell where the exact walk resumes).
+            // and never moved backwards (where the exact walk resumes, that cell is made the reference walk's).
+            // A block whose exit line the ray crossed before where the walk already is (the cell on the other axis
+            // was one short, by rounding) moves the cell but leaves the walk at the crossing it was at; at an exact
+            // tie the u line's crossing counts, as in the reference walk.
             if (!(se < q.s_hi)) return std::nullopt;
             const std::int32_t old_ix = w.ix, old_iy = w.iy;
             const bool cross_x = sx <= sy, cross_y = sy <= sx;
-            // A block whose exit line the ray crossed before where the walk already is (the cell on the axis not
-            // crossed was one too far, by rounding) leaves the walk at the crossing it was at.
-            const bool moved = !(std::min(sx, sy) < w.s);
+            const T s_exit = std::min(sx, sy);
+            const bool moved = kind == at_kind::point || s_exit > w.s || (s_exit == w.s && cross_x);
             if (cross_x) {
                 w.ix = ux - 1 + pu;
                 if (moved) {
@@ -190,10 +194,14 @@ template <Real T>
                 w.iy = detail::walk_cell(q.v0, q.dv, q.inv_dv, q.sv, g.ny - 2, w.s);
                 w.f = detail::f_on_u_line(g, q, line, w.s);
                 break;
-            case at_kind::v_line:
+            case at_kind::v_line: {
                 w.ix = detail::walk_cell(q.u0, q.du, q.inv_du, q.su, g.nx - 2, w.s);
-                w.f = detail::f_on_v_line(g, q, line, w.s);
+                // At a vertex (the cell's u line crossed at the same distance) the reference walk takes the u line.
+                const std::int32_t u_line = q.su > 0 ? w.ix : w.ix + 1;
+                w.f = q.su != 0 && detail::cross_u(q, u_line) == w.s ? detail::f_on_u_line(g, q, u_line, w.s)
+                                                                      : detail::f_on_v_line(g, q, line, w.s);
                 break;
+            }
             }
             f_known = true;
             // After a skip f was > 0 just before; only rounding can make it <= 0 here: the hit is this point.

@@ -22,9 +22,11 @@
 /// <= 0, the linear root on that segment. Whenever the walk enters a ring and finds it and the following rings clear
 /// for this ray, it jumps to the first ring that is not, as the accelerated tracer skips pyramid blocks. A walk
 /// starts (or resumes after a jump) at the entry crossing of the cell that holds the ring's start: a breakpoint of
-/// the single-ray walk, in a clear ring (a cell spans less than two rings, and a jump passes two or more), so the ray
-/// is above the surface there and no hit is skipped, and f there is evaluated by the same formula, so the walk sees
-/// the same numbers from there on and the hit is the single-ray tracer's to the last bit, in float and in double.
+/// the single-ray walk, in a clear ring (a cell spans less than two rings of rho; a jump passes two or more, and
+/// before the pointer's ring every ring is clear or above top_m), so the ray is above the surface there and no hit
+/// is skipped, and f there is evaluated by the same formula, so the walk sees the same numbers from there on and the
+/// hit is the single-ray tracer's to the last bit, in float and in double. Where that cell is the one in which the
+/// ray comes over the grid, the walk starts where it does, as the single-ray walk.
 ///
 /// Chain. Neighbouring rays of a column differ much more in slope than in heading (a cone column turns its heading
 /// by about tan(along) sin(e) de per de of depression e), so the previous, steeper ray's knowledge carries over: if
@@ -191,8 +193,6 @@ void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_b
                     clean = false;
                 } else if (found) {
                     break;
-                } else if (!w.above) {
-                    clean = false;
                 }
                 walking = true;
             }
