@@ -29,10 +29,13 @@
 // tests/support/converged_reference.hpp), with how much the reference's last doubling changed it (the reference's own
 // error is of that order: about 0.1 dB RMS from {64, 0, 8} to {128, 0, 16}, 0.05 dB to {256, 0, 32}, on the 256 m copy
 // of bench/bench_survey_accuracy.cpp).
-//   sss_bench_survey [--pings N] [--size M] [--error-pings K] [--quick]
+// Per ray, bent rays against straight ones on the survey's cone columns: alone, beside a steeper neighbour, a column at
+// once (the cost layered water adds to a ray, the part of a ping's layered / straight ratio that propagation makes).
+//   sss_bench_survey [--pings N] [--size M] [--error-pings K] [--quick] [--per-ray]
 // --pings: pings per measurement (default 40, best of 2); --size: the seabed's side in metres (default 1024);
 // --error-pings: pings whose lines are compared with the reference (default 4, every 150 m / 0.2 m of track);
-// --quick (or a short --benchmark_min_time, as the perf smoke test passes): 128 m, 4 pings, no reference.
+// --quick (or a short --benchmark_min_time, as the perf smoke test passes): 128 m, 4 pings, no reference; --per-ray:
+// the scene's build and the per-ray costs alone.
 
 #include <algorithm>
 #include <chrono>
@@ -40,6 +43,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <optional>
+#include <span>
+#include <type_traits>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -75,15 +82,41 @@ template <class Sim, class Scene> double pings_per_s(const Sim& sim, const Scene
     return double(pings) / best;
 }
 
+/// Processor time (s) of one call of fn: the machines this runs on are shared, and their speed drifts.
+template <class Fn> double cpu_s(Fn&& fn) {
+    const std::clock_t t0 = std::clock();
+    fn();
+    return double(std::clock() - t0) / CLOCKS_PER_SEC;
+}
+
+/// Rays of seven cone columns per side, as a sidescan column launches them: from `origin`, across track towards
+/// `side_x` (+1 starboard, -1 port: the track runs along y), each column at along-track angles 0.008 rad apart, 3000
+/// depressions from 3.4 to 61 degrees each, in order of depression.
+template <class T> std::vector<std::vector<sss::ray<T>>> cone_columns(const sss::vec3<T>& origin, T side_x) {
+    std::vector<std::vector<sss::ray<T>>> columns;
+    for (int c = -3; c <= 3; ++c) {
+        std::vector<sss::ray<T>> rays;
+        for (int i = 0; i < 3000; ++i) {
+            const T e = T(0.06) + T(i) / T(3000);
+            sss::vec3<T> d{side_x * std::cos(e), std::tan(T(0.008) * T(c)), -std::sin(e)};
+            rays.push_back({origin, d / std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z)});
+        }
+        columns.push_back(std::move(rays));
+    }
+    return columns;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     bool quick = false;
+    bool per_ray_only = false;
     std::size_t pings = 40;
     std::size_t error_pings = 4;
     double size_m = 1024.0;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+        if (std::strcmp(argv[i], "--per-ray") == 0) per_ray_only = true;
         if (std::strncmp(argv[i], "--benchmark_min_time=", 21) == 0 && std::atof(argv[i] + 21) < 0.1) quick = true;
         if (std::strcmp(argv[i], "--pings") == 0 && i + 1 < argc) pings = std::size_t(std::atol(argv[++i]));
         if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc) size_m = std::atof(argv[++i]);
@@ -132,11 +165,91 @@ int main(int argc, char** argv) {
     const auto full_nadir_whole = full({.along_split_nadir = false});
     const auto full_echo_off = full({.along_split_echo = 0.0});
 
+    const auto per_ray = [&]() -> bool {
+        // Bent rays against straight ones, per ray, on the survey's seabed and targets: the seven cone columns of
+        // cone_columns, both sides of pings 100, 250 and 400 (126,000 rays), each column over the scene its rays see
+        // (the side's area view narrowed to the column, as the simulator's), traced three ways: each ray alone
+        // (trace), each beside the last steeper ray of its column that met the scene (trace_beside, as the
+        // refinement's rays are traced), and the column at once (trace_many, as the columns are). Interleaved
+        // rounds of processor time, best of each. Layered water's three ways give the same paths bit for bit
+        // (checked here); what a ping's layered / straight ratio needs of a bent ray follows from these and the
+        // rest of a ping's time per ray (docs/design/layered.md).
+        struct ways {
+            double alone = 1e300, beside = 1e300, many = 1e300;
+        } bent, flat;
+        bool same = true;
+        std::size_t rays_total = 0;
+        const auto time_water = [&](const auto& water, ways& best) {
+            double alone = 0, beside = 0, many = 0;
+            rays_total = 0;
+            for (const std::size_t ping : {std::size_t(100), std::size_t(250), std::size_t(400)}) {
+                const auto pose = full_sim.motion().pose_at(ping);
+                for (const side sd : {side::port, side::starboard}) {
+                    const auto area = full_sim.side_area(pose, sd);
+                    if (!area) continue;
+                    const scene::area_view<std::decay_t<decltype(sv.scene)>> side_view(sv.scene, area->lo, area->hi);
+                    for (const auto& rays : cone_columns(pose.position, sd == side::starboard ? T(1) : T(-1))) {
+                        vec2<T> lo{pose.position.x, pose.position.y}, hi = lo;
+                        for (const auto& r : rays) { // where each ray is 110 m out horizontally: past the slant range
+                            const T f = T(110) / std::sqrt(r.direction.x * r.direction.x + r.direction.y * r.direction.y);
+                            const vec2<T> q{r.origin.x + r.direction.x * f, r.origin.y + r.direction.y * f};
+                            lo = glm::min(lo, q);
+                            hi = glm::max(hi, q);
+                        }
+                        const auto view = side_view.within(lo, hi);
+                        const T t_max = T(0.5 * double(full_sim.samples_per_line()) * full_sim.dt_s()); // the line's one way
+                        std::vector<std::optional<path<T>>> a(rays.size()), b(rays.size()), c(rays.size());
+                        alone += cpu_s([&] {
+                            for (std::size_t k = 0; k < rays.size(); ++k) a[k] = water.trace(rays[k], view, t_max);
+                        });
+                        beside += cpu_s([&] {
+                            std::size_t guide = rays.size();
+                            for (std::size_t k = 0; k < rays.size(); ++k) {
+                                const std::size_t j = rays.size() - 1 - k; // steep first
+                                b[j] = guide < rays.size()
+                                           ? water.trace_beside(rays[j], view, t_max, rays[guide].direction, b[guide]->clear_range_m)
+                                           : water.trace(rays[j], view, t_max);
+                                if (b[j]) guide = j;
+                            }
+                        });
+                        many += cpu_s([&] { water.trace_many(std::span<const ray<T>>(rays), view, t_max, std::span(c)); });
+                        if constexpr (std::is_same_v<std::decay_t<decltype(water)>, propagation::layered<T>>)
+                            for (std::size_t k = 0; k < rays.size(); ++k)
+                                same = same && a[k].has_value() == b[k].has_value() && a[k].has_value() == c[k].has_value() &&
+                                       (!a[k] || (a[k]->time_s == b[k]->time_s && a[k]->time_s == c[k]->time_s &&
+                                                  a[k]->surface.point == b[k]->surface.point &&
+                                                  a[k]->surface.point == c[k]->surface.point &&
+                                                  a[k]->spreading == b[k]->spreading && a[k]->spreading == c[k]->spreading));
+                        rays_total += rays.size();
+                    }
+                }
+            }
+            best.alone = std::min(best.alone, alone);
+            best.beside = std::min(best.beside, beside);
+            best.many = std::min(best.many, many);
+        };
+        const propagation::straight<T> isovelocity(
+            {.sound_speed_mps = sv.water.reference_speed_mps(), .absorption_db_per_km = T(30)});
+        for (int round = 0; round < (quick ? 1 : 3); ++round) {
+            time_water(sv.water, bent);
+            time_water(isovelocity, flat);
+        }
+        const double per = 1e9 / double(std::max<std::size_t>(rays_total, 1));
+        std::printf("per ray on the survey's cone columns (%zu rays, 1 thread, ns; layered's three ways %s): alone: "
+                    "layered %.0f, straight %.0f (%.2f); beside a steeper neighbour: layered %.0f, straight %.0f (%.2f); "
+                    "a column at once: layered %.0f, straight %.0f (%.2f)\n",
+                    rays_total, same ? "the same bit for bit" : "DIFFER", bent.alone * per, flat.alone * per,
+                    bent.alone / flat.alone, bent.beside * per, flat.beside * per, bent.beside / flat.beside,
+                    bent.many * per, flat.many * per, bent.many / flat.many);
+        return same;
+    };
+
     std::printf("Survey scene, float: %.0f m of seabed at %.2f m (%zu^2 heights, %.0f MiB), built in %.2f s, peak "
                 "resident memory %.0f MiB after the build (%.0f MiB before, %.1f times the heights); %zu samples per "
                 "side, %zu pings per measurement, best of %d; %u hardware threads\n",
                 size_m, sp.cell_m, n, heights_mib, build_s, rss1, rss0, (rss1 - rss0) / heights_mib,
                 full_sim.samples_per_line(), pings, quick ? 1 : 2, std::thread::hardware_concurrency());
+    if (per_ray_only) return per_ray() ? 0 : 1;
     std::printf("| simulator | 1 thread | 2 threads | 2 / 1 |\n|---|---|---|---|\n");
     const int reps = quick ? 1 : 2;
     double layered_1 = 0, straight_1 = 0;
@@ -235,6 +348,7 @@ int main(int argc, char** argv) {
                     "(time %.2f)\n",
                     layered_1, each_alone, layered_1 / each_alone);
     }
+    if (!per_ray()) return 1;
     {
         // Ground truth beside the image (full simulator, 1 thread): render_labelled, which takes the labels' first
         // pass from the image's own trace and traces the bare seabed only on sides an object reaches, against
