@@ -21,6 +21,7 @@
 #include "sss/scene/flat_seabed.hpp"
 #include "sss/scene/grid_hit.hpp"
 #include "sss/scene/height_field.hpp"
+#include "sss/scene/height_field_arc.hpp"
 #include "sss/scene/height_field_fan.hpp"
 #include "sss/scene/height_field_pyramid.hpp"
 #include "sss/scene/height_field_surface.hpp"
@@ -34,6 +35,7 @@
 #include "sss/scene/scene.hpp"
 #include "sss/scene/sphere.hpp"
 #include "sss/scene/surface_ids.hpp"
+#include "sss/scene/vertical_arc.hpp"
 
 #include "sss/seabed/composite.hpp"
 #include "sss/seabed/fft.hpp"

@@ -551,6 +551,17 @@ template <class S> struct without_clearance {
     [[nodiscard]] T top_m() const { return s->top_m(); }
 };
 
+// `s` with its clearance but not its arcs (ArcScene): a bent ray is handed to it chord by chord.
+template <class S> struct chords_only {
+    using value_type = typename S::value_type;
+    using T = value_type;
+    const S* s;
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max) const { return s->intersect(r, t_max); }
+    [[nodiscard]] T clear_length_m(const ray<T>& r, T t_max, T band) const { return s->clear_length_m(r, t_max, band); }
+    [[nodiscard]] T seabed_height_m(T x, T y) const { return s->seabed_height_m(x, y); }
+    [[nodiscard]] T top_m() const { return s->top_m(); }
+};
+
 // 100 m x 100 m of rippled, bumpy seabed at 0.25 m around z = 0 (crests 0.35 m high, a 1.2 m mound), with spheres
 // floating over it and cylinders lying on it.
 template <class T> scene::scene<scene::height_field<T>> rough_scene_with_objects() {
@@ -583,7 +594,8 @@ template <class T> scene::scene<scene::height_field<T>> rough_scene_with_objects
 template <class T> void check_clearance_changes_nothing() {
     const auto sc = rough_scene_with_objects<T>();
     const without_clearance<scene::scene<scene::height_field<T>>> plain{&sc};
-    static_assert(ClearanceScene<scene::scene<scene::height_field<T>>> && !ClearanceScene<decltype(plain)>);
+    const chords_only<scene::scene<scene::height_field<T>>> cleared{&sc};
+    static_assert(ClearanceScene<decltype(cleared)> && !ClearanceScene<decltype(plain)> && !ArcScene<decltype(cleared)>);
     // Strong gradients down to the seabed, 10 m/s over 10 m then 20 m/s over 10.5 m (chords of about 0.6 m): speed
     // falling with depth (rays bend down, each chord below its arc) and rising (rays bend up, each chord above it).
     layered_params<T> p;
@@ -597,7 +609,7 @@ template <class T> void check_clearance_changes_nothing() {
             const double az = -0.25 + 0.02 * a, graze = (1.5 + 0.9 * g) * deg;
             const ray<T> r{vec3<T>{T(-45), T(-20), T(10)},
                            vec3<T>{T(std::cos(graze) * std::cos(az)), T(std::cos(graze) * std::sin(az)), T(-std::sin(graze))}};
-            const auto with = water.trace_path(r, sc, T(0.2));
+            const auto with = water.trace_path(r, cleared, T(0.2));
             const auto without = water.trace_path(r, plain, T(0.2));
             ++rays;
             REQUIRE(with.has_value() == without.has_value());
@@ -632,8 +644,9 @@ TEST_CASE_TEMPLATE("clearing chords in open water finds the plain chord walk's h
 namespace {
 
 // A scene that hands every query to `s` and counts the chords it is asked about; with `guided`, it is a GuidedScene
-// and a ResumableScene too, and counts the bent rays it clears some distance for and the chords it resumes.
-template <class S, bool guided> struct counting_scene {
+// and a ResumableScene too, and counts the bent rays it clears some distance for and the chords it resumes; with
+// `arcs`, an ArcScene as well (the seabed meets arcs, the objects take chords).
+template <class S, bool guided, bool arcs = false> struct counting_scene {
     using value_type = typename S::value_type;
     using T = value_type;
     const S* s;
@@ -662,6 +675,17 @@ template <class S, bool guided> struct counting_scene {
         ++asked;
         cleared += d > T(0);
         return d;
+    }
+    [[nodiscard]] std::optional<scene::arc_surface_hit<T>> intersect_arc(const scene::vertical_arc<T>& a, T x_clear,
+                                                                         T x_end) const
+        requires arcs
+    {
+        return s->intersect_arc(a, x_clear, x_end);
+    }
+    [[nodiscard]] auto arc_others() const
+        requires arcs
+    {
+        return s->arc_others();
     }
     [[nodiscard]] T seabed_height_m(T x, T y) const { return s->seabed_height_m(x, y); }
     [[nodiscard]] T top_m() const { return s->top_m(); }
@@ -696,9 +720,10 @@ template <class T> ray<T> fan_ray(const vec3<T>& fish, double az, double e) {
 
 } // namespace
 
-TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain trace's path to the last bit, in fewer "
-                   "chords",
-                   T, float, double) {
+namespace {
+// Pairs of bent rays, each beside a steeper neighbour: the guided trace against the plain one, by chords or, with `arcs`,
+// with the seabed meeting arcs itself (the objects by chords).
+template <class T, bool arcs> void check_beside_a_steeper_neighbour() {
     const auto sc = rough_scene_with_objects<T>();
     using Sc = scene::scene<scene::height_field<T>>;
     static_assert(GuidedScene<Sc> && ResumableScene<Sc> && GuidedPropagation<layered<T>, Sc>);
@@ -716,10 +741,10 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
                     const double turn = (g + a) % 5 == 0 ? ((g % 3) - 1) * 1.0 * deg : 0.0;
                     const ray<T> steep = fan_ray(fish, az, e), r = fan_ray(fish, az + turn, e - de);
                     const T t_max = T(0.2);
-                    const auto a_path = water.trace(steep, sc, t_max);
+                    const auto a_path = water.trace(steep, counting_scene<Sc, false, arcs>{&sc}, t_max);
                     if (!a_path) continue;
-                    const counting_scene<Sc, true> guided{&sc};
-                    const counting_scene<Sc, false> plain{&sc};
+                    const counting_scene<Sc, true, arcs> guided{&sc};
+                    const counting_scene<Sc, false, arcs> plain{&sc};
                     const auto want = water.trace(r, plain, t_max);
                     const auto got = water.trace_beside(r, guided, t_max, steep.direction, a_path->clear_range_m);
                     ++pairs;
@@ -732,7 +757,7 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
                     resumed += guided.resumed;
                     // The wrong way round: the shallower ray is no guide for the steeper one.
                     if (want) {
-                        const counting_scene<Sc, true> back{&sc};
+                        const counting_scene<Sc, true, arcs> back{&sc};
                         CHECK(same_path(water.trace_beside(steep, back, t_max, r.direction, want->clear_range_m), a_path));
                         CHECK(back.cleared == 0);
                     }
@@ -740,13 +765,29 @@ TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain 
     }
     MESSAGE(pairs << " pairs, " << hits << " hits (" << objects << " on objects), " << cleared << " guided; chords "
                   << guided_chords << " guided against " << plain_chords << " plain, " << resumed
-                  << " of them resumed past what the guide vouches for");
+                  << " of them resumed past what the guide vouches for" << std::string(arcs ? " (the seabed by arcs)" : ""));
     CHECK(hits > pairs / 2);
     CHECK(objects > 20);
     CHECK(cleared > std::int64_t(pairs) / 3);
-    CHECK(guided_chords < plain_chords);
-    // Most guided rays hand the scene the chord that reaches past the guide's vouching with its first part known clear.
-    CHECK(resumed > cleared / 2);
+    if constexpr (!arcs) {
+        CHECK(guided_chords < plain_chords);
+        // Most guided rays hand the scene the chord that reaches past the guide's vouching with its first part known
+        // clear.
+        CHECK(resumed > cleared / 2);
+    }
+}
+} // namespace
+
+TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour gets the plain trace's path to the last bit, in fewer "
+                   "chords",
+                   T, float, double) {
+    check_beside_a_steeper_neighbour<T, false>();
+}
+
+TEST_CASE_TEMPLATE("A bent ray traced beside a steeper neighbour, some turned to another column, gets the plain trace's "
+                   "path to the last bit where the seabed meets arcs itself",
+                   T, float, double) {
+    check_beside_a_steeper_neighbour<T, true>();
 }
 
 TEST_CASE_TEMPLATE("A bent ray too close to its steeper neighbour for the bound is guided by a farther one, and still "
@@ -796,6 +837,18 @@ TEST_CASE_TEMPLATE("A bent ray too close to its steeper neighbour for the bound 
     CHECK(both_chords < near_chords);
 }
 
+namespace {
+// Column a (0 to 7) of 120 rays from (-45, -20, 10), depressions 3 to 50.6 degrees, steepest first or last.
+template <class T> std::vector<ray<T>> column_rays(int a, bool down_first) {
+    std::vector<ray<T>> rays;
+    for (int g = 0; g < 120; ++g) {
+        const double e = (3 + 0.4 * g) * deg;
+        rays.push_back(fan_ray(vec3<T>{T(-45), T(-20), T(10)}, -0.3 + 0.08 * a, down_first ? 50 * deg - e + 3 * deg : e));
+    }
+    return rays;
+}
+} // namespace
+
 TEST_CASE_TEMPLATE("A column traced together over a GuidedScene gets each ray's own trace bit for bit, either way round",
                    T, float, double) {
     const auto sc = rough_scene_with_objects<T>();
@@ -804,23 +857,68 @@ TEST_CASE_TEMPLATE("A column traced together over a GuidedScene gets each ray's 
     for (const layered<T>& water : guided_waters<T>())
         for (int a = 0; a < 8; ++a)
             for (const bool down_first : {true, false}) {
-                std::vector<ray<T>> rays;
-                for (int g = 0; g < 120; ++g) {
-                    const double e = (3 + 0.4 * g) * deg;
-                    rays.push_back(fan_ray(vec3<T>{T(-45), T(-20), T(10)}, -0.3 + 0.08 * a, down_first ? 50 * deg - e + 3 * deg : e));
-                }
+                const std::vector<ray<T>> rays = column_rays<T>(a, down_first);
                 const counting_scene<Sc, true> guided{&sc};
                 std::vector<std::optional<path<T>>> together(rays.size());
                 water.trace_many(std::span<const ray<T>>(rays), guided, T(0.2), std::span<std::optional<path<T>>>(together));
                 for (std::size_t k = 0; k < rays.size(); ++k) {
                     ++compared;
-                    if (!same_path(together[k], water.trace(rays[k], sc, T(0.2))))
+                    if (!same_path(together[k], water.trace(rays[k], counting_scene<Sc, false>{&sc}, T(0.2))))
                         FAIL_CHECK("column " << a << ", ray " << k << (down_first ? " (steepest first)" : " (shallowest first)"));
                 }
                 cleared += guided.cleared;
             }
     MESSAGE(compared << " rays, " << cleared << " guided");
     CHECK(cleared > compared / 2);
+}
+
+TEST_CASE_TEMPLATE("Over a seabed that meets arcs itself, a bent ray's path is the same to the last bit alone, beside a "
+                   "steeper neighbour and in a column, and its hit is the chord walk's to within the chord tolerance",
+                   T, float, double) {
+    const auto sc = rough_scene_with_objects<T>();
+    using Sc = scene::scene<scene::height_field<T>>;
+    using unguided_arcs = counting_scene<Sc, false, true>;
+    static_assert(ArcScene<Sc> && ArcScene<unguided_arcs> && !ArcScene<counting_scene<Sc, false>>);
+    long compared = 0, hits = 0, objects = 0, guided = 0, off_1mm = 0;
+    double worst_m = 0;
+    for (const layered<T>& water : guided_waters<T>())
+        for (int a = 0; a < 8; ++a)
+            for (const bool down_first : {true, false}) {
+                const std::vector<ray<T>> rays = column_rays<T>(a, down_first);
+                const counting_scene<Sc, true, true> column{&sc};
+                std::vector<std::optional<path<T>>> together(rays.size());
+                water.trace_many(std::span<const ray<T>>(rays), column, T(0.2), std::span<std::optional<path<T>>>(together));
+                guided += column.cleared;
+                for (std::size_t k = 0; k < rays.size(); ++k) {
+                    ++compared;
+                    const auto alone = water.trace(rays[k], unguided_arcs{&sc}, T(0.2));
+                    if (!same_path(together[k], alone) || !same_path(water.trace(rays[k], sc, T(0.2)), alone))
+                        FAIL_CHECK("column " << a << ", ray " << k << (down_first ? " (steepest first)" : " (shallowest first)"));
+                    // Beside the previous ray, the steeper where the column comes steepest first.
+                    if (down_first && k > 0 && together[k - 1]) {
+                        const counting_scene<Sc, true, true> beside{&sc};
+                        if (!same_path(water.trace_beside(rays[k], beside, T(0.2), rays[k - 1].direction,
+                                                          together[k - 1]->clear_range_m),
+                                       alone))
+                            FAIL_CHECK("column " << a << ", ray " << k << " beside its steeper neighbour");
+                    }
+                    if (!alone) continue;
+                    ++hits;
+                    objects += alone->surface.object != no_object;
+                    // The chord walk's hit: the same surface point to within its tolerance (0.1 mm of sagitta, more
+                    // where a chord and the arc meet different facets near a crest at grazing incidence).
+                    const auto by_chords = water.trace(rays[k], counting_scene<Sc, false>{&sc}, T(0.2));
+                    REQUIRE(by_chords);
+                    const double d = double(glm::length(alone->surface.point - by_chords->surface.point));
+                    worst_m = std::max(worst_m, d);
+                    off_1mm += d > 1e-3;
+                }
+            }
+    MESSAGE(compared << " rays, " << hits << " hits (" << objects << " on objects), " << guided << " guided; hits off the "
+                     << "chord walk's by over 1 mm: " << off_1mm << ", worst " << worst_m << " m");
+    CHECK(guided > compared / 2);
+    CHECK(objects > 20);
+    CHECK(off_1mm * 200 < hits);
 }
 
 namespace {

@@ -91,6 +91,12 @@ template <class Inner, bool guided> struct guide_probe {
         if (d > T(0)) guided_calls->fetch_add(1, std::memory_order_relaxed);
         return d;
     }
+    // Arcs met by the seabed itself, guided or not (the walk's start is what the guide changes), the objects by chords.
+    [[nodiscard]] std::optional<sss::scene::arc_surface_hit<T>> intersect_arc(const sss::scene::vertical_arc<T>& a, T x_clear,
+                                                                              T x_end) const {
+        return inner->intersect_arc(a, x_clear, x_end);
+    }
+    [[nodiscard]] auto arc_others() const { return inner->arc_others(); }
     [[nodiscard]] T seabed_height_m(T x, T y) const { return inner->seabed_height_m(x, y); }
     [[nodiscard]] T top_m() const { return inner->top_m(); }
     [[nodiscard]] T top_m(const sss::vec2<T>& lo, const sss::vec2<T>& hi) const { return inner->top_m(lo, hi); }

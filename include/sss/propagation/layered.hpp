@@ -12,12 +12,17 @@
 /// Tracing. The ray is stepped from layer to layer with the exact constant-gradient arcs of ray_arc.hpp
 /// (turning points included); each arc that can reach the scene (deeper than the scene's top_m) is handed to
 /// the scene as chords of sagitta at most `chord_tolerance_m`, and the chord's hit is moved onto the arc
-/// (arc_intersection.hpp): on planar facets the hit point, path length and time are exact to rounding.
+/// (arc_intersection.hpp): on planar facets the hit point, path length and time are exact to rounding. A scene that
+/// meets arcs itself (ArcScene: a height field, or a scene of one and objects) is handed each such arc whole instead,
+/// and meets it on the arc (scene/height_field_arc.hpp), its objects still by chords up to that hit: one or two walks
+/// of the grid per layer (the stretch the arc surely stays in the layer, then the rest) rather than one per chord,
+/// and the hit on the arc itself rather than on a chord within tolerance of it (the same to far below the tolerance,
+/// save where the arc grazes a crest the chords pass, or the reverse).
 /// The arrival direction is the bent ray's tangent at the hit, so grazing angles come out right. Over a GuidedScene
 /// a ray traced beside a steeper neighbour from the same origin (the rays of a column in trace_many, the refinement's
 /// rays in trace_beside) skips the chords its neighbour's path vouches for, and a ResumableScene starts its walk along the
 /// chord that reaches past them after the part of it vouched for too (intersect_after): the same hit, in fewer chords
-/// and cells.
+/// and cells; an ArcScene starts the arc's walk from there (intersect_arc), with the same hit whatever the start.
 ///
 /// Absorption. alpha(z) (dB/km) from Francois & Garrison (1982, JASA 72, 896-907 and 1879-1890) or Ainslie &
 /// McColm (1998, JASA 103, 1671-1672) (absorption.hpp), with temperature, salinity and pH held constant and the
@@ -69,7 +74,8 @@ template <Real T> struct layered_params {
     water_properties<T> water{};       ///< temperature, salinity, pH for absorption
     absorption_formula absorption = absorption_formula::francois_garrison;
     /// Largest distance between an arc and the chords handed to the scene (m). A ray that passes an edge (a crest
-    /// at grazing incidence) closer than this may be taken to meet it or not (docs/design/layered.md).
+    /// at grazing incidence) closer than this may be taken to meet it or not (docs/design/layered.md). Over an
+    /// ArcScene only its objects take chords.
     T chord_tolerance_m = T(1e-4);
     T reference_speed_mps = T(0);      ///< speed for sampling (m/s); 0: the water column's harmonic mean
     bool launch_table = true;          ///< look rays up in a per-ping launch table above the geometry (file comment)
@@ -77,7 +83,7 @@ template <Real T> struct layered_params {
     /// open water before tracing them one by one (propagation/arc_intersection.hpp): the same hits, fewer queries.
     /// It pays where rays cross open water in many short chords (strong gradients near the seabed, a scene whose top
     /// lies well above the seabed); where rays run close to the seabed all the way it can cost a little more
-    /// (docs/design/layered.md).
+    /// (docs/design/layered.md). Not used over an ArcScene, whose seabed is walked along the arc.
     bool clear_open_water = true;
     /// Over a GuidedScene, skip the chords a steeper neighbour's path vouches for (trace_beside, and the rays of a
     /// column in trace_many): the same hits, fewer chords (docs/design/layered.md). Off: every ray is traced alone.
@@ -93,7 +99,7 @@ template <Real T> struct layered_path {
     T range_m{};                ///< horizontal distance from the source to the hit (m)
     T path_length_m{};          ///< arc length from the source to the hit (m)
     std::size_t arcs = 0;       ///< layer arcs followed, the last one included
-    std::size_t chords = 0;     ///< chords handed to the scene (its intersect or intersect_after)
+    std::size_t chords = 0;     ///< chords handed to the scene (intersect, intersect_after; over an ArcScene, its objects)
 };
 
 template <Real T> class layered {
@@ -581,9 +587,45 @@ private:
                     s_clear = (clear_range_m - m.x) / cos_hi * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
             }
 
+            // Over a scene that meets arcs itself (ArcScene), a piece of the arc, from arc length s_from to s_to
+            // (horizontal distances x_from, x_to from its start), is handed to it whole, and the rest of the scene
+            // (its objects) as chords up to where the arc met it; otherwise the scene gets chords (visit_arc_hit).
+            bool by_arc = false;
+            [[maybe_unused]] const scene::vertical_arc<T> arc_v{frame.start, vec2<T>{hdir.x, hdir.y}, a.sin0, a.cos0,
+                                                                a.kappa};
+            [[maybe_unused]] const auto meet_arc = [&](T s_from, T x_from, T s_to, T x_to) {
+                if constexpr (ArcScene<S>) {
+                    const auto met = scene.intersect_arc(arc_v, std::max(x_clear, x_from), x_to);
+                    T met_arc_m = s_to;
+                    arc_offset<T> met_at{};
+                    if (met) met_at = offset_at_range(arc_v, met->x_m, met_arc_m);
+                    const auto others = scene.arc_others();
+                    if (others.top_m() > -inf && met_arc_m > s_from &&
+                        visit_arc_hit(others, frame, a.sin0, a.cos0, a.kappa, s_from, met_arc_m, p_.chord_tolerance_m,
+                                      false, s_clear, x_clear, m.chords, done))
+                        return true;
+                    if (met) {
+                        done(met->surface, met->surface.point, met_arc_m, met_at, met->x_m);
+                        return true;
+                    }
+                }
+                return false;
+            };
+            if constexpr (ArcScene<S>) by_arc = a.cos0 >= T(0.01); // within 0.6 degrees of vertical: chords
+
             // Where the arc surely stays in the layer and may meet geometry, look before stepping through the layer.
             T s_done = T(0);
-            if (m.z >= chord_depth) {
+            if (m.z >= chord_depth && by_arc) {
+                // The arc up to where it surely stays in the layer (as below), with no trigonometry for the layer.
+                const T slack = T(64) * std::numeric_limits<T>::epsilon() * (std::abs(m.z) + std::abs(p_.surface_z_m)) /
+                                std::max(std::abs(a.sin0), T(1e-3));
+                const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
+                if (stay > T(0) && std::isfinite(stay)) {
+                    const T x_stay = offset_along_arc(a.sin0, a.cos0, a.kappa, stay).range_m;
+                    if (meet_arc(T(0), T(0), stay, x_stay)) return in_time;
+                    s_done = stay;
+                }
+            } else if (m.z >= chord_depth) {
                 // First at most one chord's worth, with no trigonometry: depth changes no faster than arc length, so
                 // the arc stays in the layer over at least the distance to its nearer boundary. Where the scene is
                 // near (the usual case after the launch table) that is where the hit is. Not when that distance is
@@ -627,7 +669,13 @@ private:
             const T s_end = std::min(arc.length_m, s_cap);
             if (s_done < s_end) {
                 if (const auto s_begin = chord_start(st, a.kappa, chord_depth, s_end)) {
-                    if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
+                    if (by_arc) {
+                        const T s_from = std::max(*s_begin, s_done);
+                        const T x_from =
+                            s_from > T(0) ? offset_along_arc(a.sin0, a.cos0, a.kappa, s_from).range_m : T(0);
+                        if (meet_arc(s_from, x_from, s_end, offset_along_arc(a.sin0, a.cos0, a.kappa, s_end).range_m))
+                            return in_time;
+                    } else if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, std::max(*s_begin, s_done), s_end,
                                       p_.chord_tolerance_m, p_.clear_open_water, s_clear, x_clear, m.chords, done))
                         return in_time;
                 }
@@ -713,6 +761,28 @@ private:
 
         if (more) *more = details{finite ? s_ab : T(0), c_hit, m.x + o.range_m, path_length};
         return true;
+    }
+
+    /// The offset of arc `v` at horizontal distance x_m (m) from its start, and the arc length to there into arc_m (m):
+    /// sin phi = sin phi0 - kappa x (Snell), the turn since the start from sin phi0 - sin phi = 2 cos(mean) sin(half),
+    /// mean the average of the two inclinations; arc length = turn / kappa = x / cos(mean) asin(sin(half)) / sin(half).
+    [[nodiscard]] static arc_offset<T> offset_at_range(const scene::vertical_arc<T>& v, T x_m, T& arc_m) noexcept {
+        arc_offset<T> o;
+        o.range_m = x_m;
+        o.depth_m = v.depth_m(x_m);
+        o.sin_incline = v.sin_at(x_m);
+        o.cos_incline = v.cos_at(x_m);
+        // cos phi0 + cos phi = 2 cos(mean) cos(half) and sin phi0 + sin phi = 2 sin(mean) cos(half): their ratio to
+        // their hypotenuse is cos(mean), with nothing cancelling near vertical.
+        const T cs = v.cos_phi0 + o.cos_incline, ss = v.sin_phi0 + o.sin_incline;
+        const T cos_mean = cs / std::sqrt(cs * cs + ss * ss);
+        const T sh = cos_mean > T(0) ? v.kappa_per_m * x_m / (T(2) * cos_mean) : T(0);
+        o.sin_half = sh;
+        o.cos_half = std::sqrt(std::max(T(0), (T(1) - sh) * (T(1) + sh)));
+        const T asin_ratio = std::abs(sh) < T(1e-3) ? T(1) + sh * sh * (T(1.0 / 6) + sh * sh * T(3.0 / 40))
+                                                   : std::asin(std::min(std::abs(sh), T(1))) / std::abs(sh);
+        arc_m = cos_mean > T(0) ? x_m / cos_mean * asin_ratio : T(0);
+        return o;
     }
 
     /// A length of arc (m) the ray surely travels before it can leave the layer. When the boundary ahead can be

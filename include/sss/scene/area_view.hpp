@@ -57,6 +57,16 @@ public:
     {
         return scene_->clear_length_m(r, t_max_m, band_m);
     }
+    [[nodiscard]] auto arc_others() const
+        requires ArcScene<S>
+    {
+        return scene_->arc_others();
+    }
+    [[nodiscard]] std::optional<arc_surface_hit<T>> intersect_arc(const vertical_arc<T>& a, T x_clear_m, T x_end_m) const
+        requires ArcScene<S>
+    {
+        return scene_->intersect_arc(a, x_clear_m, x_end_m);
+    }
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return scene_->seabed_height_m(x_m, y_m); }
     [[nodiscard]] T top_m() const noexcept { return top_; }
     [[nodiscard]] const S& whole() const noexcept { return *scene_; }
@@ -113,6 +123,18 @@ public:
     {
         if (objects_near_) return scene_->clear_length_m(r, t_max_m, band_m);
         return scene_->seabed().clear_length_m(r, t_max_m, band_m);
+    }
+    /// The seabed's intersect_arc (ArcScene, as the scene's), and the objects as the rest where one reaches over the
+    /// rectangle (none otherwise).
+    [[nodiscard]] std::optional<arc_surface_hit<T>> intersect_arc(const vertical_arc<T>& a, T x_clear_m, T x_end_m) const
+        requires ArcScene<scene<Seabed>>
+    {
+        return scene_->intersect_arc(a, x_clear_m, x_end_m);
+    }
+    [[nodiscard]] object_view<T> arc_others() const
+        requires ArcScene<scene<Seabed>>
+    {
+        return objects_near_ ? scene_->arc_others() : object_view<T>{};
     }
     [[nodiscard]] T seabed_height_m(T x_m, T y_m) const { return scene_->seabed_height_m(x_m, y_m); }
     [[nodiscard]] T top_m() const noexcept { return top_; }

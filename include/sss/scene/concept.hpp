@@ -60,6 +60,20 @@
 /// the same exception as above. Bent rays hand a chord that starts within what a neighbour vouches for
 /// (clear_range_beside_m) to it, with the part of the chord within rho as clear_m: the chord's walk then starts about
 /// where the neighbour's path ended instead of at the chord's start.
+///
+/// Optional (`ArcScene`): a scene that meets a curved ray's arc itself (scene/vertical_arc.hpp: a circular arc in a
+/// vertical plane, a ray's path through one layer of water whose sound speed changes linearly with depth), in part of
+/// its geometry at least, also offers
+///
+/// | `s.intersect_arc(a, x_clear_m, x_end_m)` | `std::optional<scene::arc_surface_hit<T>>` | the first hit of arc a on that part |
+/// | `s.arc_others()` | a Scene | the rest of its geometry (`scene::no_geometry<T>` where there is none) |
+///
+/// with `a` a `scene::vertical_arc<T>`: where the arc first comes down onto that part within horizontal distance
+/// x_end_m (m) of its start, given that it meets nothing before x_clear_m (m; 0 when nothing is known), the same to the
+/// last bit whatever such x_clear_m is given; the hit's point lies on the arc. A height field meets arcs in all of
+/// itself; a scene of a height field and objects, in its seabed, its objects being the rest. Layered water then
+/// traces a ray through each layer by one query on that part and chords on the rest (propagation/layered.hpp), so that
+/// a view of the scene with fewer objects near (area_view) gives the same paths.
 
 #include <concepts>
 #include <cstddef>
@@ -69,6 +83,7 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/beside_rays.hpp"
+#include "sss/scene/vertical_arc.hpp"
 
 namespace sss {
 
@@ -112,6 +127,14 @@ concept GuidedScene = Scene<S> && requires(const S& s, const ray<typename S::val
 template <class S>
 concept ResumableScene = Scene<S> && requires(const S& s, const ray<typename S::value_type>& r, typename S::value_type t) {
     { s.intersect_after(r, t, t) } -> std::same_as<std::optional<hit<typename S::value_type>>>;
+};
+
+/// A Scene that meets a curved ray's arc itself (see the table above).
+template <class S>
+concept ArcScene = Scene<S> && requires(const S& s, const scene::vertical_arc<typename S::value_type>& a,
+                                        typename S::value_type t) {
+    { s.intersect_arc(a, t, t) } -> std::same_as<std::optional<scene::arc_surface_hit<typename S::value_type>>>;
+    { s.arc_others() } -> Scene;
 };
 
 /// hits[k] = scene.intersect(rays[k], t_max_m) for every k, through the scene's own batch method when it has one.

@@ -28,6 +28,7 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/concept.hpp"
+#include "sss/scene/height_field_arc.hpp"
 #include "sss/scene/height_field_beside.hpp"
 #include "sss/scene/height_field_fan.hpp"
 #include "sss/scene/height_field_wedge.hpp"
@@ -135,6 +136,24 @@ public:
     /// within what a neighbour vouches for this way (propagation/layered.hpp).
     [[nodiscard]] std::optional<hit<T>> intersect_after(const ray<T>& r, T t_max_m, T clear_m) const noexcept {
         return to_hit(r, trace_accelerated(grid_, pyramid_, bounds_, r, t_max_m, clear_m));
+    }
+    /// Nothing: intersect_arc answers for all of this scene (ArcScene).
+    [[nodiscard]] static constexpr no_geometry<T> arc_others() noexcept { return {}; }
+    /// Where arc `a` first comes down onto the surface within horizontal distance x_end_m (m) of its start, given that
+    /// it meets nothing before x_clear_m (m; 0 when nothing is known) (ArcScene): the walk of height_field_arc.hpp,
+    /// the hit on the arc itself; the same to the last bit whatever x_clear_m the arc is above.
+    [[nodiscard]] std::optional<arc_surface_hit<T>> intersect_arc(const vertical_arc<T>& a, T x_clear_m,
+                                                                  T x_end_m) const noexcept {
+        const auto g = trace_arc(grid_, pyramid_, bounds_, a, x_clear_m, x_end_m);
+        if (!g) return std::nullopt;
+        const vec3<T> p = a.at(g->x_m);
+        const T u = (p.x - grid_.origin_m.x) * grid_.inv_cell_m - static_cast<T>(g->ix);
+        const T v = (p.y - grid_.origin_m.y) * grid_.inv_cell_m - static_cast<T>(g->iy);
+        arc_surface_hit<T> out{make_hit(ray<T>{p, vec3<T>{T(0), T(0), T(-1)}}, T(0), g->ix, g->iy,
+                                        gradients_at(grid_, g->ix, g->iy, g->triangle, u, v)),
+                               g->x_m};
+        out.surface.distance_m = g->x_m;
+        return out;
     }
     /// Horizontal distance (m) from b.origin within which ray r of b surely stays above the surface, from what b
     /// says of r and a neighbour that met nothing (GuidedScene; bent rays use it: propagation/layered.hpp): the chain

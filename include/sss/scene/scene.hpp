@@ -11,7 +11,9 @@
 /// objects' over the area those rays can reach, towards everything that can return an echo.
 
 #include <algorithm>
+#include <concepts>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,6 +26,19 @@
 #include "sss/scene/object_set.hpp"
 
 namespace sss::scene {
+
+/// The objects of a scene as a Scene of their own (none: nothing), for what a scene that meets arcs in its seabed
+/// leaves to chords (ArcScene's arc_others). Holds a pointer: the objects must outlive it.
+template <Real T> struct object_view {
+    using value_type = T;
+    const object_set<T>* objects = nullptr;
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
+        if (!objects) return std::nullopt;
+        return objects->intersect(r, t_max_m);
+    }
+    [[nodiscard]] T seabed_height_m(T, T) const noexcept { return -std::numeric_limits<T>::infinity(); }
+    [[nodiscard]] T top_m() const noexcept { return objects ? objects->top_m() : -std::numeric_limits<T>::infinity(); }
+};
 
 template <Scene Seabed> class scene {
 public:
@@ -84,6 +99,20 @@ public:
         if (objects_.empty()) return;
         for (std::size_t k = 0; k < rays.size(); ++k)
             if (auto o = objects_.intersect(rays[k], hits[k] ? hits[k]->distance_m : t_max_m)) hits[k] = *o;
+    }
+
+    /// The seabed's intersect_arc (ArcScene, when the seabed meets arcs in all of itself): the objects are the rest
+    /// (arc_others).
+    [[nodiscard]] std::optional<arc_surface_hit<T>> intersect_arc(const vertical_arc<T>& a, T x_clear_m, T x_end_m) const
+        requires ArcScene<Seabed> && std::same_as<decltype(std::declval<const Seabed&>().arc_others()), no_geometry<T>>
+    {
+        return seabed_.intersect_arc(a, x_clear_m, x_end_m);
+    }
+    /// The objects, as a Scene (ArcScene).
+    [[nodiscard]] object_view<T> arc_others() const noexcept
+        requires ArcScene<Seabed> && std::same_as<decltype(std::declval<const Seabed&>().arc_others()), no_geometry<T>>
+    {
+        return object_view<T>{objects_.empty() ? nullptr : &objects_};
     }
 
     /// How far r runs with no geometry within vertical distance band_m (ClearanceScene, when the seabed is one):
