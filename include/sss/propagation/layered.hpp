@@ -615,11 +615,17 @@ private:
 
             // Where the arc surely stays in the layer and may meet geometry, look before stepping through the layer.
             T s_done = T(0);
-            if (m.z >= chord_depth && by_arc) {
-                // The arc up to where it surely stays in the layer (as below), with no trigonometry for the layer.
+            // The arc length the arc surely stays in the layer (stay_length), and a few roundings of the depths past
+            // it, so that a surface lying exactly on the boundary is not missed (world and depth coordinates differ by
+            // rounding of their own size); at most s_cap.
+            const auto surely_stays = [&] {
                 const T slack = T(64) * std::numeric_limits<T>::epsilon() * (std::abs(m.z) + std::abs(p_.surface_z_m)) /
                                 std::max(std::abs(a.sin0), T(1e-3));
-                const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
+                return std::min(stay_length(layer, m.z, a) + slack, s_cap);
+            };
+            if (m.z >= chord_depth && by_arc) {
+                // The arc up to where it surely stays in the layer, with no trigonometry for the layer.
+                const T stay = surely_stays();
                 if (stay > T(0) && std::isfinite(stay)) {
                     const T x_stay = offset_along_arc(a.sin0, a.cos0, a.kappa, stay).range_m;
                     if (meet_arc(T(0), T(0), stay, x_stay)) return in_time;
@@ -639,11 +645,7 @@ private:
                         return in_time;
                     s_done = first;
                 }
-                // (A few roundings of the depths past the bound, so that a surface lying exactly on the boundary is not
-                // missed: world and depth coordinates differ by rounding of their own size.)
-                const T slack = T(64) * std::numeric_limits<T>::epsilon() * (std::abs(m.z) + std::abs(p_.surface_z_m)) /
-                                std::max(std::abs(a.sin0), T(1e-3));
-                const T stay = std::min(stay_length(layer, m.z, a) + slack, s_cap);
+                const T stay = surely_stays();
                 if (stay > s_done) {
                     if (visit_arc_hit(scene, frame, a.sin0, a.cos0, a.kappa, s_done, stay, p_.chord_tolerance_m,
                                       p_.clear_open_water, s_clear, x_clear, m.chords, done))
