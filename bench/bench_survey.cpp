@@ -1,7 +1,8 @@
 // Survey-scale speed: pings per second on the survey scene (bench/support/survey_scene.hpp: 1024 m of fractal seabed
 // at 0.25 m, 4096^2 heights, with two sets of ripples and 20 targets including moored mines and a pipeline; Jackson
 // medium sand at 100 kHz, three-layer water, the 100 kHz planar array, a perturbed towfish, 100 m per side in 2048
-// samples), in float, for three simulators on 1 and 2 threads:
+// samples), in float, for three simulators on 1 and 2 threads (on Linux one thread pinned to each of two processors in
+// turn as well, since a shared machine's processors can differ in speed, and two threads against the sum of both):
 //   full      Jackson, layered water, planar array, perturbed towfish
 //   straight  the same with straight rays (isovelocity water)
 //   minimal   Lambert, straight rays, ideal fan, straight-line towfish
@@ -51,6 +52,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 #include <sss/sss.hpp>
 
 #include "../tests/support/converged_reference.hpp"
@@ -67,6 +72,36 @@ double peak_rss_mib() {
     while (std::getline(in, line))
         if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
     return -1.0;
+}
+
+/// The processors this process may run on (Linux; elsewhere none is known and nothing is pinned).
+std::vector<int> allowed_cpus() {
+    std::vector<int> cpus;
+#if defined(__linux__)
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof(set), &set) == 0)
+        for (int c = 0; c < CPU_SETSIZE; ++c)
+            if (CPU_ISSET(c, &set)) cpus.push_back(c);
+#endif
+    return cpus;
+}
+
+/// Keeps the calling thread on processor `cpu` (< 0: on every processor of `all`); false where that cannot be done.
+/// Threads started meanwhile inherit it: the shared pool's workers are started by the first render on 2 threads,
+/// which runs unpinned.
+bool pin_calling_thread(int cpu, const std::vector<int>& all) {
+#if defined(__linux__)
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (cpu >= 0) CPU_SET(cpu, &set);
+    else
+        for (const int c : all) CPU_SET(c, &set);
+    return sched_setaffinity(0, sizeof(set), &set) == 0;
+#else
+    (void)cpu, (void)all;
+    return false;
+#endif
 }
 
 /// Best pings per second of `reps` renders of pings [0, pings) on `threads` threads.
@@ -171,8 +206,8 @@ int main(int argc, char** argv) {
         // (the side's area view narrowed to the column, as the simulator's), traced three ways: each ray alone
         // (trace), each beside the last steeper ray of its column that met the scene (trace_beside, as the
         // refinement's rays are traced), and the column at once (trace_many, as the columns are). Interleaved
-        // rounds of processor time, best of each. Layered water's three ways give the same paths bit for bit
-        // (checked here); what a ping's layered / straight ratio needs of a bent ray follows from these and the
+        // rounds of processor time on one processor, best of each. Layered water's three ways give the same paths bit
+        // for bit (checked here); what a ping's layered / straight ratio needs of a bent ray follows from these and the
         // rest of a ping's time per ray (docs/design/layered.md).
         struct ways {
             double alone = 1e300, beside = 1e300, many = 1e300;
@@ -230,10 +265,14 @@ int main(int argc, char** argv) {
         };
         const propagation::straight<T> isovelocity(
             {.sound_speed_mps = sv.water.reference_speed_mps(), .absorption_db_per_km = T(30)});
+        // On one processor throughout, where it can be chosen: a shared machine's processors can differ in speed.
+        const std::vector<int> all = allowed_cpus();
+        const bool pinned = !all.empty() && pin_calling_thread(all[0], all);
         for (int round = 0; round < (quick ? 1 : 3); ++round) {
             time_water(sv.water, bent);
             time_water(isovelocity, flat);
         }
+        if (pinned) pin_calling_thread(-1, all);
         const double per = 1e9 / double(std::max<std::size_t>(rays_total, 1));
         std::printf("per ray on the survey's cone columns (%zu rays, 1 thread, ns; layered's three ways %s): alone: "
                     "layered %.0f, straight %.0f (%.2f); beside a steeper neighbour: layered %.0f, straight %.0f (%.2f); "
@@ -250,13 +289,39 @@ int main(int argc, char** argv) {
                 size_m, sp.cell_m, n, heights_mib, build_s, rss1, rss0, (rss1 - rss0) / heights_mib,
                 full_sim.samples_per_line(), pings, quick ? 1 : 2, std::thread::hardware_concurrency());
     if (per_ray_only) return per_ray() ? 0 : 1;
-    std::printf("| simulator | 1 thread | 2 threads | 2 / 1 |\n|---|---|---|---|\n");
+    // One thread on each of the first two processors in turn, pinned, then two threads: a shared machine's
+    // processors can differ in speed (on this project's 2-core VMs one of the two, which one varying from minute to
+    // minute, renders a ping about 1.35 times slower, its caches shared with other work), and two threads can then
+    // give at most 1 + slower / faster times the faster one's speed. "2 / both alone" is the two threads' speed over
+    // the sum of the two processors' speeds alone: how well the render divides its work, whatever the machine.
+    const std::vector<int> cpus = allowed_cpus();
+    const bool per_cpu = cpus.size() >= 2 && pin_calling_thread(cpus[0], cpus) && pin_calling_thread(-1, cpus);
+    if (per_cpu)
+        std::printf("| simulator | 1 thread (the faster processor) | 1 thread on processor %d / %d | 2 threads | 2 / 1 | "
+                    "2 / both alone |\n|---|---|---|---|---|---|\n",
+                    cpus[0], cpus[1]);
+    else
+        std::printf("| simulator | 1 thread | 2 threads | 2 / 1 |\n|---|---|---|---|\n");
     const int reps = quick ? 1 : 2;
     double layered_1 = 0, straight_1 = 0;
     const auto row = [&](const char* name, const auto& sim) {
-        const double one = pings_per_s(sim, sv.scene, pings, 1, reps);
+        if (!per_cpu) {
+            const double one = pings_per_s(sim, sv.scene, pings, 1, reps);
+            const double two = pings_per_s(sim, sv.scene, pings, 2, reps);
+            std::printf("| %s | %.1f pings/s | %.1f pings/s | %.2f |\n", name, one, two, two / one);
+            return one;
+        }
+        double on[2] = {0, 0};
+        for (int r = 0; r < reps; ++r) // interleaved, best of each
+            for (int k = 0; k < 2; ++k) {
+                pin_calling_thread(cpus[std::size_t(k)], cpus);
+                on[k] = std::max(on[k], pings_per_s(sim, sv.scene, pings, 1, 1));
+            }
+        pin_calling_thread(-1, cpus);
+        const double one = std::max(on[0], on[1]);
         const double two = pings_per_s(sim, sv.scene, pings, 2, reps);
-        std::printf("| %s | %.1f pings/s | %.1f pings/s | %.2f |\n", name, one, two, two / one);
+        std::printf("| %s | %.1f pings/s | %.1f / %.1f pings/s | %.1f pings/s | %.2f | %.2f |\n", name, one, on[0], on[1],
+                    two, two / one, two / (on[0] + on[1]));
         return one;
     };
     layered_1 = row("full (Jackson, layered, planar array, perturbed)", full_sim);
