@@ -291,9 +291,10 @@ int main(int argc, char** argv) {
     if (per_ray_only) return per_ray() ? 0 : 1;
     // One thread on each of the first two processors in turn, pinned, then two threads: a shared machine's
     // processors can differ in speed (on this project's 2-core VMs one of the two, which one varying from minute to
-    // minute, renders a ping about 1.35 times slower, its caches shared with other work), and two threads can then
-    // give at most 1 + slower / faster times the faster one's speed. "2 / both alone" is the two threads' speed over
-    // the sum of the two processors' speeds alone: how well the render divides its work, whatever the machine.
+    // minute, renders a ping up to 1.35 times slower, apparently its caches shared with other work), and two threads
+    // can then give at most 1 + slower / faster times the faster one's speed. "2 / both alone" is the two threads'
+    // speed over the sum of the two processors' speeds alone: how well the render divides its work, whatever the
+    // machine.
     const std::vector<int> cpus = allowed_cpus();
     const bool per_cpu = cpus.size() >= 2 && pin_calling_thread(cpus[0], cpus) && pin_calling_thread(-1, cpus);
     if (per_cpu)
