@@ -88,8 +88,8 @@ std::vector<int> allowed_cpus() {
 }
 
 /// Keeps the calling thread on processor `cpu` (< 0: on every processor of `all`); false where that cannot be done.
-/// Threads started meanwhile inherit it: the shared pool's workers are started by the first render on 2 threads,
-/// which runs unpinned.
+/// Threads started meanwhile inherit it: the shared pool's workers are started by the scene's build, before anything
+/// is pinned, and a render on 1 thread starts none.
 bool pin_calling_thread(int cpu, const std::vector<int>& all) {
 #if defined(__linux__)
     cpu_set_t set;
@@ -99,7 +99,8 @@ bool pin_calling_thread(int cpu, const std::vector<int>& all) {
         for (const int c : all) CPU_SET(c, &set);
     return sched_setaffinity(0, sizeof(set), &set) == 0;
 #else
-    (void)cpu, (void)all;
+    (void)cpu;
+    (void)all;
     return false;
 #endif
 }
@@ -290,11 +291,12 @@ int main(int argc, char** argv) {
                 full_sim.samples_per_line(), pings, quick ? 1 : 2, std::thread::hardware_concurrency());
     if (per_ray_only) return per_ray() ? 0 : 1;
     // One thread on each of the first two processors in turn, pinned, then two threads: a shared machine's
-    // processors can differ in speed (on this project's 2-core VMs one of the two, which one varying from minute to
-    // minute, renders a ping up to 1.35 times slower, apparently its caches shared with other work), and two threads
-    // can then give at most 1 + slower / faster times the faster one's speed. "2 / both alone" is the two threads'
-    // speed over the sum of the two processors' speeds alone: how well the render divides its work, whatever the
-    // machine.
+    // processors can differ in speed (on a shared 2-core virtual machine one of the two, which one varying from minute
+    // to minute, was seen to render a ping up to 1.35 times slower, apparently its caches shared with other work), and
+    // two threads can then give at most 1 + slower / faster times the faster one's speed. "2 / both alone" is the two
+    // threads' speed over the sum of the two processors' speeds alone: how well the render divides its work where the
+    // process may run on those two processors only. Every other one-thread figure is likewise the best over both
+    // processors, pinned, so that the ratios below compare like with like.
     const std::vector<int> cpus = allowed_cpus();
     const bool per_cpu = cpus.size() >= 2 && pin_calling_thread(cpus[0], cpus) && pin_calling_thread(-1, cpus);
     if (per_cpu)
@@ -304,25 +306,33 @@ int main(int argc, char** argv) {
     else
         std::printf("| simulator | 1 thread | 2 threads | 2 / 1 |\n|---|---|---|---|\n");
     const int reps = quick ? 1 : 2;
+    // The least of what run() returns (seconds), over reps runs on each of the two processors in turn, pinned
+    // (unpinned where processors cannot be chosen); each processor's own least into on_s when given.
+    const auto best_pinned_s = [&](auto&& run, double* on_s = nullptr) {
+        double on[2] = {1e300, 1e300};
+        for (int r = 0; r < reps; ++r) // interleaved
+            for (std::size_t k = 0; k < (per_cpu ? 2u : 1u); ++k) {
+                if (per_cpu) pin_calling_thread(cpus[k], cpus);
+                on[k] = std::min(on[k], run());
+            }
+        if (per_cpu) pin_calling_thread(-1, cpus);
+        if (on_s) on_s[0] = on[0], on_s[1] = on[1];
+        return std::min(on[0], on[1]);
+    };
+    const auto one_thread = [&](const auto& sim, double* on_s = nullptr) {
+        return double(pings) / best_pinned_s([&] { return double(pings) / pings_per_s(sim, sv.scene, pings, 1, 1); }, on_s);
+    };
     double layered_1 = 0, straight_1 = 0;
     const auto row = [&](const char* name, const auto& sim) {
-        if (!per_cpu) {
-            const double one = pings_per_s(sim, sv.scene, pings, 1, reps);
-            const double two = pings_per_s(sim, sv.scene, pings, 2, reps);
-            std::printf("| %s | %.1f pings/s | %.1f pings/s | %.2f |\n", name, one, two, two / one);
-            return one;
-        }
-        double on[2] = {0, 0};
-        for (int r = 0; r < reps; ++r) // interleaved, best of each
-            for (int k = 0; k < 2; ++k) {
-                pin_calling_thread(cpus[std::size_t(k)], cpus);
-                on[k] = std::max(on[k], pings_per_s(sim, sv.scene, pings, 1, 1));
-            }
-        pin_calling_thread(-1, cpus);
-        const double one = std::max(on[0], on[1]);
+        double on_s[2] = {0, 0};
+        const double one = one_thread(sim, on_s);
         const double two = pings_per_s(sim, sv.scene, pings, 2, reps);
-        std::printf("| %s | %.1f pings/s | %.1f / %.1f pings/s | %.1f pings/s | %.2f | %.2f |\n", name, one, on[0], on[1],
-                    two, two / one, two / (on[0] + on[1]));
+        if (per_cpu) {
+            const double on0 = double(pings) / on_s[0], on1 = double(pings) / on_s[1];
+            std::printf("| %s | %.1f pings/s | %.1f / %.1f pings/s | %.1f pings/s | %.2f | %.2f |\n", name, one, on0, on1,
+                        two, two / one, two / (on0 + on1));
+        } else
+            std::printf("| %s | %.1f pings/s | %.1f pings/s | %.2f |\n", name, one, two, two / one);
         return one;
     };
     layered_1 = row("full (Jackson, layered, planar array, perturbed)", full_sim);
@@ -394,8 +404,8 @@ int main(int argc, char** argv) {
         const std::vector<T> survey_speeds(sv.water.profile().speeds_mps().begin(), sv.water.profile().speeds_mps().end());
         const std::vector<T> strong{T(1500), T(1500), T(1490), T(1470)};
         for (const auto* speeds : {&survey_speeds, &strong}) {
-            const double cleared = pings_per_s(with_water(*speeds, true), sv.scene, pings, 1, reps);
-            const double plain = pings_per_s(with_water(*speeds, false), sv.scene, pings, 1, reps);
+            const double cleared = one_thread(with_water(*speeds, true));
+            const double plain = one_thread(with_water(*speeds, false));
             std::printf("full, %s, the seabed's edges out (1 thread): chords cleared in open water %.1f pings/s, chord by "
                         "chord %.1f pings/s (time %.2f)\n",
                         speeds == &strong ? "strong gradients to the seabed" : "the survey's water", cleared, plain,
@@ -409,7 +419,7 @@ int main(int argc, char** argv) {
         wp.follow_neighbours = false;
         const simulator<scattering::jackson<T>, propagation::layered<T>, beam::planar_array<T>, motion::perturbed<T>> alone(
             sv.scattering, propagation::layered<T>(sv.water.profile(), wp), sv.array, sv.motion, sv.receiver);
-        const double each_alone = pings_per_s(alone, sv.scene, pings, 1, reps);
+        const double each_alone = one_thread(alone);
         std::printf("full (1 thread): bent rays beside their neighbours %.1f pings/s, each traced alone %.1f pings/s "
                     "(time %.2f)\n",
                     layered_1, each_alone, layered_1 / each_alone);
@@ -420,13 +430,12 @@ int main(int argc, char** argv) {
         // pass from the image's own trace and traces the bare seabed only on sides an object reaches, against
         // render followed by label_render (three traces per side).
         const auto per_ping_s = [&](auto&& run) {
-            double best = 1e300;
-            for (int r = 0; r < reps; ++r) {
-                const auto t0 = std::chrono::steady_clock::now();
-                run();
-                best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-            }
-            return best / double(pings);
+            return best_pinned_s([&] {
+                       const auto t0 = std::chrono::steady_clock::now();
+                       run();
+                       return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                   }) /
+                   double(pings);
         };
         const double together = per_ping_s([&] {
             if (render_labelled(full_sim, sv.scene, 0, pings, {.threads = 1}).labels.pings != pings) std::abort();
