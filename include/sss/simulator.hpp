@@ -261,7 +261,8 @@ public:
     [[nodiscard]] double dt_s() const noexcept { return dt_; }
 
     /// Renders ping `index`: one port and one starboard line. Throws invalid_parameter naming the ping when the
-    /// towfish is not above the seabed there (a sonar in or under the seabed records nothing meaningful).
+    /// towfish is not at least `min_clearance_m` above the seabed there (a sonar in or under the seabed records
+    /// nothing meaningful).
     template <Scene Sc> [[nodiscard]] ping_lines<T> ping(const Sc& scene, std::size_t index) const {
         return ping(scene, index, no_echo_observer{});
     }
@@ -274,13 +275,19 @@ public:
         static_assert(std::is_same_v<typename Sc::value_type, T>, "sss::simulator: scene scalar type differs");
         const pose<T> p = motion_.pose_at(index);
         const T seabed_z = scene.seabed_height_m(p.position.x, p.position.y);
-        if (!(p.position.z > seabed_z))
+        if (!(double(p.position.z) - double(seabed_z) >= min_clearance_m))
             throw invalid_parameter("ping[" + std::to_string(index) + "]",
                                     "the towfish at (" + std::to_string(p.position.x) + ", " +
                                         std::to_string(p.position.y) + ", " + std::to_string(p.position.z) +
-                                        ") m is not above the seabed (z = " + std::to_string(seabed_z) + " m)");
+                                        ") m is not at least 1 mm above the seabed (z = " + std::to_string(seabed_z) +
+                                        " m)");
         return ping_at(scene, p, observe);
     }
+
+    /// The least height of the towfish above the seabed under it for `ping` (m). Much closer, the nearest echoes'
+    /// spreading (1/r^2) and footprint (r^2) leave the scalar's range (in float below about 1e-19 m), and their
+    /// product is not a number.
+    static constexpr double min_clearance_m = 1e-3;
 
     /// Renders one ping from an explicit pose.
     template <Scene Sc> [[nodiscard]] ping_lines<T> ping_at(const Sc& scene, const pose<T>& p) const {

@@ -3,6 +3,7 @@
 // byte offset.
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "sss/io/height_field_io.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "support/temporaries.hpp"
 
 namespace fs = std::filesystem;
 using sss::vec2;
@@ -83,10 +85,38 @@ TEST_CASE_TEMPLATE("An ESRI ASCII grid written and read back gives the same heig
     const std::string path = d.file("grid.asc");
     sss::io::write_esri_ascii(path, hf);
     check_same(hf, sss::io::read_esri_ascii<T>(path));
-    CHECK_FALSE(fs::exists(path + ".tmp"));
+    CHECK(sss_test::temporaries_left(path) == 0);
     // Writing again replaces the file.
     sss::io::write_esri_ascii(path, height_field<T>({.nx = 2, .ny = 2, .cell_m = T(1), .heights_m = {T(1), T(2), T(3), T(4)}}));
     CHECK(sss::io::read_esri_ascii<T>(path).nx() == 2);
+}
+
+TEST_CASE("A float grid's heights, cell size and centre read back to the bit where rounding through double is off by one") {
+    // 0x1.5c87fap-84 prints as 7.038531e-26: its nearest double, rounded to float, gives the next float.
+    const float f = std::bit_cast<float>(std::uint32_t(0x15ae43fdu));
+    scratch_dir d;
+    const std::string path = d.file("tiny.asc");
+    const height_field<float> hf({.nx = 2, .ny = 2, .cell_m = f, .origin_m = vec2<float>{f, -f}, .heights_m = {f, -f, 1.0f, f}});
+    sss::io::write_esri_ascii(path, hf);
+    check_same(hf, sss::io::read_esri_ascii<float>(path));
+}
+
+TEST_CASE("A raw height file and its sidecar are replaced together: a sidecar that cannot be replaced leaves the old data") {
+    scratch_dir d;
+    const std::string path = d.file("sea.raw");
+    sss::io::write_raw_f32(path, height_field<float>({.nx = 2, .ny = 2, .cell_m = 1.0f, .heights_m = {1, 2, 3, 4}}));
+    const std::string old = read_bytes(path);
+    fs::remove(path + ".txt");
+    fs::create_directory(path + ".txt");
+    const height_field<float> bigger({.nx = 3, .ny = 3, .cell_m = 0.5f, .heights_m = std::vector<float>(9, 2.0f)});
+    CHECK(error_of([&] { sss::io::write_raw_f32(path, bigger); }).file() == path + ".txt");
+    CHECK(read_bytes(path) == old);
+    CHECK(sss_test::temporaries_left(path) == 0);
+    CHECK(sss_test::temporaries_left(path + ".txt") == 0);
+    // With the sidecar's name free again both are written, and read back.
+    fs::remove(path + ".txt");
+    sss::io::write_raw_f32(path, bigger);
+    check_same(bigger, sss::io::read_raw_f32<float>(path));
 }
 
 TEST_CASE("An ESRI ASCII grid's first row is the northern one, and xllcorner means the cell's corner") {
@@ -176,7 +206,7 @@ TEST_CASE_TEMPLATE("Raw float32 with its sidecar round-trips, little-endian, sou
     const height_field<T> hf({.nx = 4, .ny = 3, .cell_m = T(0.5), .origin_m = vec2<T>{T(10), T(-20)}, .heights_m = h});
     sss::io::write_raw_f32(path, hf);
     check_same(hf, sss::io::read_raw_f32<T>(path));
-    CHECK_FALSE(fs::exists(path + ".tmp"));
+    CHECK(sss_test::temporaries_left(path) == 0);
     const std::string bytes = read_bytes(path);
     REQUIRE(bytes.size() == 48);
     // Vertex 1 is 0.25 - 1.5 = -1.25f = 0xBFA00000, stored low byte first.
@@ -257,7 +287,7 @@ TEST_CASE_TEMPLATE("A 16-bit PGM round-trips to within half a vertical step, fir
     const std::string bytes = read_bytes(path);
     CHECK(bytes.substr(0, 3) == "P5\n");
     CHECK(contains(bytes, "\n7 4\n65535\n"));
-    CHECK_FALSE(fs::exists(path + ".tmp"));
+    CHECK(sss_test::temporaries_left(path) == 0);
     // A height outside the 16-bit range is refused, naming the vertex; the old file stays.
     CHECK_THROWS_AS(
         sss::io::write_pgm16(path, hf, sss::io::pgm_vertical<T>{vertical.scale_m, vertical.offset_m + T(1)}),
@@ -316,7 +346,7 @@ TEST_CASE("A writer that cannot create its file throws naming it and leaves noth
     const auto e = error_of([&] { sss::io::write_esri_ascii(path, hf); });
     CHECK(e.file() == path);
     CHECK_FALSE(fs::exists(path));
-    CHECK_FALSE(fs::exists(path + ".tmp"));
+    CHECK(sss_test::temporaries_left(path) == 0);
 }
 
 TEST_CASE("Every reader refuses a directory by naming it, and a grid whose cell is an invalid parameter names the file "

@@ -2,14 +2,20 @@
 // accepted by every reader, errors name the line and the column, and writers replace files atomically.
 #include <doctest/doctest.h>
 
+#include <bit>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "sss/io/detail/atomic_file.hpp"
+#include "sss/io/detail/json.hpp"
 #include "sss/io/detail/text.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "support/temporaries.hpp"
 
 namespace {
 
@@ -103,7 +109,7 @@ TEST_CASE("the sound-speed CSV writer replaces a file atomically: a failed write
     const auto prof = profile("0,1500\n10,1490\n");
     sss::io::write_sound_speed_csv(path, prof);
     CHECK(std::filesystem::exists(path));
-    CHECK_FALSE(std::filesystem::exists(dir / "cast.csv.tmp"));
+    CHECK(sss_test::temporaries_left(path) == 0);
     CHECK(sss::io::read_sound_speed_csv<double>(path).speeds_mps()[1] == 1490.0);
     // A target whose directory does not exist: file_error, and nothing is created.
     const auto nowhere = dir / "missing" / "cast.csv";
@@ -114,6 +120,52 @@ TEST_CASE("the sound-speed CSV writer replaces a file atomically: a failed write
         sss::detail::atomic_file out(path.string());
         out.write("half");
     }
-    CHECK_FALSE(std::filesystem::exists(dir / "cast.csv.tmp"));
+    CHECK(sss_test::temporaries_left(path) == 0);
     CHECK(sss::io::read_sound_speed_csv<double>(path).depths_m().size() == 2);
+}
+
+TEST_CASE("two writers of one path never share a temporary: the file is always one writer's whole text") {
+    const std::filesystem::path dir = std::filesystem::current_path() / "atomic_race";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "out.txt").string();
+    // A file named like a temporary is someone else's: no writer opens, truncates or removes it.
+    const std::string bystander = path + ".tmp";
+    sss::detail::save_file(bystander, "not a temporary");
+    const std::string a(200000, 'a'), b(300000, 'b');
+    for (int round = 0; round < 20; ++round) {
+        std::thread other([&] { sss::detail::save_file(path, b); });
+        sss::detail::save_file(path, a);
+        other.join();
+        const std::string got = sss::detail::read_file(path);
+        CHECK((got == a || got == b));
+    }
+    CHECK(sss::detail::read_file(bystander) == "not a temporary");
+    std::filesystem::remove(bystander);
+    CHECK(sss_test::temporaries_left(path) == 0);
+}
+
+TEST_CASE("a float is read back from its shortest decimal rounded once, to the bit, where rounding through double is "
+          "off by one") {
+    // 0x1.5c87fap-84 prints as 7.038531e-26; its nearest double lies so close to the midpoint between that float and
+    // the next that rounding the double to float gives the next one.
+    const float f = std::bit_cast<float>(std::uint32_t(0x15ae43fdu));
+    const std::string text = sss::detail::shortest(f);
+    CHECK(text == "7.038531e-26");
+    CHECK(static_cast<float>(*sss::detail::parse_double(text)) != f);
+    CHECK(sss::detail::parse_as<float>(text) == f);
+    CHECK(sss::detail::parse_as<float>("-" + text) == -f);
+    CHECK(sss::detail::parse_as<float>("+1e39") == std::numeric_limits<float>::infinity());
+    CHECK(sss::detail::parse_as<float>("1e-50") == 0.0f);
+    CHECK(!sss::detail::parse_as<float>("1e"));
+}
+
+TEST_CASE("the JSON writer escapes control characters and makes bytes that are not UTF-8 U+FFFD: its text always parses") {
+    sss::detail::json_writer j;
+    j.begin_object().member("name", std::string("a\"b\\c\n\x01 caf\xc3\xa9 \xe9 \xed\xa0\x80 \xf4\x90\x80\x80 end")).end_object();
+    CHECK(j.str() == "{\"name\":\"a\\\"b\\\\c\\n\\u0001 caf\xc3\xa9 \\ufffd \\ufffd\\ufffd\\ufffd \\ufffd\\ufffd\\ufffd\\ufffd end\"}");
+    CHECK(sss::detail::valid_utf8("caf\xc3\xa9 \xe6\xb5\xb7 \xf0\x9f\x90\x9f"));
+    CHECK(!sss::detail::valid_utf8("\xc0\xaf"));         // overlong '/'
+    CHECK(!sss::detail::valid_utf8("\xed\xa0\x80"));     // a surrogate
+    CHECK(!sss::detail::valid_utf8("\xf4\x90\x80\x80")); // above U+10FFFF
+    CHECK(!sss::detail::valid_utf8("\xe6\xb5"));         // cut short
 }

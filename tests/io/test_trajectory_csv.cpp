@@ -108,6 +108,24 @@ TEST_CASE("A bad row fails with sss::file_error naming the file and its line") {
     CHECK(std::string(error_of("time,x,y,z\n0,0,0,5\n").what()).find("at least 2 samples") != std::string::npos);
 }
 
+TEST_CASE("A value beyond the scalar type's range, or an angle beyond 10^6 degrees, fails naming its line and column") {
+    std::istringstream x("time,x,y,z\n0,0,0,5\n1,1e39,1,5\n");
+    try {
+        (void)sss::io::read_trajectory_csv<float>(x, "survey.csv");
+        FAIL("no error");
+    } catch (const sss::file_error& e) {
+        CHECK(e.line() == 3);
+        CHECK(std::string(e.what()).find("survey.csv:3: column 3: column 'x': '1e39' is out of range") != std::string::npos);
+    }
+    std::istringstream same("time,x,y,z\n0,0,0,5\n1,1e39,1,5\n");
+    CHECK(sss::io::read_trajectory_csv<double>(same, "survey.csv").position_m[1].x == 1e39); // a double holds it
+    const sss::file_error yaw = error_of("time,x,y,z,yaw\n0,0,0,5,0\n1,0,1,5,3.6e300\n");
+    CHECK(yaw.line() == 3);
+    CHECK(std::string(yaw.what()).find("angles lie within 10^6 degrees") != std::string::npos);
+    std::istringstream turns("time,x,y,z,yaw\n0,0,0,5,0\n1,0,1,5,-7200\n"); // twenty turns is a heading
+    CHECK(sss::io::read_trajectory_csv<double>(turns, "survey.csv").yaw_rad.size() == 2);
+}
+
 TEST_CASE("A file on disk loads into a trajectory whose poses reproduce the samples; a missing file is a file_error") {
     const std::filesystem::path path = std::filesystem::current_path() / "trajectory_csv_test.csv";
     {

@@ -24,7 +24,7 @@
 ///
 /// Errors are sss::file_error naming the file and the line (text) or the byte offset (binary). Heights
 /// that are not finite are rejected at load. A reader returns a complete height field or throws; a writer
-/// writes `path + ".tmp"` and renames it over `path`, so `path` is never left half written.
+/// writes a temporary of its own next to `path` and renames it over `path`, so `path` is never left half written.
 /// No PNG: it needs a library that sss does not depend on.
 
 #include <algorithm>
@@ -75,6 +75,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     std::optional<std::size_t> ncols, nrows;
     std::size_t first_data_line = 0;
     std::optional<double> x_ll, y_ll, cellsize, nodata;
+    std::string_view x_text, y_text, cell_text; // their texts, rounded once to T where taken as they are
     bool x_center = false, y_center = false;
     // Header: keyword/value pairs until the first token that is not a keyword.
     for (;;) {
@@ -116,15 +117,18 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
         if (k == "xllcorner" || k == "xllcenter") {
             dup(x_ll.has_value());
             x_ll = v;
+            x_text = val.text;
             x_center = k == "xllcenter";
         } else if (k == "yllcorner" || k == "yllcenter") {
             dup(y_ll.has_value());
             y_ll = v;
+            y_text = val.text;
             y_center = k == "yllcenter";
         } else if (k == "cellsize") {
             dup(cellsize.has_value());
             if (!(*v > 0)) throw fail(val.line, "'cellsize' must be > 0, got '" + std::string(val.text) + "'");
             cellsize = v;
+            cell_text = val.text;
         } else {
             dup(nodata.has_value());
             nodata = v;
@@ -164,7 +168,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
                                            " (a height field needs every vertex)");
                 h = *options.nodata_fill_m;
             } else {
-                h = sss::detail::finite_as<T>(*v);
+                h = sss::detail::parse_as<T>(t.text); // rounded once to T (parse_as)
             }
             if (!h || !std::isfinite(*h))
                 throw fail(t.line, "height '" + std::string(t.text) + "' at row " + std::to_string(row) + ", column " +
@@ -177,11 +181,14 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
         throw fail(extra.line, "more values than ncols x nrows = " + std::to_string(nx * ny) + " ('" +
                                    std::string(extra.text) + "')");
     }
+    // A centre and the cell size as written (write_esri_ascii: the shortest text of a T) read back exactly; a corner
+    // is moved by half a cell in double first.
     const double half = 0.5 * *cellsize;
-    const vec2<T> origin{static_cast<T>(x_center ? *x_ll : *x_ll + half),
-                         static_cast<T>(y_center ? *y_ll : *y_ll + half)};
+    const auto as_t = [](std::string_view text, double v) { return sss::detail::parse_as<T>(text).value_or(static_cast<T>(v)); };
+    const vec2<T> origin{x_center ? as_t(x_text, *x_ll) : static_cast<T>(*x_ll + half),
+                         y_center ? as_t(y_text, *y_ll) : static_cast<T>(*y_ll + half)};
     try {
-        return scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = static_cast<T>(*cellsize), .origin_m = origin, .heights_m = std::move(heights)});
+        return scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = as_t(cell_text, *cellsize), .origin_m = origin, .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
         throw fail(0, std::string(message_body(e)));
     }
@@ -294,10 +301,9 @@ struct raw_grid {
     return {.nx = *nx, .ny = *ny, .cell_m = *cell, .origin_x_m = *ox, .origin_y_m = *oy};
 }
 
-/// Writes the sidecar of the raw height file `path` (atomically), each number in the shortest text that reads back
-/// to it in `Number` (float for a float height field: "0.1", not "0.10000000149011612").
-template <class Number = double> void write_raw_sidecar(const std::string& path, const raw_grid& g) {
-    sss::detail::atomic_file side(raw_sidecar_path(path));
+/// The text of the sidecar of a raw height file, each number in the shortest text that reads back to it in `Number`
+/// (float for a float height field: "0.1", not "0.10000000149011612").
+template <class Number = double> [[nodiscard]] std::string raw_sidecar_text(const raw_grid& g) {
     std::string s = "# sss height field: float32 little-endian, row-major, row 0 = south (min y), heights in metres\n"
                     "format sss-height-raw-f32le 1\nnx " +
                     std::to_string(g.nx) + "\nny " + std::to_string(g.ny) + "\ncell_m ";
@@ -307,8 +313,12 @@ template <class Number = double> void write_raw_sidecar(const std::string& path,
     s += "\norigin_y_m ";
     sss::detail::append_number(s, static_cast<Number>(g.origin_y_m));
     s += '\n';
-    side.write(s);
-    side.commit();
+    return s;
+}
+
+/// Writes the sidecar of the raw height file `path` (atomically), as raw_sidecar_text.
+template <class Number = double> void write_raw_sidecar(const std::string& path, const raw_grid& g) {
+    sss::detail::save_file(raw_sidecar_path(path), raw_sidecar_text<Number>(g));
 }
 
 /// Reads `path` (raw float32) and its sidecar `path + ".txt"`.
@@ -348,14 +358,16 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
     }
 }
 
-/// Writes `hf` as raw float32 to `path` and its sidecar to `path + ".txt"` (each atomically).
+/// Writes `hf` as raw float32 to `path` and its sidecar to `path + ".txt"`, together (detail::commit_together: a
+/// failure writing either leaves both old files as they were).
 template <Real T> void write_raw_f32(const std::string& path, const scene::height_field<T>& hf) {
     const std::span<const T> h = hf.heights();
     for (std::size_t i = 0; i < h.size(); ++i)
         if (!std::isfinite(static_cast<float>(h[i])))
             throw file_error(path, 0, "height of vertex " + std::to_string(i) + " does not fit float32");
+    sss::detail::atomic_file out(path);
+    sss::detail::atomic_file side(raw_sidecar_path(path));
     {
-        sss::detail::atomic_file out(path);
         std::string buf;
         buf.reserve(std::min<std::size_t>(4 * h.size(), std::size_t(1) << 20));
         for (std::size_t i = 0; i < h.size(); ++i) {
@@ -367,13 +379,13 @@ template <Real T> void write_raw_f32(const std::string& path, const scene::heigh
             }
         }
         out.write(buf);
-        out.commit();
     }
-    write_raw_sidecar<T>(path, {.nx = hf.nx(),
-                                .ny = hf.ny(),
-                                .cell_m = double(hf.cell_m()),
-                                .origin_x_m = double(hf.origin_m().x),
-                                .origin_y_m = double(hf.origin_m().y)});
+    side.write(raw_sidecar_text<T>({.nx = hf.nx(),
+                                    .ny = hf.ny(),
+                                    .cell_m = double(hf.cell_m()),
+                                    .origin_x_m = double(hf.origin_m().x),
+                                    .origin_y_m = double(hf.origin_m().y)}));
+    sss::detail::commit_together(out, side);
 }
 
 // ----------------------------------------------------------------------------------------------------

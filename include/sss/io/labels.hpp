@@ -21,15 +21,17 @@
 ///   JSON legend of both.
 
 #include <algorithm>
+#include <charconv>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "sss/core/error.hpp"
 #include "sss/core/hit.hpp"
+#include "sss/io/detail/atomic_file.hpp"
 #include "sss/io/detail/bytes.hpp"
 #include "sss/io/detail/json.hpp"
 #include "sss/io/png.hpp"
@@ -58,34 +60,67 @@ struct object_box {
     return l.object == id && (l.kind == sample_class::highlight || (e == box_extent::highlight_and_shadow && l.kind == sample_class::shadow));
 }
 
-/// The boxes of the objects with a highlight in the image, in increasing object id.
+/// Throws invalid_parameter ("label_image.values") unless img holds pings x width() samples.
+inline void check_label_image(const label_image& img) {
+    const bool fits = img.samples <= (std::size_t(-1) / 2) && (img.pings == 0 || img.width() <= std::size_t(-1) / img.pings);
+    sss::require(fits && img.values.size() == img.pings * img.width(), "label_image.values", [&] {
+        return "must hold pings x 2 x samples = " + std::to_string(img.pings) + " x " + std::to_string(img.width()) +
+               " labels, got " + std::to_string(img.values.size());
+    });
+}
+
+/// Throws invalid_parameter ("label_class.name") unless every name is non-empty, well-formed UTF-8 and free of
+/// control characters: a name is one line of a YOLO class list and one string of a JSON file, and a newline in
+/// one would shift every later class's index.
+inline void check_class_names(std::span<const label_class> classes) {
+    for (const label_class& c : classes) {
+        const bool control = std::any_of(c.name.begin(), c.name.end(), [](char ch) {
+            const auto u = static_cast<unsigned char>(ch);
+            return u < 0x20 || u == 0x7f;
+        });
+        sss::require(!c.name.empty() && !control && sss::detail::valid_utf8(c.name), "label_class.name", [&] {
+            return "of class " + std::to_string(c.id) +
+                   " must be non-empty UTF-8 text without control characters (it is one line of a class list)";
+        });
+    }
+}
+
+/// The boxes of the objects with a highlight in the image, in increasing object id; its class is the label of the
+/// object's first highlight sample (by ping, then column). One pass over the image for the objects and one for
+/// their boxes, whatever their number.
 [[nodiscard]] inline std::vector<object_box> object_boxes(const label_image& img, box_extent e) {
+    check_label_image(img);
     std::vector<object_box> boxes;
-    std::vector<std::size_t> x1, y1;
+    std::unordered_map<std::uint32_t, std::size_t> index; // object id -> its box
+    for (const sample_label& l : img.values)
+        if (l.kind == sample_class::highlight && index.emplace(l.object, boxes.size()).second)
+            boxes.push_back(object_box{l.object, l.label, 0, 0, 0, 0, 0});
+    if (boxes.empty()) return boxes;
+    struct extent {
+        std::size_t x0, y0, xe = 0, ye = 0;
+    };
+    std::vector<extent> ext(boxes.size(), extent{img.width(), img.pings});
     for (std::size_t r = 0; r < img.pings; ++r)
         for (std::size_t c = 0; c < img.width(); ++c) {
             const sample_label& l = img.at(r, c);
-            if (l.kind != sample_class::highlight) continue;
-            if (std::none_of(boxes.begin(), boxes.end(), [&](const object_box& b) { return b.object == l.object; }))
-                boxes.push_back(object_box{l.object, l.label, 0, 0, 0, 0, 0});
+            if (l.kind != sample_class::highlight && !(e == box_extent::highlight_and_shadow && l.kind == sample_class::shadow))
+                continue;
+            const auto it = index.find(l.object);
+            if (it == index.end()) continue; // a shadow of an object with no highlight in the image
+            extent& x = ext[it->second];
+            x.x0 = std::min(x.x0, c);
+            x.y0 = std::min(x.y0, r);
+            x.xe = std::max(x.xe, c + 1);
+            x.ye = std::max(x.ye, r + 1);
+            ++boxes[it->second].area;
         }
-    std::sort(boxes.begin(), boxes.end(), [](const object_box& a, const object_box& b) { return a.object < b.object; });
-    for (object_box& b : boxes) {
-        std::size_t x0 = img.width(), y0 = img.pings, xe = 0, ye = 0;
-        for (std::size_t r = 0; r < img.pings; ++r)
-            for (std::size_t c = 0; c < img.width(); ++c)
-                if (in_mask(img.at(r, c), b.object, e)) {
-                    x0 = std::min(x0, c);
-                    y0 = std::min(y0, r);
-                    xe = std::max(xe, c + 1);
-                    ye = std::max(ye, r + 1);
-                    ++b.area;
-                }
-        b.x = x0;
-        b.y = y0;
-        b.width = xe - x0;
-        b.height = ye - y0;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        boxes[i].x = ext[i].x0;
+        boxes[i].y = ext[i].y0;
+        boxes[i].width = ext[i].xe - ext[i].x0;
+        boxes[i].height = ext[i].ye - ext[i].y0;
     }
+    std::sort(boxes.begin(), boxes.end(), [](const object_box& a, const object_box& b) { return a.object < b.object; });
     return boxes;
 }
 
@@ -98,6 +133,7 @@ struct coco_image {
 /// The COCO JSON text of a set of images (ids 1, 2, ... in order; annotation ids 1, 2, ... over the set).
 /// `classes` names the categories; a class id met in the labels but not listed is named "class_<id>".
 [[nodiscard]] inline std::string coco_json(std::span<const coco_image> images, std::span<const label_class> classes, box_extent e) {
+    check_class_names(classes);
     std::vector<label_class> cats(classes.begin(), classes.end());
     std::vector<std::vector<object_box>> boxes;
     for (const coco_image& im : images) {
@@ -127,17 +163,25 @@ struct coco_image {
             j.key("bbox").begin_array().value(b.x).value(b.y).value(b.width).value(b.height).end_array();
             j.member("area", b.area).member("iscrowd", 0);
             j.key("segmentation").begin_object().key("counts").begin_array();
+            // Runs down the columns; no mask pixel lies outside the box, so only the box's pixels are looked at.
             bool inside = false;
             std::size_t run = 0;
-            for (std::size_t c = 0; c < img.width(); ++c)
-                for (std::size_t r = 0; r < img.pings; ++r) {
-                    if (in_mask(img.at(r, c), b.object, e) != inside) {
-                        j.value(run);
-                        run = 0;
-                        inside = !inside;
-                    }
-                    ++run;
+            const auto add = [&](bool mask, std::size_t count) {
+                if (count == 0) return;
+                if (mask != inside) {
+                    j.value(run);
+                    run = 0;
+                    inside = mask;
                 }
+                run += count;
+            };
+            add(false, b.x * img.pings);
+            for (std::size_t c = b.x; c < b.x + b.width; ++c) {
+                add(false, b.y);
+                for (std::size_t r = b.y; r < b.y + b.height; ++r) add(in_mask(img.at(r, c), b.object, e), 1);
+                add(false, img.pings - b.y - b.height);
+            }
+            add(false, (img.width() - b.x - b.width) * img.pings);
             j.value(run).end_array();
             j.key("size").begin_array().value(img.pings).value(img.width()).end_array().end_object();
             j.member("sss_object_id", b.object).end_object();
@@ -154,17 +198,23 @@ struct coco_image {
     for (const object_box& b : object_boxes(img, e)) {
         const auto it = std::find_if(classes.begin(), classes.end(), [&](const label_class& c) { return c.id == b.class_id; });
         sss::require(it != classes.end(), "classes", "names no class " + std::to_string(b.class_id) + " (object " + std::to_string(b.object) + ")");
-        char line[160];
-        std::snprintf(line, sizeof line, "%zu %.8f %.8f %.8f %.8f\n", static_cast<std::size_t>(it - classes.begin()),
-                      (double(b.x) + 0.5 * double(b.width)) / w, (double(b.y) + 0.5 * double(b.height)) / h, double(b.width) / w,
-                      double(b.height) / h);
-        out += line;
+        // Eight decimals, with a '.' whatever the C locale (std::to_chars does not read it).
+        out += std::to_string(static_cast<std::size_t>(it - classes.begin()));
+        for (const double v : {(double(b.x) + 0.5 * double(b.width)) / w, (double(b.y) + 0.5 * double(b.height)) / h,
+                               double(b.width) / w, double(b.height) / h}) {
+            char buf[64];
+            const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 8);
+            out += ' ';
+            out.append(buf, r.ptr);
+        }
+        out += '\n';
     }
     return out;
 }
 
 /// The class names, one per line, in YOLO index order.
 [[nodiscard]] inline std::string yolo_classes_txt(std::span<const label_class> classes) {
+    check_class_names(classes);
     std::string out;
     for (const label_class& c : classes) out += c.name + "\n";
     return out;
@@ -191,11 +241,13 @@ inline void write_text(const std::string& path, const std::string& text) { sss::
 }
 
 /// Writes `<stem>_class.png`, `<stem>_instance.png` and `<stem>_legend.json` (see the file comment).
+/// The three are written together (detail::commit_together): a failure writing any of them leaves the old ones as
+/// they were.
 inline void write_label_images(const std::string& stem, const label_image& img, std::span<const label_class> classes) {
-    const auto cls = class_pixels(img);
-    const auto inst = instance_pixels(img);
-    write_png_grey8(stem + "_class.png", img.width(), img.pings, cls);
-    write_png_grey16(stem + "_instance.png", img.width(), img.pings, inst);
+    check_label_image(img);
+    check_class_names(classes);
+    const auto cls = sss::detail::encode_png_grey<std::uint8_t>(img.width(), img.pings, class_pixels(img));
+    const auto inst = sss::detail::encode_png_grey<std::uint16_t>(img.width(), img.pings, instance_pixels(img));
     sss::detail::json_writer j;
     j.begin_object().key("class_png").begin_object();
     j.member("0", "no_coverage").member("1", "water_column").member("2", "seabed").member("3", "highlight").member("4", "shadow");
@@ -208,7 +260,12 @@ inline void write_label_images(const std::string& stem, const label_image& img, 
         j.member("class", name).end_object();
     }
     j.end_object().end_object().newline();
-    write_text(stem + "_legend.json", j.str());
+    sss::detail::atomic_file class_png(stem + "_class.png"), instance_png(stem + "_instance.png"),
+        legend(stem + "_legend.json");
+    class_png.write(cls.data(), cls.size());
+    instance_png.write(inst.data(), inst.size());
+    legend.write(j.str());
+    sss::detail::commit_together(class_png, instance_png, legend);
 }
 
 } // namespace sss::io

@@ -14,7 +14,14 @@
 /// write_raw_f32_by_rows(path, grid, band_rows, fill) writes an nx x ny grid in bands of band_rows rows, asking
 /// fill(iy0, rows, out) for rows [iy0, iy0 + rows) each time: only one band is ever in memory. With a fill that
 /// depends on the vertex only (seabed/wave_sum.hpp's fill_rows), any band height gives the same bytes.
-/// Like every writer it writes `path + ".tmp"` and renames it: a failure leaves no file.
+/// Like every writer it writes temporaries and renames them (the data and its sidecar together): a failure leaves no
+/// file, and old ones as they were.
+///
+/// A mapped file must not be changed in place while a field maps it. Replacing it the way sss's writers do (a new
+/// file renamed over the name) is safe: the mapping keeps the old file's data. Truncating or overwriting it in place
+/// (`truncate`, `cp` or `dd` onto it, a writer that opens it for writing) is not: the pages released as the field is
+/// built are read again from the file, and a page beyond a shortened file's end stops the process with SIGBUS, which
+/// no library can turn into an error.
 
 #include <algorithm>
 #include <bit>
@@ -128,8 +135,9 @@ void write_raw_f32_by_rows(const std::string& path, const raw_grid& g, std::size
     sss::require(g.nx >= 2 && g.ny >= 2, "write_raw_f32_by_rows.grid", "needs nx, ny >= 2");
     sss::require(g.cell_m > 0 && std::isfinite(g.cell_m), "write_raw_f32_by_rows.grid.cell_m", "must be > 0");
     sss::require(band_rows >= 1, "write_raw_f32_by_rows.band_rows", "must be >= 1");
+    sss::detail::atomic_file out(path);
+    sss::detail::atomic_file side(raw_sidecar_path(path));
     {
-        sss::detail::atomic_file out(path);
         std::vector<float> band(g.nx * std::min(band_rows, g.ny));
         std::string bytes;
         for (std::size_t iy0 = 0; iy0 < g.ny; iy0 += band_rows) {
@@ -145,9 +153,9 @@ void write_raw_f32_by_rows(const std::string& path, const raw_grid& g, std::size
             }
             out.write(bytes);
         }
-        out.commit();
     }
-    write_raw_sidecar(path, g);
+    side.write(raw_sidecar_text(g));
+    sss::detail::commit_together(out, side); // a failure writing either leaves both old files as they were
 }
 
 } // namespace sss::io

@@ -240,7 +240,7 @@ void write_sound_speed_csv(std::ostream& out, const propagation::sound_speed_pro
     if (!out) throw file_error(name, 0, "write failed");
 }
 
-/// Writes `profile` as CSV to the file at `path` (created or replaced atomically: written to `path + ".tmp"`,
+/// Writes `profile` as CSV to the file at `path` (created or replaced atomically: written to a temporary next to it,
 /// then renamed, so a failure leaves `path` as it was).
 template <Real T>
 void write_sound_speed_csv(const std::filesystem::path& path, const propagation::sound_speed_profile<T>& profile) {

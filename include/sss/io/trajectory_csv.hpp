@@ -23,7 +23,8 @@
 ///
 /// x, y, z and at least one of time and ping are required; angles are in degrees unless the name ends in
 /// `_rad`. Unknown or repeated columns are errors (a misspelt column would otherwise be silently dropped).
-/// Every data row holds one finite number per column, roll and pitch lie within 90 degrees of level (after wrapping
+/// Every data row holds one finite number per column (finite in the scalar type read into: 1e39 is not a float;
+/// angles within 10^6 degrees), roll and pitch lie within 90 degrees of level (after wrapping
 /// to (-180, 180] degrees), and the key (ping if present, else time) and the time strictly increase. Any fault throws sss::file_error naming the file and the line; nothing is returned
 /// partially loaded.
 
@@ -105,6 +106,20 @@ template <Real T>
                 throw sss::detail::error_at(name, line_no, fields[i].column,
                                             "column '" + std::string(d::column_name(columns[i].which)) + "': '" +
                                                 std::string(fields[i].text) + "' is not a finite number");
+            // As the samples will hold it: finite in T (1e39 is not a float), and an angle within 10^6 degrees
+            // (beyond, wrapping it to a turn keeps none of its digits).
+            const bool is_angle = columns[i].which == d::column::roll || columns[i].which == d::column::pitch ||
+                                  columns[i].which == d::column::yaw;
+            const bool in_rad = radians[static_cast<std::size_t>(columns[i].which)];
+            const double as_held = is_angle && !in_rad ? deg_to_rad(*v) : *v;
+            if (!std::isfinite(static_cast<T>(as_held)) ||
+                (is_angle && !(std::abs(in_rad ? *v * 180.0 / pi_v<double> : *v) <= 1e6)))
+                throw sss::detail::error_at(name, line_no, fields[i].column,
+                                            "column '" + std::string(d::column_name(columns[i].which)) + "': '" +
+                                                std::string(fields[i].text) + "' is out of range (" +
+                                                (is_angle ? std::string("angles lie within 10^6 degrees")
+                                                          : std::string("beyond the scalar type's range")) +
+                                                ")");
             // Roll and pitch within 90 degrees of level once wrapped to (-180, 180] (a roll of 359 is -1): past that
             // the towfish would fly on its side or nose down, and its heading would lose its meaning.
             if (columns[i].which == d::column::roll || columns[i].which == d::column::pitch) {

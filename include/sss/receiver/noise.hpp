@@ -60,14 +60,16 @@ struct noise_params {
     double electronic_floor_db = -std::numeric_limits<double>::infinity(); ///< input-referred electronic noise spectrum level (dB re 1 uPa^2/Hz); -inf: none
 
     void validate() const {
-        sss::require_positive(frequency_hz, "noise.frequency_hz");
+        // Knudsen's curves and the thermal floor are for sonar frequencies; levels in dB within +-300 dB (their
+        // powers of ten stay in range, in float too).
+        sss::require_in_range(frequency_hz, 1.0, 1e7, "noise.frequency_hz");
         sss::require_in_range(sea_state, 0.0, 6.0, "noise.sea_state");
-        sss::require_non_negative(band_hz, "noise.band_hz");
-        sss::require_finite(band_hz, "noise.band_hz");
-        sss::require_non_negative(directivity_index_db, "noise.directivity_index_db");
-        sss::require_finite(source_level_db, "noise.source_level_db");
-        sss::require(!std::isnan(electronic_floor_db) && electronic_floor_db < std::numeric_limits<double>::infinity(),
-                             "noise.electronic_floor_db", "must be finite or -infinity");
+        sss::require_in_range(band_hz, 0.0, 1e9, "noise.band_hz");
+        sss::require_in_range(directivity_index_db, 0.0, 300.0, "noise.directivity_index_db");
+        sss::require_in_range(source_level_db, -300.0, 300.0, "noise.source_level_db");
+        sss::require(electronic_floor_db == -std::numeric_limits<double>::infinity() ||
+                         (electronic_floor_db >= -300.0 && electronic_floor_db <= 300.0),
+                     "noise.electronic_floor_db", "must lie in [-300, 300] dB, or be -infinity (none)");
     }
 };
 

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 #include "sss/core/detail/gauss_legendre.hpp"
 #include "sss/core/constants.hpp"
@@ -28,15 +29,21 @@ enum class pulse_shape : unsigned char { rectangular, hann, lfm };
 struct pulse {
     double length_s = 100e-6;                     ///< duration (s), > 0
     pulse_shape shape = pulse_shape::rectangular; ///< power envelope
-    double bandwidth_hz = 0.0;                    ///< chirp bandwidth B (Hz) for `lfm`, with B length >= 1
+    double bandwidth_hz = 0.0;                    ///< chirp bandwidth B (Hz) for `lfm`, with 1 <= B length <= 10^4
+
+    /// The largest time-bandwidth product B T of a chirp. Sidescan chirps have tens to a few thousand; the receiver
+    /// tabulates the compressed chirp's energy 128 steps per 1/B over its 2T (1.3 million at 10^4).
+    static constexpr double max_time_bandwidth = 1e4;
 
     void validate() const {
         sss::require_positive(length_s, "pulse.length_s");
         sss::require(length_s <= 1.0, "pulse.length_s", "must be <= 1 s");
         if (shape == pulse_shape::lfm) {
             sss::require_positive(bandwidth_hz, "pulse.bandwidth_hz");
-            sss::require(bandwidth_hz * length_s >= 1.0, "pulse.bandwidth_hz",
-                                 "times pulse.length_s must be >= 1 (a chirp's time-bandwidth product)");
+            sss::require(bandwidth_hz * length_s >= 1.0 && bandwidth_hz * length_s <= max_time_bandwidth,
+                         "pulse.bandwidth_hz",
+                         "times pulse.length_s must lie in [1, 10^4] (a chirp's time-bandwidth product), got " +
+                             std::to_string(bandwidth_hz * length_s));
         }
     }
 

@@ -19,7 +19,9 @@ struct receiver_params {
     void validate() const {
         sss::require_positive(sample_rate_hz, "receiver.sample_rate_hz");
         sss::require_positive(max_range_m, "receiver.max_range_m");
-        sss::require_finite(source_level_db, "receiver.source_level_db");
+        // Levels in dB are powers of ten of a tenth of them: within +-300 dB they stay in range through the chain,
+        // in float too (10^38); real source levels are 150 to 250 dB re 1 uPa at 1 m.
+        sss::require_in_range(source_level_db, -300.0, 300.0, "receiver.source_level_db");
         pulse.validate();
     }
 

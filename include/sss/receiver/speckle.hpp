@@ -70,15 +70,24 @@ struct speckle_params {
 
     void validate() const {
         sss::require_positive(transducer_length_m, "speckle.transducer_length_m");
+        // The lattice is spaced L/3 along track from the world's origin: below a millimetre its cells' indices run
+        // out of a double's integers within a survey's extent.
+        sss::require(transducer_length_m >= 1e-3, "speckle.transducer_length_m",
+                     "must be at least 1 mm (sidescan transducers are 0.1 to 2 m long)");
         sss::require_non_negative(k_shape, "speckle.k_shape");
         for (std::size_t i = 0; i < k_shape_by_material.size(); ++i)
             sss::require_non_negative(k_shape_by_material[i], "speckle.k_shape_by_material[" + std::to_string(i) + "]");
-        sss::require_non_negative(scatterer_density_per_m2, "speckle.scatterer_density_per_m2");
-        if (scatterer_density_per_m2 > 0.0)
+        sss::require_in_range(scatterer_density_per_m2, 0.0, 1e12, "speckle.scatterer_density_per_m2");
+        if (scatterer_density_per_m2 > 0.0) {
             sss::require_positive(along_beamwidth_rad, "speckle.along_beamwidth_rad");
+            sss::require(along_beamwidth_rad <= pi_v<double>, "speckle.along_beamwidth_rad", "must be at most pi rad");
+        }
         sss::require_positive(texture_patch_m, "speckle.texture_patch_m");
         sss::require_finite(survey_time_s, "speckle.survey_time_s");
         sss::require_non_negative(decorrelation_time_s, "speckle.decorrelation_time_s");
+        // The survey's epoch (survey time over decorrelation time) is counted in a 64-bit integer.
+        sss::require(!(decorrelation_time_s > 0.0) || std::abs(survey_time_s / decorrelation_time_s) < 0x1p62,
+                     "speckle.survey_time_s", "over speckle.decorrelation_time_s must be below 2^62 (epochs)");
         sss::require_in_range(cells_per_pulse, 2.0, 64.0, "speckle.cells_per_pulse");
     }
 };
@@ -185,7 +194,11 @@ public:
             }
         }
         double row_power = 0.0; // sum over rows of h^2
-        for (double j = j_lo; j <= j_hi; j += 1.0) {
+        // The rows: at most four (the co-array is L cos(delta) long, the rows L/3 apart), counted in an integer.
+        const double row_count = j_hi - j_lo + 1.0;
+        const std::int64_t rows = row_count > 0.0 ? static_cast<std::int64_t>(std::min(row_count, 8.0)) : 0;
+        for (std::int64_t k = 0; k < rows; ++k) {
+            const double j = j_lo + static_cast<double>(k);
             const double u = ((j + 0.5) * s_a - a_p) / cd;
             const double h = std::max(0.0, 1.0 - 2.0 * std::abs(u) / L);
             if (h <= 0.0) continue;

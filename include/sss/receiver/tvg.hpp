@@ -30,9 +30,11 @@ struct tvg_params {
     double min_range_m = 1.0;         ///< ranges below this get the gain at this range (m), > 0
 
     void validate() const {
-        sss::require_finite(spreading_n, "tvg.spreading_n");
-        sss::require_non_negative(absorption_db_per_km, "tvg.absorption_db_per_km");
-        sss::require_finite(gain_db, "tvg.gain_db");
+        // Bounds that keep 10^(G/10) in range over any line (spherical spreading is N = 40, seawater's absorption at
+        // 1 MHz about 300 dB/km).
+        sss::require_in_range(spreading_n, -60.0, 60.0, "tvg.spreading_n");
+        sss::require_in_range(absorption_db_per_km, 0.0, 1000.0, "tvg.absorption_db_per_km");
+        sss::require_in_range(gain_db, -300.0, 300.0, "tvg.gain_db");
         sss::require_positive(min_range_m, "tvg.min_range_m");
     }
 };

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
 
 namespace sss {
@@ -26,8 +27,9 @@ struct volume_params {
     double min_range_m = 1.0;              ///< ranges below this are taken as this (the far-field form diverges at 0)
 
     void validate() const {
-        sss::require_finite(sv_db, "volume.sv_db");
+        sss::require_in_range(sv_db, -300.0, 300.0, "volume.sv_db"); // real water: -100 to -50 dB
         sss::require_positive(psi_sr, "volume.psi_sr");
+        sss::require(psi_sr <= 4.0 * pi_v<double>, "volume.psi_sr", "must be at most 4 pi sr (the whole sphere)");
         sss::require_non_negative(absorption_db_per_m, "volume.absorption_db_per_m");
         sss::require_positive(min_range_m, "volume.min_range_m");
     }

@@ -7,6 +7,7 @@
 #include "error.hpp"
 #include "scene.hpp"
 
+#include <sss/core/constants.hpp>
 #include <sss/core/error.hpp>
 #include <sss/scattering/sediments.hpp>
 
@@ -571,7 +572,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         auto& o = d.sea;
         w.choice("model", o.model, {"straight", "layered"});
         w.in_range("sound_speed_mps", o.sound_speed_mps, 1300, 1700);
-        w.non_negative("absorption_db_per_km", o.absorption_db_per_km);
+        w.in_range("absorption_db_per_km", o.absorption_db_per_km, 0, 1000);
         if (o.model == "layered") {
             w.string("svp_file", o.svp_file);
             const auto list = [&](std::string_view key, std::vector<double>& v) {
@@ -625,8 +626,9 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (o.pulse_length_s > 1) s.fail("pulse_length_s", "must be at most 1 s, got " + detail::table_reader::fmt(o.pulse_length_s));
         s.choice("pulse_shape", o.pulse_shape, {"rectangular", "hann", "lfm"});
         s.non_negative("pulse_bandwidth_hz", o.pulse_bandwidth_hz);
-        if (o.pulse_shape == "lfm" && o.pulse_bandwidth_hz * o.pulse_length_s < 1)
-            s.fail("pulse_bandwidth_hz", "an lfm pulse needs pulse_bandwidth_hz x pulse_length_s >= 1");
+        if (o.pulse_shape == "lfm" && !(o.pulse_bandwidth_hz * o.pulse_length_s >= 1 && o.pulse_bandwidth_hz * o.pulse_length_s <= 1e4))
+            s.fail("pulse_bandwidth_hz", "an lfm pulse needs pulse_bandwidth_hz x pulse_length_s in [1, 10^4], got " +
+                                             detail::table_reader::fmt(o.pulse_bandwidth_hz * o.pulse_length_s));
         if (o.beam == "planar_array") {
             s.number("beam_threshold_db", o.beam_threshold_db);
             if (!(o.beam_threshold_db <= -1e-6))
@@ -691,18 +693,23 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         auto& o = d.rx;
         r.integer("seed", o.seed, 0);
         r.boolean("speckle", o.speckle);
-        r.positive("transducer_length_m", o.transducer_length_m);
+        r.in_range("transducer_length_m", o.transducer_length_m, 1e-3, 1e3);
         r.non_negative("k_shape", o.k_shape);
         r.positive("texture_patch_m", o.texture_patch_m);
         r.boolean("noise", o.noise);
         r.in_range("sea_state", o.sea_state, 0, 6);
-        r.non_negative("directivity_index_db", o.directivity_index_db);
+        r.in_range("directivity_index_db", o.directivity_index_db, 0, 300);
         r.in_range("noise_source_level_db", o.noise_source_level_db, -300, 300);
         r.boolean("volume", o.volume);
-        r.number("sv_db", o.sv_db);
+        r.in_range("sv_db", o.sv_db, -300, 300);
         r.positive("psi_sr", o.psi_sr);
+        if (!(o.psi_sr <= 4 * sss::pi_v<double>)) r.fail("psi_sr", "must be at most 4 pi sr (the whole sphere)");
+        // The ambient noise curves hold for sonar frequencies.
+        if (o.noise && !(d.sensor.frequency_hz >= 1 && d.sensor.frequency_hz <= 1e7))
+            r.fail("noise", "needs sonar.frequency_hz in [1, 10^7] Hz (the ambient noise curves), got " +
+                                detail::table_reader::fmt(d.sensor.frequency_hz));
         r.boolean("tvg", o.tvg);
-        r.in_range("tvg_spreading_n", o.tvg_spreading_n, -100, 100);
+        r.in_range("tvg_spreading_n", o.tvg_spreading_n, -60, 60);
         r.in_range("tvg_gain_db", o.tvg_gain_db, -300, 300);
         r.finish();
     }

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Little-endian byte packing and the write-to-a-temporary-then-rename step shared by the binary writers.
+/// Little-endian byte packing, and the binary writers' write to a temporary then rename (atomic_file.hpp).
 
 #include <bit>
 #include <cerrno>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "sss/core/error.hpp"
+#include "sss/io/detail/atomic_file.hpp"
 
 namespace sss::detail {
 
@@ -51,23 +52,12 @@ inline void put_chars(std::uint8_t* out, std::size_t offset, std::string_view te
     return std::string(reinterpret_cast<const char*>(in + offset), n);
 }
 
-/// Writes `bytes` to `path` through `path + ".tmp"` renamed onto `path` when complete; on any failure the
+/// Writes `bytes` to `path` through a temporary renamed onto `path` when complete (atomic_file); on any failure the
 /// temporary is removed, nothing is left at `path` by this call, and a file_error names the file.
 inline void write_file_atomically(const std::string& path, const void* bytes, std::size_t size) {
-    const std::string tmp = path + ".tmp";
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (f == nullptr) throw file_error(path, 0, "cannot open '" + tmp + "' for writing: " + std::strerror(errno));
-    const bool written = size == 0 || std::fwrite(bytes, 1, size, f) == size;
-    const bool closed = std::fclose(f) == 0;
-    if (!written || !closed) {
-        std::remove(tmp.c_str());
-        throw file_error(path, 0, "cannot write '" + tmp + "' (disk full?)");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
-        std::remove(tmp.c_str());
-        throw file_error(path, 0, "cannot rename '" + tmp + "' onto it: " + why);
-    }
+    atomic_file out(path);
+    out.write(bytes, size);
+    out.commit();
 }
 
 inline void write_file_atomically(const std::string& path, std::string_view text) {

@@ -14,6 +14,42 @@
 
 namespace sss::detail {
 
+/// The length (1 to 4) of the well-formed UTF-8 sequence at the start of `s` (Unicode 15, table 3-7: no overlong
+/// forms, no surrogates, nothing above U+10FFFF); 0 where it is not one.
+[[nodiscard]] inline std::size_t utf8_sequence_length(std::string_view s) noexcept {
+    if (s.empty()) return 0;
+    const auto b = [&](std::size_t i) { return static_cast<unsigned char>(s[i]); };
+    const unsigned char c = b(0);
+    if (c < 0x80) return 1;
+    std::size_t n = 0;
+    unsigned char lo = 0x80, hi = 0xbf; // the second byte's range
+    if (c >= 0xc2 && c <= 0xdf) n = 2;
+    else if (c >= 0xe0 && c <= 0xef) {
+        n = 3;
+        if (c == 0xe0) lo = 0xa0;
+        if (c == 0xed) hi = 0x9f;
+    } else if (c >= 0xf0 && c <= 0xf4) {
+        n = 4;
+        if (c == 0xf0) lo = 0x90;
+        if (c == 0xf4) hi = 0x8f;
+    } else
+        return 0;
+    if (s.size() < n || b(1) < lo || b(1) > hi) return 0;
+    for (std::size_t i = 2; i < n; ++i)
+        if (b(i) < 0x80 || b(i) > 0xbf) return 0;
+    return n;
+}
+
+/// Whether `s` is well-formed UTF-8 throughout.
+[[nodiscard]] inline bool valid_utf8(std::string_view s) noexcept {
+    while (!s.empty()) {
+        const std::size_t n = utf8_sequence_length(s);
+        if (n == 0) return false;
+        s.remove_prefix(n);
+    }
+    return true;
+}
+
 class json_writer {
 public:
     /// The text so far.
@@ -94,9 +130,24 @@ private:
             first_.back() = false;
         }
     }
+    /// A JSON string (RFC 8259, section 7): quotes, backslashes and control characters escaped; a byte that does not
+    /// start well-formed UTF-8 becomes U+FFFD, so that the text is always valid JSON (callers that must not alter a
+    /// name check it first: io/labels.hpp).
     void write_string(std::string_view s) {
         out_ += '"';
-        for (const char ch : s) {
+        while (!s.empty()) {
+            const std::size_t n = utf8_sequence_length(s);
+            if (n > 1) {
+                out_.append(s.data(), n);
+                s.remove_prefix(n);
+                continue;
+            }
+            const char ch = s.front();
+            s.remove_prefix(1);
+            if (n == 0) {
+                out_ += "\\ufffd";
+                continue;
+            }
             const auto u = static_cast<unsigned char>(ch);
             if (ch == '"') out_ += "\\\"";
             else if (ch == '\\') out_ += "\\\\";
