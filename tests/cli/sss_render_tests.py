@@ -7,7 +7,8 @@ roundtrip      --dry-run output, read again, prints the same resolved scene
 outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them);
                a planar-array scene, a trajectory scene and a double scene render, --pings beyond the trajectory
                is an error
-interrupt      SIGINT during the render: exit status 130, one line, no file left (not even a temporary one)
+interrupt      SIGINT or SIGTERM during the render: exit status 130 or 143, one line, no file left (not even a
+               temporary one)
 progress_tty   on a pseudo-terminal the progress is a redrawn bar with pings done, pings/s and ETA
 progress_plain without a terminal the progress is plain lines, the last one with every ping done
 """
@@ -180,23 +181,25 @@ elif case == "outputs":
         check(r.returncode == 1 and "is a directory, not a scene file" in r.stderr, f"a directory is not a scene ({r.stderr})")
 
 elif case == "interrupt":
-    with tempfile.TemporaryDirectory() as d:
-        long_scene = os.path.join(d, "long.toml")
-        open(long_scene, "w").write(open(small).read().replace("pings = 24", "pings = 100000").replace("altitude_m = 6", "altitude_m = 6\nspeed_mps = 0"))
-        out = os.path.join(d, "o")
-        p = subprocess.Popen([exe, long_scene, "-o", out], stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-        line = p.stderr.readline()  # the first progress line: the render is under way
-        check("pings" in line, f"progress before the interrupt ({line})")
-        p.send_signal(signal.SIGINT)
-        try:
-            _, rest = p.communicate(timeout=60)
-        except subprocess.TimeoutExpired:
-            p.kill()
-            rest = ""
-            check(False, "stops within 60 s of SIGINT")
-        check(p.returncode == 130, f"exit status 130 after SIGINT (got {p.returncode})")
-        check("interrupted" in rest and "no file written" in rest, f"says it was interrupted ({rest})")
-        check(files_in(out) == [], f"no file left after SIGINT ({files_in(out)})")
+    # SIGINT (Ctrl-C), and SIGTERM as a batch system sends it: 128 + the signal's number, no file left.
+    for sig, status in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+        with tempfile.TemporaryDirectory() as d:
+            long_scene = os.path.join(d, "long.toml")
+            open(long_scene, "w").write(open(small).read().replace("pings = 24", "pings = 100000").replace("altitude_m = 6", "altitude_m = 6\nspeed_mps = 0"))
+            out = os.path.join(d, "o")
+            p = subprocess.Popen([exe, long_scene, "-o", out], stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+            line = p.stderr.readline()  # the first progress line: the render is under way
+            check("pings" in line, f"progress before the interrupt ({line})")
+            p.send_signal(sig)
+            try:
+                _, rest = p.communicate(timeout=60)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                rest = ""
+                check(False, f"stops within 60 s of {sig.name}")
+            check(p.returncode == status, f"exit status {status} after {sig.name} (got {p.returncode})")
+            check("interrupted" in rest and "no file written" in rest, f"says it was interrupted ({rest})")
+            check(files_in(out) == [], f"no file left after {sig.name} ({files_in(out)})")
 
 elif case in ("progress_tty", "progress_plain"):
     with tempfile.TemporaryDirectory() as d:

@@ -47,3 +47,18 @@ TEST_CASE("text outside ASCII in strings and comments reads back unchanged") {
     // Bytes that are not UTF-8 are toml++'s to refuse, with a position.
     CHECK(error_of("[seabed]\nfile = \"\xc3(\"\n").starts_with("t.toml:2:"));
 }
+
+TEST_CASE("a dotted key of more than 64 parts is an error with its place, not a stack overflow in toml++") {
+    // toml++ walks a dotted key recursively: 100,000 parts overflowed the stack (a fuzzing-style finding).
+    std::string deep;
+    for (int i = 0; i < 100000; ++i) deep += i ? ".a" : "a";
+    CHECK(error_of("[render]\npings = 2\n[" + deep + "]\n") == "t.toml:3:2: a dotted key of more than 64 parts");
+    CHECK(error_of("# c\n  " + deep + " = 1\n") == "t.toml:2:3: a dotted key of more than 64 parts");
+    // Not keys: numbers, strings with dots, dots in comments, and 64 parts (then an unknown key).
+    std::string dots(1000, '.');
+    CHECK(error_of("[render] # " + dots + "\npings = 2\n") == "");
+    CHECK(error_of("[output]\nstem = \"" + dots + "\"\n").find("dotted") == std::string::npos);
+    std::string parts;
+    for (int i = 0; i < 64; ++i) parts += i ? ".a" : "a";
+    CHECK(error_of(parts + " = 1\n") == "t.toml:1:1: a: unknown key");
+}

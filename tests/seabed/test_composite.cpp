@@ -272,6 +272,7 @@ TEST_CASE("composite parameters are validated, naming the field") {
     expect([&] { (void)compose(idx, one, 0.0, 1); }, "compose.textures[2].roughness.spectrum.gamma");
     one[2].roughness.spectrum.gamma = 3.25;
     expect([&] { (void)compose(idx, one, -1.0, 1); }, "compose.blend_m");
+    expect([&] { (void)compose(idx, one, 25.7, 1); }, "compose.blend_m"); // 257 cells: its Gaussian, cell by cell
     one[2].ripples.push_back(ripple_params<double>{});
     one[2].ripples[0].wavelength_m = 0.1;
     expect([&] { (void)compose(idx, one, 0.0, 1); }, "compose.textures[2].ripples[0].wavelength_m");

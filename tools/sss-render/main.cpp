@@ -4,7 +4,8 @@
 //
 // Progress: a bar (pings done, pings/s, ETA) on a terminal, plain lines otherwise. Outputs are written under
 // temporary names and renamed only when every one of them is complete, so an error or Ctrl-C leaves no file.
-// Any error: one line on stderr, exit status 1 (2 when CLI11 rejects the command line, 130 when interrupted).
+// Any error: one line on stderr, exit status 1 (2 when CLI11 rejects the command line, 128 + the signal's number when
+// interrupted by SIGINT, SIGTERM or SIGHUP: 130, 143, 129; a second such signal ends the process at once).
 
 #include "render.hpp"
 #include "scene_file/read.hpp"
@@ -103,7 +104,8 @@ int main(int argc, char** argv) {
         return d.run.precision == "double" ? sf::render_scene<double>(d, request) : sf::render_scene<float>(d, request);
     } catch (const sf::interrupted_error& e) {
         std::fprintf(stderr, "\nsss-render: %s\n", printable(e.what()).c_str());
-        return 130;
+        const int sig = sf::interrupted.load();
+        return 128 + (sig > 0 ? sig : 2); // as a shell reports a process the signal ended: 130 for SIGINT
     } catch (const sss::scene_file::scene_error& e) {
         std::fprintf(stderr, "sss-render: %s\n", printable(e.what()).c_str());
         return 1;

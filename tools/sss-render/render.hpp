@@ -25,8 +25,9 @@ struct render_request {
     bool dry_run = false;        ///< print the resolved scene and the coverage problems, render nothing
 };
 
-/// Set by SIGINT: the render stops (pings under way finish) and no file is kept.
-inline std::atomic<bool> interrupted{false};
+/// Set by SIGINT, SIGTERM or SIGHUP to the signal's number: the render stops (pings under way finish) and no file is
+/// kept. 0: none.
+inline std::atomic<int> interrupted{0};
 
 struct interrupted_error : std::exception {
     [[nodiscard]] const char* what() const noexcept override { return "interrupted: no file written"; }

@@ -22,14 +22,21 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <span>
 #include <string>
 #include <unistd.h>
 #include <vector>
 
-extern "C" inline void sss_render_on_sigint(int) { sss::scene_file::interrupted.store(true); }
+/// SIGINT, SIGTERM or SIGHUP: the render stops at the next ping and writes nothing; a second one ends the process at
+/// once (a ping under way can take long), with the signal's default action.
+extern "C" inline void sss_render_on_sigint(int sig) {
+    sss::scene_file::interrupted.store(sig);
+    std::signal(sig, SIG_DFL);
+}
 
 namespace sss::scene_file {
 
@@ -77,7 +84,7 @@ sss::waterfall<T> render(const Sim& sim, const world<T>& w, std::size_t first, s
     progress bar(count);
     const sss::render_control control{.threads = threads, .progress = [&bar](const sss::render_progress& p) {
                                           bar.update(p.done);
-                                          return !interrupted.load();
+                                          return interrupted.load() == 0;
                                       }};
     try {
         if (labels == nullptr) return sim.render(w, first, count, control);
@@ -109,7 +116,9 @@ public:
         return (dir_ / tmp).string();
     }
     /// Renames every file to its final name. Before the first rename, every final name is checked: none may be an
-    /// existing directory or name two outputs, so that those failures leave the old files as they were.
+    /// existing directory or name two outputs. Then the old files are moved aside and the new ones into place; a
+    /// rename that fails (a file the system will not let go of) moves everything back, so that the old files stay as
+    /// they were and no new one is kept.
     std::vector<std::string> commit() {
         if (interrupted.load()) throw interrupted_error{};
         for (std::size_t i = 0; i < files_.size(); ++i) {
@@ -122,11 +131,31 @@ public:
                 if (files_[j].second == final)
                     throw scene_error(final.string() + ": two outputs would have this name: choose another output.stem");
         }
+        std::vector<std::pair<std::filesystem::path, std::filesystem::path>> aside; // (final name, where its old file is)
+        std::vector<std::filesystem::path> placed;
+        const auto undo = [&](const std::filesystem::path& failed, const std::error_code& why) {
+            std::error_code ignored;
+            for (const auto& p : placed) std::filesystem::remove(p, ignored);
+            for (const auto& [final, old] : aside) std::filesystem::rename(old, final, ignored);
+            return scene_error(failed.string() + ": cannot be replaced (" + why.message() + "): no output written, the old "
+                                                 "files kept");
+        };
+        std::error_code ec;
+        for (const auto& [tmp, final] : files_) {
+            if (!std::filesystem::exists(final, ec)) continue;
+            const auto old = final.parent_path() / ("." + final.filename().string() + ".replaced");
+            std::filesystem::rename(final, old, ec);
+            if (ec) throw undo(final, ec);
+            aside.emplace_back(final, old);
+        }
         std::vector<std::string> names;
         for (const auto& [tmp, final] : files_) {
-            std::filesystem::rename(tmp, final);
+            std::filesystem::rename(tmp, final, ec);
+            if (ec) throw undo(final, ec);
+            placed.push_back(final);
             names.push_back(final.string());
         }
+        for (const auto& [final, old] : aside) std::filesystem::remove(old, ec);
         files_.clear();
         return names;
     }
@@ -179,7 +208,11 @@ template <Real T> void check_memory(const description& d, const render_request& 
     const double samples = std::ceil(2.0 * d.sensor.max_range_m / d.sea.sound_speed_mps * d.sensor.sample_rate_hz);
     const double values = double(count) * 2.0 * samples;
     const bool labels = d.out.coco || d.out.yolo || d.out.label_images;
-    const double seabed = d.bed.file.empty() ? 2.5 * double(d.bed.nx) * double(d.bed.ny) * sizeof(T) : 0.0;
+    // A generated seabed: its heights and pyramid (2.5 values a cell); with regions, their synthesis's working
+    // rasters too (the blend's sums in double, the textures' fields and spectra: about 40 bytes a cell, measured at
+    // 2048^2 with two regions).
+    const double per_cell = 2.5 * double(sizeof(T)) + (d.bed.regions.empty() ? 0.0 : 40.0);
+    const double seabed = d.bed.file.empty() ? per_cell * double(d.bed.nx) * double(d.bed.ny) : 0.0;
     const double image = values * (double(sizeof(T)) + (labels ? double(sizeof(sss::sample_label)) : 0.0) +
                                    (d.out.png || d.out.ground_range ? 9.0 : 0.0));
     const double ground = d.out.ground_range ? double(count) * 2.0 * std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m) *
@@ -199,6 +232,10 @@ template <Real T> void check_memory(const description& d, const render_request& 
 template <Real T> int render_scene(const description& d, const render_request& r) {
     const std::size_t count = r.last - r.first;
     detail::check_memory<T>(d, r, count);
+    // XTF numbers pings from 1 in 32 bits: ping k is number k + 1.
+    if (d.out.xtf && r.last > std::size_t(std::numeric_limits<std::uint32_t>::max()))
+        throw scene_error(r.scene_path + ": " + r.pings_asked + ": output.xtf numbers pings in 32 bits: pings up to " +
+                          std::to_string(std::numeric_limits<std::uint32_t>::max() - 1) + " only");
     const extent e = d.bed.file.empty() ? extent_of(d) : extent_of(load_seabed<T>(d));
     // The track at the scene's altitude (a trajectory: its own z), for the ping count and the coverage.
     const scene_motion<T> track = motion_of(d, T(d.tow.altitude_m));
@@ -208,6 +245,8 @@ template <Real T> int render_scene(const description& d, const render_request& r
     check_sound_speed_file(d);
     if (r.dry_run) {
         std::fputs(to_toml(d).c_str(), stdout);
+        if (std::fflush(stdout) != 0 || std::ferror(stdout))
+            throw scene_error("--dry-run: cannot write the resolved scene to standard output");
         for (const auto& p : problems) std::fprintf(stderr, "sss-render: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
         return 0;
     }
@@ -221,7 +260,7 @@ template <Real T> int render_scene(const description& d, const render_request& r
             throw scene_error(r.out_dir + ": cannot be the output directory (" + (ec ? ec.message() : "not a directory") + ")");
         if (access(r.out_dir.c_str(), W_OK) != 0) throw scene_error(r.out_dir + ": the output directory is not writable");
     }
-    std::signal(SIGINT, sss_render_on_sigint);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, sss_render_on_sigint);
 
     const auto t0 = std::chrono::steady_clock::now();
     const world<T> w = make_world<T>(d);

@@ -159,8 +159,12 @@ template <Real T> [[nodiscard]] region_raster<T> partition(std::size_t nx, std::
     return out;
 }
 
+/// The widest blend compose takes, in cells (blend_m over cell_m): its Gaussian reaches 4 blend_m either side of each
+/// cell, summed cell by cell (a band of 2048 cells at this width).
+inline constexpr double max_blend_cells = 256.0;
+
 /// Fills the regions of `texture_index` (values index `textures`) with their textures. Texture k draws
-/// from streams 2k and 2k + 1 of `seed`. blend_m >= 0 (0: sharp changes of height at boundaries).
+/// from streams 2k and 2k + 1 of `seed`. blend_m >= 0 (0: sharp changes of height at boundaries), at most max_blend_cells cells.
 template <Real T> [[nodiscard]] composite_seabed<T> compose(const region_raster<T>& texture_index,
                                                             std::span<const region_texture<T>> textures, T blend_m,
                                                             std::uint64_t seed) {
@@ -171,6 +175,10 @@ template <Real T> [[nodiscard]] composite_seabed<T> compose(const region_raster<
                     "size differs from nx * ny");
     sss::require(!textures.empty(), "compose.textures", "needs at least one texture");
     sss::require_non_negative(blend_m, "compose.blend_m");
+    sss::require(double(blend_m) <= max_blend_cells * double(cell_m), "compose.blend_m", [&] {
+        return "must be at most " + std::to_string(int(max_blend_cells)) + " cells (" + std::to_string(max_blend_cells * double(cell_m)) +
+               " m), got " + std::to_string(blend_m) + " m";
+    });
     for (std::uint32_t k : texture_index.values)
         sss::require(k < textures.size(), "compose.texture_index",
                         [&] { return "holds texture " + std::to_string(k) + " but only " + std::to_string(textures.size()) +

@@ -45,7 +45,9 @@ template <Real T>
         if (y > e.north_m + 1e-9) edges += " north by " + detail::fmt(y - e.north_m) + " m";
         if (!edges.empty()) out.push_back(std::string(what) + " at ping " + std::to_string(ping) + " lies beyond the seabed:" + edges);
     };
-    for (std::size_t ping : {first, first + count / 2, first + count - 1}) {
+    std::vector<std::size_t> pings{first, first + count / 2, first + count - 1};
+    pings.erase(std::unique(pings.begin(), pings.end()), pings.end()); // one or two pings: each once
+    for (std::size_t ping : pings) {
         const auto pose = tow.nominal_pose_at(ping);
         if (sampled) alt = pose.position.z;
         const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
@@ -62,15 +64,16 @@ template <Real T>
     return out;
 }
 
-/// The pings among [first, first + count) where the towfish is at or below the seabed (the first one), or "".
+/// The pings among [first, first + count) where the towfish is less than the simulator's least clearance (1 mm)
+/// above the seabed (the first one), or "".
 template <Real T>
 [[nodiscard]] std::string below_seabed(const world<T>& w, const scene_motion<T>& tow, std::size_t first, std::size_t count) {
     for (std::size_t ping = first; ping < first + count; ++ping) {
         const auto pose = tow.pose_at(ping);
         const T z = pose.position.z;
         const T ground = w.seabed().seabed_height_m(pose.position.x, pose.position.y);
-        if (std::isfinite(ground) && ground >= z)
-            return "the towfish (z " + detail::fmt(z) + " m) is at or below the seabed (z " +
+        if (std::isfinite(ground) && !(double(z) - double(ground) >= sss::simulator<>::min_clearance_m))
+            return "the towfish (z " + detail::fmt(z) + " m) is not at least 1 mm above the seabed (z " +
                    detail::fmt(ground) + " m) at ping " + std::to_string(ping);
     }
     return "";

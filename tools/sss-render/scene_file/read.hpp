@@ -10,6 +10,7 @@
 #include <sss/core/constants.hpp>
 #include <sss/core/error.hpp>
 #include <sss/scattering/sediments.hpp>
+#include <sss/seabed/composite.hpp>
 
 // toml++ is compiled here, header-only, with its internal checks switched off rather than assumed. toml++ 3.3's
 // parser asserts a condition on some malformed keys that it then goes on to report as an ordinary parse error
@@ -101,6 +102,60 @@ inline std::string to_plane16(std::string_view t, const std::string& file) {
         ++column;
     }
     return out;
+}
+
+/// The deepest dotted key a scene file may hold (`a.b.c = 1`, `[a.b.c]`): toml++ bounds nested values but walks a
+/// dotted key recursively, so a key of 100,000 parts overflowed the stack. A scene's deepest is 3.
+inline constexpr std::size_t max_key_parts = 64;
+
+/// Throws scene_error at the first key of more than max_key_parts parts: chains of bare keys or quoted strings
+/// joined by dots, outside comments and strings (numbers such as 1.5 make chains of two).
+inline void check_key_depth(std::string_view t, const std::string& file) {
+    std::size_t line = 1, line_start = 0, parts = 0, chain_start = 0;
+    bool after_dot = false;
+    const auto bare = [](char c) {
+        return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '+';
+    };
+    for (std::size_t i = 0; i < t.size();) {
+        const char c = t[i];
+        if (c == '\n') {
+            ++line, line_start = ++i, parts = 0, after_dot = false;
+            continue;
+        }
+        if (c == '#') { // a comment, to the end of the line
+            while (i < t.size() && t[i] != '\n') ++i;
+            continue;
+        }
+        if (c == '"' || c == '\'') { // a string (a quoted key part, or a value), multi-line ones included
+            const bool triple = t.substr(i, 3) == std::string(3, c);
+            const std::string close = triple ? std::string(3, c) : std::string(1, c);
+            std::size_t j = i + close.size();
+            while (j < t.size() && t.compare(j, close.size(), close) != 0) {
+                if (t[j] == '\\' && c == '"') ++j; // an escape in a basic string
+                else if (t[j] == '\n') {
+                    if (!triple) break;
+                    ++line, line_start = j + 1;
+                }
+                ++j;
+            }
+            if (!after_dot) parts = 0, chain_start = i;
+            const bool closed = j < t.size() && t.compare(j, close.size(), close) == 0;
+            ++parts, after_dot = false, i = closed ? j + close.size() : j; // unclosed: toml++ says where
+        } else if (bare(c)) {
+            if (!after_dot) parts = 0, chain_start = i;
+            while (i < t.size() && bare(t[i])) ++i;
+            ++parts, after_dot = false;
+        } else if (c == '.') {
+            after_dot = parts > 0;
+            ++i;
+        } else {
+            if (c != ' ' && c != '\t') parts = 0, after_dot = false;
+            ++i;
+        }
+        if (parts > max_key_parts)
+            throw scene_error(file + ":" + std::to_string(line) + ":" + std::to_string(chain_start - line_start + 1) +
+                              ": a dotted key of more than " + std::to_string(max_key_parts) + " parts");
+    }
 }
 
 /// `to_plane16` undone: code points U+100080 to U+10FFFF moved back to U+0080 to U+FFFF.
@@ -236,6 +291,8 @@ public:
         if (const auto* n = node(key)) {
             if (!n->is_string()) fail(key, std::string("must be a string, not ") + type_name(*n));
             v = from_plane16(n->value<std::string>().value());
+            // A NUL would end a file name early (another file read) and a line of a label file.
+            if (v.find('\0') != std::string::npos) fail(key, "must not hold a NUL character (\\u0000)");
         }
     }
     void choice(std::string_view key, std::string& v, std::initializer_list<std::string_view> allowed) {
@@ -373,6 +430,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
 /// The scene in TOML text `text`, read as if from file `file` (its name is used in messages).
 
 [[nodiscard]] inline description parse(std::string_view text, const std::string& file) {
+    detail::check_key_depth(text, file);
     const std::string shifted = detail::to_plane16(text, file);
     toml::table root;
     try {
@@ -426,6 +484,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         s.point("origin_m", b.origin_m);
         s.integer("seed", b.seed, 0);
         s.non_negative("blend_m", b.blend_m);
+        if (!(b.blend_m <= sss::seabed::max_blend_cells * b.cell_m))
+            s.fail("blend_m", "must be at most " + detail::table_reader::fmt(sss::seabed::max_blend_cells) + " cells (" +
+                                  detail::table_reader::fmt(sss::seabed::max_blend_cells * b.cell_m) +
+                                  " m at cell_m = " + detail::table_reader::fmt(b.cell_m) + " m): the blend is smoothed cell by cell");
         s.non_negative("warp_m", b.warp_m);
         s.positive("warp_scale_m", b.warp_scale_m);
         s.integer("partition_seed", b.partition_seed, 0);
@@ -523,6 +585,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         o.class_name = o.type;
         ot.string("class_name", o.class_name);
         if (o.class_name.empty()) ot.fail("class_name", "must not be empty");
+        if (std::any_of(o.class_name.begin(), o.class_name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+            ot.fail("class_name", "must not hold control characters (a class list holds one name per line)");
         if (o.type == "lying_cylinder") {
             ot.point("center_m", o.center_m);
             ot.number("heading_deg", o.heading_deg);
@@ -740,6 +804,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         }
         o.in_range("xtf_start_unix_s", d.out.xtf_start_unix_s, 0, 253402300799); // to the end of the year 9999
         o.boolean("coco", d.out.coco);
+        if (d.out.coco && !d.out.png) o.fail("coco", "needs png = true: its annotations name the image STEM.png");
         o.boolean("yolo", d.out.yolo);
         o.boolean("label_images", d.out.label_images);
         if (d.out.yolo && d.out.stem == "classes")
@@ -756,9 +821,17 @@ inline void read_array_layout(table_reader t, array_layout& a) {
     if (std::filesystem::is_directory(path, ec)) throw scene_error(path + ": is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw scene_error(path + ": cannot open the scene file");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parse(s.str(), path);
+    // Read up to the largest scene file (a seabed's heights go in files of their own), not whatever the path gives
+    // (/dev/zero).
+    constexpr std::size_t max_bytes = std::size_t(16) << 20;
+    std::string text;
+    char buf[1 << 16];
+    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+        text.append(buf, static_cast<std::size_t>(in.gcount()));
+        if (text.size() > max_bytes) throw scene_error(path + ": larger than 16 MiB: not a scene file");
+    }
+    if (in.bad()) throw scene_error(path + ": cannot read the scene file");
+    return parse(text, path);
 }
 
 } // namespace sss::scene_file
