@@ -16,6 +16,7 @@
 #include "sss/io/height_field_io.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "support/scratch_dir.hpp"
 #include "support/temporaries.hpp"
 
 namespace fs = std::filesystem;
@@ -24,20 +25,7 @@ using sss::scene::height_field;
 
 namespace {
 
-// A fresh directory for this test's files, removed at the end.
-struct scratch_dir {
-    fs::path dir;
-    scratch_dir() {
-        std::random_device rd;
-        dir = fs::temp_directory_path() / ("sss_height_field_io_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(dir);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    std::string file(const std::string& name) const { return (dir / name).string(); }
-};
+using sss_test::scratch_dir;
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 

@@ -18,31 +18,18 @@
 #include <nlohmann/json.hpp>
 
 #include "sss/io/labels.hpp"
+#include "support/scratch_dir.hpp"
 #include "support/temporaries.hpp"
 
 namespace {
 
 using namespace sss;
+using sss_test::scratch_dir;
 
 std::string slurp(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
-
-// A fresh directory for this test's files, removed at the end.
-struct scratch_dir {
-    std::filesystem::path dir;
-    scratch_dir() {
-        std::random_device rd;
-        dir = std::filesystem::temp_directory_path() / ("sss_label_files_" + std::to_string(rd()) + std::to_string(rd()));
-        std::filesystem::create_directories(dir);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        std::filesystem::remove_all(dir, ec);
-    }
-    [[nodiscard]] std::string file(const std::string& name) const { return (dir / name).string(); }
-};
 
 // An image of `objects` objects: each a highlight rectangle and a shadow rectangle beside it, placed at random (later
 // ones overwrite earlier ones), on a seabed with water column above; object k has class k % 5 + 1. Some objects are
