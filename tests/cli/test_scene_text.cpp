@@ -49,7 +49,7 @@ TEST_CASE("text outside ASCII in strings and comments reads back unchanged") {
 }
 
 TEST_CASE("a dotted key of more than 64 parts is an error with its place, not a stack overflow in toml++") {
-    // toml++ walks a dotted key recursively: 100,000 parts overflowed the stack (a fuzzing-style finding).
+    // toml++ walks a dotted key recursively: 100,000 parts overflowed the stack.
     std::string deep;
     for (int i = 0; i < 100000; ++i) deep += i ? ".a" : "a";
     CHECK(error_of("[render]\npings = 2\n[" + deep + "]\n") == "t.toml:3:2: a dotted key of more than 64 parts");
@@ -61,4 +61,9 @@ TEST_CASE("a dotted key of more than 64 parts is an error with its place, not a 
     std::string parts;
     for (int i = 0; i < 64; ++i) parts += i ? ".a" : "a";
     CHECK(error_of(parts + " = 1\n") == "t.toml:1:1: a: unknown key");
+    // A multi-line string ending in quotes of its own ("""q"""" is q") does not hide the key after it, nor does a
+    // line-ending backslash in one lose count of the lines.
+    CHECK(error_of("t = { s = \"\"\"q\"\"\"\", " + deep + " = 1 }\n").find("a dotted key of more than 64 parts") != std::string::npos);
+    CHECK(error_of("t = \'\'\'q\'\'\'\'\'\n" + deep + " = 1\n") == "t.toml:2:1: a dotted key of more than 64 parts");
+    CHECK(error_of("s = \"\"\"a \\\n b\"\"\"\n" + deep + " = 1\n") == "t.toml:3:1: a dotted key of more than 64 parts");
 }

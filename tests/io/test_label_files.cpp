@@ -4,14 +4,18 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <clocale>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
+#include <locale>
 #include <map>
 #include <random>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -116,10 +120,26 @@ TEST_CASE("Each box and COCO mask from an image of many objects holds exactly it
             CHECK(area == a["area"].get<std::size_t>());
             CHECK(area == want[id].area);
         }
-        // YOLO: one line per box, in the same order, its class's index and the box's centre and size.
+        // YOLO: one line per box, in the same order, its class's index and the box's centre and size normalised, to
+        // eight decimals with a '.'.
+        std::ostringstream want_yolo;
+        want_yolo.imbue(std::locale::classic());
+        want_yolo << std::fixed << std::setprecision(8);
+        for (const io::object_box& b : got)
+            want_yolo << (b.class_id - 1) << ' ' << (double(b.x) + 0.5 * double(b.width)) / double(img.width()) << ' '
+                      << (double(b.y) + 0.5 * double(b.height)) / double(img.pings) << ' ' << double(b.width) / double(img.width())
+                      << ' ' << double(b.height) / double(img.pings) << '\n';
         const std::string yolo = io::yolo_txt(img, classes, e);
-        CHECK(static_cast<std::size_t>(std::count(yolo.begin(), yolo.end(), '\n')) == got.size());
-        CHECK(yolo.find(',') == std::string::npos);
+        CHECK(yolo == want_yolo.str());
+        // The same under a C locale whose decimal point is a comma, where this machine has one (as a GUI program may
+        // set): YOLO readers take only '.'.
+        for (const char* name : {"de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8", "fr_FR.utf8", "de_DE", "fr_FR"}) {
+            if (!std::setlocale(LC_NUMERIC, name)) continue;
+            const std::string in_comma_locale = io::yolo_txt(img, classes, e);
+            std::setlocale(LC_NUMERIC, "C");
+            CHECK(in_comma_locale == yolo);
+            break;
+        }
     }
 }
 
@@ -153,6 +173,9 @@ TEST_CASE("Label writers refuse an image of the wrong size and class names that 
               "label_class.name");
         CHECK(names_values([&] { io::write_label_images(d.file("bad"), img, classes); }) == "label_class.name");
     }
+    // A file name that is not UTF-8 (a Linux file name may be any bytes) would be written altered.
+    CHECK(names_values([&] { (void)io::coco_json(std::vector<io::coco_image>{{"a\xff.png", &img}}, good, io::box_extent::highlight); }) ==
+          "coco_image.file_name");
     CHECK(std::filesystem::is_empty(d.dir)); // nothing written, no temporary left
     // Names in any script are text like any other.
     std::vector<io::label_class> classes = good;

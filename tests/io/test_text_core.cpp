@@ -15,6 +15,7 @@
 #include "sss/io/detail/text.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "support/scratch_dir.hpp"
 #include "support/temporaries.hpp"
 
 namespace {
@@ -125,9 +126,8 @@ TEST_CASE("the sound-speed CSV writer replaces a file atomically: a failed write
 }
 
 TEST_CASE("two writers of one path never share a temporary: the file is always one writer's whole text") {
-    const std::filesystem::path dir = std::filesystem::current_path() / "atomic_race";
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "out.txt").string();
+    const sss_test::scratch_dir d("sss_atomic_race_");
+    const std::string path = d.file("out.txt");
     // A file named like a temporary is someone else's: no writer opens, truncates or removes it.
     const std::string bystander = path + ".tmp";
     sss::detail::save_file(bystander, "not a temporary");

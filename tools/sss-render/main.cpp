@@ -5,7 +5,8 @@
 // Progress: a bar (pings done, pings/s, ETA) on a terminal, plain lines otherwise. Outputs are written under
 // temporary names and renamed only when every one of them is complete, so an error or Ctrl-C leaves no file.
 // Any error: one line on stderr, exit status 1 (2 when CLI11 rejects the command line, 128 + the signal's number when
-// interrupted by SIGINT, SIGTERM or SIGHUP: 130, 143, 129; a second such signal ends the process at once).
+// interrupted by SIGINT, SIGTERM or SIGHUP: 130, 143, 129; a second such signal ends the process at once, leaving
+// its temporary files).
 
 #include "render.hpp"
 #include "scene_file/read.hpp"

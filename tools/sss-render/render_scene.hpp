@@ -28,14 +28,28 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <signal.h>
 #include <unistd.h>
 #include <vector>
 
-/// SIGINT, SIGTERM or SIGHUP: the render stops at the next ping and writes nothing; a second one ends the process at
-/// once (a ping under way can take long), with the signal's default action.
+/// The signals that stop a render: SIGINT, SIGTERM, SIGHUP.
+inline constexpr int sss_render_stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+/// One of them: the render stops at the next ping and writes nothing; a second one, of any of them, ends the process
+/// at once (a ping under way can take long) by the signal's default action, which may leave temporary files.
 extern "C" inline void sss_render_on_sigint(int sig) {
     sss::scene_file::interrupted.store(sig);
-    std::signal(sig, SIG_DFL);
+    for (const int s : sss_render_stop_signals) std::signal(s, SIG_DFL); // async-signal-safe
+}
+
+/// Installs sss_render_on_sigint for the stop signals the process does not ignore: under nohup (SIGHUP ignored) a
+/// hangup leaves the render running, as it would without the handler.
+inline void sss_render_catch_stop_signals() {
+    for (const int sig : sss_render_stop_signals) {
+        struct sigaction now {};
+        if (sigaction(sig, nullptr, &now) == 0 && now.sa_handler == SIG_IGN) continue;
+        std::signal(sig, sss_render_on_sigint);
+    }
 }
 
 namespace sss::scene_file {
@@ -116,9 +130,9 @@ public:
         return (dir_ / tmp).string();
     }
     /// Renames every file to its final name. Before the first rename, every final name is checked: none may be an
-    /// existing directory or name two outputs. Then the old files are moved aside and the new ones into place; a
-    /// rename that fails (a file the system will not let go of) moves everything back, so that the old files stay as
-    /// they were and no new one is kept.
+    /// existing directory or name two outputs. Each old file is kept under a second name (a hard link, else a copy)
+    /// before the new one is renamed over it, so that every name holds a whole file at every moment; a rename that
+    /// fails (a file the system will not let go of) puts the old files back, so that none of the new ones is kept.
     std::vector<std::string> commit() {
         if (interrupted.load()) throw interrupted_error{};
         for (std::size_t i = 0; i < files_.size(); ++i) {
@@ -131,31 +145,56 @@ public:
                 if (files_[j].second == final)
                     throw scene_error(final.string() + ": two outputs would have this name: choose another output.stem");
         }
-        std::vector<std::pair<std::filesystem::path, std::filesystem::path>> aside; // (final name, where its old file is)
-        std::vector<std::filesystem::path> placed;
-        const auto undo = [&](const std::filesystem::path& failed, const std::error_code& why) {
+        std::vector<std::pair<std::filesystem::path, std::filesystem::path>> kept; // (final name, its old file's copy)
+        std::vector<std::filesystem::path> renamed;                                  // final names holding a new file
+        const auto drop_kept = [&] {
             std::error_code ignored;
-            for (const auto& p : placed) std::filesystem::remove(p, ignored);
-            for (const auto& [final, old] : aside) std::filesystem::rename(old, final, ignored);
-            return scene_error(failed.string() + ": cannot be replaced (" + why.message() + "): no output written, the old "
-                                                 "files kept");
+            for (const auto& k : kept) std::filesystem::remove(k.second, ignored);
+        };
+        const auto undo = [&](const std::filesystem::path& failed, const std::error_code& why) {
+            bool restored = true;
+            std::error_code e;
+            const auto old_of = [&](const std::filesystem::path& f) {
+                const auto k = std::find_if(kept.begin(), kept.end(), [&](const auto& x) { return x.first == f; });
+                return k == kept.end() ? std::filesystem::path() : k->second;
+            };
+            for (const auto& f : renamed) { // the old file back over the new one, or the new one removed
+                const auto old = old_of(f);
+                if (old.empty()) std::filesystem::remove(f, e);
+                else std::filesystem::rename(old, f, e);
+                restored = restored && !e;
+            }
+            for (const auto& [final, old] : kept) // the copies of old files not replaced yet
+                if (std::find(renamed.begin(), renamed.end(), final) == renamed.end()) std::filesystem::remove(old, e);
+            return scene_error(failed.string() + ": cannot be replaced (" + why.message() + "): no output written, " +
+                               (restored ? std::string("the old files kept")
+                                         : std::string("and not every old file could be put back (see the .replaced files)")));
         };
         std::error_code ec;
         for (const auto& [tmp, final] : files_) {
             if (!std::filesystem::exists(final, ec)) continue;
-            const auto old = final.parent_path() / ("." + final.filename().string() + ".replaced");
-            std::filesystem::rename(final, old, ec);
-            if (ec) throw undo(final, ec);
-            aside.emplace_back(final, old);
+            std::string kept_name = ".";
+            kept_name += final.filename().string();
+            kept_name += ".replaced";
+            const auto old = final.parent_path() / kept_name;
+            std::filesystem::remove(old, ec);
+            std::filesystem::create_hard_link(final, old, ec);
+            if (ec) std::filesystem::copy_file(final, old, std::filesystem::copy_options::overwrite_existing, ec);
+            if (ec) {
+                drop_kept();
+                throw scene_error(final.string() + ": cannot keep the old file while it is replaced (" + ec.message() +
+                                  "): no output written");
+            }
+            kept.emplace_back(final, old);
         }
         std::vector<std::string> names;
         for (const auto& [tmp, final] : files_) {
             std::filesystem::rename(tmp, final, ec);
             if (ec) throw undo(final, ec);
-            placed.push_back(final);
+            renamed.push_back(final);
             names.push_back(final.string());
         }
-        for (const auto& [final, old] : aside) std::filesystem::remove(old, ec);
+        drop_kept();
         files_.clear();
         return names;
     }
@@ -260,7 +299,7 @@ template <Real T> int render_scene(const description& d, const render_request& r
             throw scene_error(r.out_dir + ": cannot be the output directory (" + (ec ? ec.message() : "not a directory") + ")");
         if (access(r.out_dir.c_str(), W_OK) != 0) throw scene_error(r.out_dir + ": the output directory is not writable");
     }
-    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, sss_render_on_sigint);
+    sss_render_catch_stop_signals();
 
     const auto t0 = std::chrono::steady_clock::now();
     const world<T> w = make_world<T>(d);

@@ -138,6 +138,9 @@ struct coco_image {
     std::vector<std::vector<object_box>> boxes;
     for (const coco_image& im : images) {
         sss::require(im.labels != nullptr, "coco_image.labels", "must point to a label image");
+        sss::require(sss::detail::valid_utf8(im.file_name), "coco_image.file_name", [&] {
+            return "must be UTF-8 text (JSON holds no other), got a name of " + std::to_string(im.file_name.size()) + " bytes";
+        });
         boxes.push_back(object_boxes(*im.labels, e));
         for (const object_box& b : boxes.back())
             if (std::none_of(cats.begin(), cats.end(), [&](const label_class& c) { return c.id == b.class_id; }))

@@ -112,7 +112,8 @@ template <Real T>
                                   columns[i].which == d::column::yaw;
             const bool in_rad = radians[static_cast<std::size_t>(columns[i].which)];
             const double as_held = is_angle && !in_rad ? deg_to_rad(*v) : *v;
-            if (!std::isfinite(static_cast<T>(as_held)) ||
+            const bool in_t = columns[i].which != d::column::time && columns[i].which != d::column::ping; // time, ping: double
+            if ((in_t && !std::isfinite(static_cast<T>(as_held))) ||
                 (is_angle && !(std::abs(in_rad ? *v * 180.0 / pi_v<double> : *v) <= 1e6)))
                 throw sss::detail::error_at(name, line_no, fields[i].column,
                                             "column '" + std::string(d::column_name(columns[i].which)) + "': '" +

@@ -51,13 +51,13 @@ namespace sss {
 }
 
 struct noise_params {
-    double frequency_hz = 100e3;          ///< centre frequency (Hz), > 0
+    double frequency_hz = 100e3;          ///< centre frequency (Hz), 1 Hz to 10 MHz
     double sea_state = 2.0;               ///< Knudsen sea state, 0-6
     bool thermal = true;                  ///< add Mellen's thermal noise
-    double band_hz = 0.0;                 ///< receiver band (Hz); 0: the sample rate 1/dt
-    double directivity_index_db = 20.0;   ///< receiving directivity index DI (dB), >= 0
-    double source_level_db = 210.0;       ///< absolute source level SL (dB re 1 uPa at 1 m)
-    double electronic_floor_db = -std::numeric_limits<double>::infinity(); ///< input-referred electronic noise spectrum level (dB re 1 uPa^2/Hz); -inf: none
+    double band_hz = 0.0;                 ///< receiver band (Hz), at most 10^9; 0: the sample rate 1/dt
+    double directivity_index_db = 20.0;   ///< receiving directivity index DI (dB), 0 to 300
+    double source_level_db = 210.0;       ///< absolute source level SL (dB re 1 uPa at 1 m), -300 to 300
+    double electronic_floor_db = -std::numeric_limits<double>::infinity(); ///< input-referred electronic noise spectrum level (dB re 1 uPa^2/Hz), -300 to 300; -inf: none
 
     void validate() const {
         // Knudsen's curves and the thermal floor are for sonar frequencies; levels in dB within +-300 dB (their

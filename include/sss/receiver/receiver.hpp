@@ -14,7 +14,7 @@ struct receiver_params {
     double sample_rate_hz = 20000.0; ///< samples per second per side (Hz), > 0
     double max_range_m = 50.0;       ///< slant range covered per side (m), > 0: samples = ceil(2 range / c fs)
     sss::pulse pulse{};              ///< transmitted pulse envelope
-    double source_level_db = 0.0;    ///< source level (dB re 1 unit at 1 m); outputs are powers on the same reference
+    double source_level_db = 0.0;    ///< source level (dB re 1 unit at 1 m), -300 to 300; outputs are powers on the same reference
 
     void validate() const {
         sss::require_positive(sample_rate_hz, "receiver.sample_rate_hz");

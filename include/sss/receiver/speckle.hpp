@@ -57,14 +57,14 @@
 namespace sss {
 
 struct speckle_params {
-    double transducer_length_m = 0.5;        ///< along-track length L of the transducer (m), > 0
+    double transducer_length_m = 0.5;        ///< along-track length L of the transducer (m), at least 1 mm
     double k_shape = 0.0;                    ///< K-distribution shape nu (> 0); 0: Rayleigh (nu infinite)
     std::vector<double> k_shape_by_material{};///< nu per material id (0: Rayleigh; ids beyond: the last);
                                               ///< empty: k_shape for every material
-    double scatterer_density_per_m2 = 0.0;   ///< > 0: nu from the cell's area instead (scatterers per m^2)
-    double along_beamwidth_rad = 0.0;        ///< along-track beam width for that area (rad); > 0 with a density
+    double scatterer_density_per_m2 = 0.0;   ///< > 0 (at most 10^12): nu from the cell's area instead (scatterers per m^2)
+    double along_beamwidth_rad = 0.0;        ///< along-track beam width for that area (rad); in (0, pi] with a density
     double texture_patch_m = 1.0;            ///< side of the square seabed patches one texture value covers (m)
-    double survey_time_s = 0.0;              ///< time of the survey (s): speckle drifts as it grows
+    double survey_time_s = 0.0;              ///< time of the survey (s): speckle drifts as it grows (below 2^62 decorrelation times)
     double decorrelation_time_s = 0.0;       ///< time over which the scatterers renew (s); 0: never
     double cells_per_pulse = 4.0;            ///< seabed cells per pulse length across track, 2-64
 

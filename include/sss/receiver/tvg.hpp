@@ -24,9 +24,9 @@
 namespace sss {
 
 struct tvg_params {
-    double spreading_n = 30.0;        ///< N of N log10 r (dB per decade of range)
-    double absorption_db_per_km = 0.0;///< alpha, one-way (dB/km), >= 0
-    double gain_db = 0.0;             ///< G0 (dB)
+    double spreading_n = 30.0;        ///< N of N log10 r (dB per decade of range), -60 to 60
+    double absorption_db_per_km = 0.0;///< alpha, one-way (dB/km), 0 to 1000
+    double gain_db = 0.0;             ///< G0 (dB), -300 to 300
     double min_range_m = 1.0;         ///< ranges below this get the gain at this range (m), > 0
 
     void validate() const {

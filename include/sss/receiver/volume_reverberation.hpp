@@ -21,8 +21,8 @@
 namespace sss {
 
 struct volume_params {
-    double sv_db = -80.0;                  ///< volume scattering strength S_v (dB re 1 m^-1)
-    double psi_sr = 0.05;                  ///< equivalent two-way beam solid angle Psi (sr), > 0
+    double sv_db = -80.0;                  ///< volume scattering strength S_v (dB re 1 m^-1), -300 to 300
+    double psi_sr = 0.05;                  ///< equivalent two-way beam solid angle Psi (sr), in (0, 4 pi]
     double absorption_db_per_m = 0.03;     ///< absorption alpha (dB/m), >= 0
     double min_range_m = 1.0;              ///< ranges below this are taken as this (the far-field form diverges at 0)
 

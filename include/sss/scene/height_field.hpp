@@ -345,7 +345,7 @@ private:
                      [&] { return "must lie in [2, 2^30] (vertices), got " + std::to_string(ny); });
         sss::require_positive(cell_m, "height_field.cell_m");
         sss::require(std::isfinite(T(1) / cell_m), "height_field.cell_m",
-                     [&] { return "must be a normal number (its inverse is taken), got " + std::to_string(cell_m); });
+                     [&] { return "must have a finite inverse (the walk divides by it), got " + std::to_string(cell_m); });
         sss::require_finite(origin_m.x, "height_field.origin_m.x");
         sss::require_finite(origin_m.y, "height_field.origin_m.y");
         const std::size_t n = checked_elements(nx, ny, "height_field.nx * ny"), cells = (nx - 1) * (ny - 1);

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Coverage problems of a scene, reported rather than left to show as black: a track or a swath that leaves
-/// the seabed, a towfish at or below the seabed.
+/// the seabed, a towfish less than 1 mm above the seabed.
 
 #include "build.hpp"
 #include "scene.hpp"

@@ -131,8 +131,8 @@ inline void check_key_depth(std::string_view t, const std::string& file) {
             const std::string close = triple ? std::string(3, c) : std::string(1, c);
             std::size_t j = i + close.size();
             while (j < t.size() && t.compare(j, close.size(), close) != 0) {
-                if (t[j] == '\\' && c == '"') ++j; // an escape in a basic string
-                else if (t[j] == '\n') {
+                if (t[j] == '\\' && c == '"' && j + 1 < t.size()) ++j; // an escape in a basic string: its next character
+                if (t[j] == '\n') {
                     if (!triple) break;
                     ++line, line_start = j + 1;
                 }
@@ -140,7 +140,10 @@ inline void check_key_depth(std::string_view t, const std::string& file) {
             }
             if (!after_dot) parts = 0, chain_start = i;
             const bool closed = j < t.size() && t.compare(j, close.size(), close) == 0;
-            ++parts, after_dot = false, i = closed ? j + close.size() : j; // unclosed: toml++ says where
+            i = closed ? j + close.size() : j; // unclosed: toml++ says where
+            // A multi-line string may end in one or two quotes of its own before its closing three ("""a"""").
+            for (int extra = 0; closed && triple && extra < 2 && i < t.size() && t[i] == c; ++extra) ++i;
+            ++parts, after_dot = false;
         } else if (bare(c)) {
             if (!after_dot) parts = 0, chain_start = i;
             while (i < t.size() && bare(t[i])) ++i;

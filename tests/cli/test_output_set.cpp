@@ -1,0 +1,64 @@
+// sss-render's outputs are replaced all or none: a rename that fails while they are committed puts every old file
+// back and keeps none of the new ones, and no temporary or kept copy is left behind either way.
+
+#include <doctest/doctest.h>
+
+#include "render_scene.hpp"
+#include "support/scratch_dir.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace {
+
+void put(const std::filesystem::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+std::string get(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> listing(const std::filesystem::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+} // namespace
+
+TEST_CASE("outputs are replaced all or none: a rename that fails puts every old file back and keeps no new one") {
+    namespace sf = sss::scene_file;
+    sss_test::scratch_dir d("sss_output_set_");
+    put(d.dir / "a.png", "old a");
+    put(d.dir / "b.npy", "old b");
+    {
+        sf::detail::output_set files(d.dir);
+        put(files.add("a.png"), "new a");
+        put(files.add("c.json"), "new c"); // no old file of that name
+        (void)files.add("b.npy");          // its temporary is never written: its rename fails, after the others'
+        try {
+            (void)files.commit();
+            FAIL("no error");
+        } catch (const sf::scene_error& e) {
+            CHECK(std::string(e.what()).find("b.npy: cannot be replaced") != std::string::npos);
+            CHECK(std::string(e.what()).find("the old files kept") != std::string::npos);
+        }
+    }
+    CHECK(get(d.dir / "a.png") == "old a");
+    CHECK(get(d.dir / "b.npy") == "old b");
+    CHECK(listing(d.dir) == std::vector<std::string>{"a.png", "b.npy"}); // no new file, copy or temporary left
+    {
+        sf::detail::output_set files(d.dir);
+        put(files.add("a.png"), "new a");
+        put(files.add("b.npy"), "new b");
+        CHECK(files.commit().size() == 2);
+    }
+    CHECK(get(d.dir / "a.png") == "new a");
+    CHECK(get(d.dir / "b.npy") == "new b");
+    CHECK(listing(d.dir) == std::vector<std::string>{"a.png", "b.npy"});
+}
