@@ -127,8 +127,9 @@ inline void check_key_depth(std::string_view t, const std::string& file) {
             continue;
         }
         if (c == '"' || c == '\'') { // a string (a quoted key part, or a value), multi-line ones included
-            const bool triple = t.substr(i, 3) == std::string(3, c);
-            const std::string close = triple ? std::string(3, c) : std::string(1, c);
+            const std::string_view three = c == '"' ? std::string_view("\"\"\"") : std::string_view("\'\'\'");
+            const bool triple = t.substr(i, 3) == three;
+            const std::string_view close = triple ? three : three.substr(0, 1); // no allocation per string
             std::size_t j = i + close.size();
             while (j < t.size() && t.compare(j, close.size(), close) != 0) {
                 if (t[j] == '\\' && c == '"' && j + 1 < t.size()) ++j; // an escape in a basic string: its next character
