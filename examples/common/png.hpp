@@ -3,10 +3,14 @@
 /// Grayscale PNG output for the examples (libpng), and the mapping of linear intensities to 8-bit
 /// gray over a decibel window. Not part of the library: the examples' own helper.
 ///
-/// Files are written to `path + ".tmp"` and renamed onto `path` once complete, so a reader never
-/// sees a half-written image. Failures throw std::runtime_error naming the file.
+/// Files are written to a temporary file of their own (`path + ".tmp-"` and 16 hexadecimal digits, created
+/// exclusively, as the library's writers do) and renamed onto `path` once complete, so a reader never sees a
+/// half-written image and two writers of one path never share a temporary. Failures throw std::runtime_error
+/// naming the file.
 
 #include <png.h>
+
+#include <sss/io/detail/atomic_file.hpp>
 
 #include <algorithm>
 #include <cerrno>
@@ -78,8 +82,8 @@ namespace detail {
             rows[y] = bytes.data() + y * row_bytes;
         }
 
-        const std::string tmp = path + ".tmp";
-        std::FILE* file = std::fopen(tmp.c_str(), "wb");
+        const std::string tmp = path + ".tmp-" + sss::detail::temporary_suffix();
+        std::FILE* file = std::fopen(tmp.c_str(), "wbx");
         if (file == nullptr) {
             throw std::runtime_error("write_png: cannot open '" + tmp + "' for writing: " +
                                      std::strerror(errno));

@@ -160,6 +160,15 @@ elif case == "outputs":
             r = run([small, "-o", os.path.join(d, "c"), "--seed", bad])
             check(r.returncode == 1 and "--seed" in r.stderr and files_in(os.path.join(d, "c")) == [],
                   f"--seed {bad!r} is refused, naming --seed, not clamped ({r.returncode}, {r.stderr})")
+        for bad in ["1e3", "-1", "1025", "4.0", ""]:
+            r = run([small, "-o", os.path.join(d, "c"), "--threads", bad])
+            check(r.returncode == 1 and f"--threads: '{bad}' is not a whole number from 0 to 1024" in r.stderr
+                  and files_in(os.path.join(d, "c")) == [], f"--threads {bad!r} is refused in its own words ({r.stderr})")
+        r = run([small, "--dry-run", "--threads", "0004"])
+        check(r.returncode == 0 and "threads = 4" in r.stdout, f"--threads takes leading zeros ({r.stderr})")
+        r = run([small, "-o", os.path.join(d, "c"), "--pings", "100000:"])
+        check(r.returncode == 1 and "starts past the scene's last ping (render.pings = " in r.stderr,
+              f"--pings A: past the last ping says so ({r.stderr})")
         r = run([small, "--dry-run", "--seed", "0009223372036854775807"])
         check(r.returncode == 0 and "seed = 9223372036854775807" in r.stdout, f"--seed takes 2^63 - 1 ({r.stderr})")
         # A final name that is a directory: one error before any file is renamed, so what was there stays as it was.

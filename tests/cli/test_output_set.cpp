@@ -62,3 +62,28 @@ TEST_CASE("outputs are replaced all or none: a rename that fails puts every old 
     CHECK(get(d.dir / "b.npy") == "new b");
     CHECK(listing(d.dir) == std::vector<std::string>{"a.png", "b.npy"});
 }
+
+TEST_CASE("two runs writing one name in one directory never share a temporary or kept file") {
+    namespace sf = sss::scene_file;
+    sss_test::scratch_dir d("sss_output_set_");
+    put(d.dir / "a.png", "old a");
+    sf::detail::output_set first(d.dir), second(d.dir);
+    const std::string t1 = first.add("a.png"), t2 = second.add("a.png");
+    const std::string s1 = first.add_stem("line", {".xtf", ".json"}), s2 = second.add_stem("line", {".xtf", ".json"});
+    CHECK(t1 != t2);
+    CHECK(s1 != s2);
+    put(t1, "first a");
+    put(t2, "second a");
+    put(s1 + ".xtf", "first xtf");
+    put(s1 + ".json", "first json");
+    put(s2 + ".xtf", "second xtf");
+    put(s2 + ".json", "second json");
+    CHECK(first.commit().size() == 3);
+    CHECK(get(d.dir / "a.png") == "first a");
+    CHECK(get(d.dir / "line.xtf") == "first xtf");
+    CHECK(second.commit().size() == 3); // its temporaries were untouched by the first run's commit
+    CHECK(get(d.dir / "a.png") == "second a");
+    CHECK(get(d.dir / "line.xtf") == "second xtf");
+    CHECK(get(d.dir / "line.json") == "second json");
+    CHECK(listing(d.dir) == std::vector<std::string>{"a.png", "line.json", "line.xtf"});
+}

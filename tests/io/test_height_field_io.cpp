@@ -3,6 +3,7 @@
 // byte offset.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "sss/io/height_field_io.hpp"
+#include "sss/io/mapped_height_field.hpp"
 #include "sss/io/sound_speed_profile.hpp"
 #include "sss/io/trajectory_csv.hpp"
 #include "support/scratch_dir.hpp"
@@ -48,7 +50,7 @@ template <class T> void check_same(const height_field<T>& a, const height_field<
     CHECK(a.cell_m() == b.cell_m());
     CHECK(a.origin_m().x == b.origin_m().x);
     CHECK(a.origin_m().y == b.origin_m().y);
-    CHECK(a.heights_m() == b.heights_m());
+    CHECK(std::ranges::equal(a.heights(), b.heights())); // heights() also views a mapped field's heights
 }
 
 // The file_error of f(), or a failed check when it throws none.
@@ -87,6 +89,11 @@ TEST_CASE("A float grid's heights, cell size and centre read back to the bit whe
     const height_field<float> hf({.nx = 2, .ny = 2, .cell_m = f, .origin_m = vec2<float>{f, -f}, .heights_m = {f, -f, 1.0f, f}});
     sss::io::write_esri_ascii(path, hf);
     check_same(hf, sss::io::read_esri_ascii<float>(path));
+    // The raw format's sidecar likewise, read into memory and mapped.
+    const std::string raw = d.file("tiny.raw");
+    sss::io::write_raw_f32(raw, hf);
+    check_same(hf, sss::io::read_raw_f32<float>(raw));
+    check_same(hf, sss::io::map_raw_f32(raw));
 }
 
 TEST_CASE("A raw height file and its sidecar are replaced together: a sidecar that cannot be replaced leaves the old data") {

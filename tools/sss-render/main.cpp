@@ -37,6 +37,9 @@ std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t
     };
     const std::size_t a = colon ? whole(s.substr(0, colon)) : 0;
     const std::size_t b = colon + 1 < s.size() ? whole(s.substr(colon + 1)) : pings;
+    if (colon + 1 == s.size() && a >= pings)
+        throw CLI::ValidationError("--pings", "'" + s + "' starts past the scene's last ping (render.pings = " +
+                                                  std::to_string(pings) + ")");
     if (b <= a) throw CLI::ValidationError("--pings", "'" + s + "' is empty: B must exceed A");
     if (b - a > std::size_t(sf::max_pings))
         throw CLI::ValidationError("--pings", "'" + s + "' asks for " + std::to_string(b - a) + " pings; at most " +
@@ -44,15 +47,26 @@ std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t
     return {a, b};
 }
 
-/// --seed S: digits only, 0 to 2^63 - 1 (a larger value is an error, not clamped).
-std::int64_t seed_of(const std::string& s) {
-    const std::string max = std::to_string(std::numeric_limits<std::int64_t>::max());
+/// The value of `s` if it is a whole number from 0 to max written in digits only (leading zeros allowed);
+/// otherwise a ValidationError for `option` (a larger value is an error, not clamped).
+std::uint64_t whole_number(const std::string& option, const std::string& s, std::uint64_t max) {
+    const std::string max_text = std::to_string(max);
     const std::size_t lead = std::min(s.find_first_not_of('0'), s.empty() ? 0 : s.size() - 1); // keep one digit
     const std::string digits = s.substr(lead);
     if (s.empty() || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
-        digits.size() > max.size() || (digits.size() == max.size() && digits > max))
-        throw CLI::ValidationError("--seed", "'" + s + "' is not a whole number from 0 to " + max);
-    return std::stoll(digits);
+        digits.size() > max_text.size() || (digits.size() == max_text.size() && digits > max_text))
+        throw CLI::ValidationError(option, "'" + s + "' is not a whole number from 0 to " + max_text);
+    return std::stoull(digits);
+}
+
+/// --seed S: 0 to 2^63 - 1.
+std::int64_t seed_of(const std::string& s) {
+    return static_cast<std::int64_t>(whole_number("--seed", s, std::uint64_t(std::numeric_limits<std::int64_t>::max())));
+}
+
+/// --threads N: 0 to sf::max_threads (read here: CLI11's own check calls "1e3" out of range).
+unsigned threads_of(const std::string& s) {
+    return static_cast<unsigned>(whole_number("--threads", s, std::uint64_t(sf::max_threads)));
 }
 
 /// A message as one printable line: control characters (a NUL or a newline read from a broken file) as '?', and
@@ -73,14 +87,12 @@ std::string printable(std::string m) {
 int main(int argc, char** argv) {
     CLI::App app{"sss-render: renders a sidescan sonar scene file (TOML) to images and arrays"};
     std::string scene_path, out_dir = ".", pings_arg;
-    unsigned threads = 0;
-    std::string seed_arg;
+    std::string threads_arg, seed_arg;
     bool dry_run = false;
     app.add_option("scene", scene_path, "the scene file (TOML)")->required();
     app.add_option("-o,--output", out_dir, "directory the outputs go to (created if missing)");
     app.add_option("--pings", pings_arg, "pings A:B to render (default 0:render.pings)");
-    app.add_option("--threads", threads, "worker threads (default render.threads; 0 every core)")
-        ->check(CLI::Range(0u, unsigned(sf::max_threads)));
+    app.add_option("--threads", threads_arg, "worker threads (default render.threads; 0 every core)");
     app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples): a whole number from 0 to 2^63 - 1");
     app.add_flag("--dry-run", dry_run, "validate, print the resolved scene as TOML and the coverage problems; render nothing");
     try {
@@ -94,7 +106,7 @@ int main(int argc, char** argv) {
     try {
         sf::description d = sf::parse_file(scene_path);
         if (app.count("--seed")) d.bed.seed = seed_of(seed_arg);
-        if (app.count("--threads")) d.run.threads = threads;
+        if (app.count("--threads")) d.run.threads = threads_of(threads_arg);
         const auto [first, last] = pings_arg.empty() ? std::pair<std::size_t, std::size_t>{0, std::size_t(d.run.pings)}
                                                      : ping_range(pings_arg, std::size_t(d.run.pings));
         const sf::render_request request{.scene_path = scene_path, .out_dir = out_dir, .first = first, .last = last,
@@ -107,6 +119,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "\nsss-render: %s\n", printable(e.what()).c_str());
         const int sig = sf::interrupted.load();
         return 128 + (sig > 0 ? sig : 2); // as a shell reports a process the signal ended: 130 for SIGINT
+    } catch (const CLI::ValidationError& e) { // a command-line value refused once the scene is known
+        std::fprintf(stderr, "sss-render: %s\n", printable(e.what()).c_str());
+        return 1;
     } catch (const sss::scene_file::scene_error& e) {
         std::fprintf(stderr, "sss-render: %s\n", printable(e.what()).c_str());
         return 1;

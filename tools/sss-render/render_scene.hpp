@@ -10,6 +10,7 @@
 #include "scene_file/write.hpp"
 
 #include <sss/core/render_control.hpp>
+#include <sss/io/detail/atomic_file.hpp>
 #include <sss/io/labels.hpp>
 #include <sss/io/npy.hpp>
 #include <sss/io/png.hpp>
@@ -110,22 +111,32 @@ sss::waterfall<T> render(const Sim& sim, const world<T>& w, std::size_t first, s
     }
 }
 
-/// The files being written: each under a temporary name until `commit` renames them all.
+/// The files being written: each under a temporary name until `commit` renames them all. The temporary names, and
+/// the names old files are kept under while they are replaced, end in a suffix of this run's own
+/// (`.NAME.partial-` and `.NAME.replaced-` + 16 hexadecimal digits), so that two runs writing to one directory at
+/// once never share one.
 class output_set {
 public:
-    explicit output_set(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    explicit output_set(std::filesystem::path dir) : dir_(std::move(dir)), run_(sss::detail::temporary_suffix()) {}
     ~output_set() {
         for (const auto& [tmp, final] : files_) std::filesystem::remove(tmp, ignored_);
     }
     /// The temporary path to write `name` to.
     std::string add(const std::string& name) {
-        const auto tmp = dir_ / ("." + name + ".partial");
+        std::string tmp_name = ".";
+        tmp_name += name;
+        tmp_name += ".partial-";
+        tmp_name += run_;
+        const auto tmp = dir_ / tmp_name;
         files_.emplace_back(tmp, dir_ / name);
         return tmp.string();
     }
     /// A writer that appends suffixes to a stem: each `stem + suffix` is one file.
     std::string add_stem(const std::string& stem, std::initializer_list<const char*> suffixes) {
-        const std::string tmp = "." + stem + ".partial";
+        std::string tmp = ".";
+        tmp += stem;
+        tmp += ".partial-";
+        tmp += run_;
         for (const char* s : suffixes) files_.emplace_back(dir_ / (tmp + s), dir_ / (stem + s));
         return (dir_ / tmp).string();
     }
@@ -168,14 +179,15 @@ public:
                 if (std::find(renamed.begin(), renamed.end(), final) == renamed.end()) std::filesystem::remove(old, e);
             return scene_error(failed.string() + ": cannot be replaced (" + why.message() + "): no output written, " +
                                (restored ? std::string("the old files kept")
-                                         : std::string("and not every old file could be put back (see the .replaced files)")));
+                                         : std::string("and not every old file could be put back (see the .replaced-* files)")));
         };
         std::error_code ec;
         for (const auto& [tmp, final] : files_) {
             if (!std::filesystem::exists(final, ec)) continue;
             std::string kept_name = ".";
             kept_name += final.filename().string();
-            kept_name += ".replaced";
+            kept_name += ".replaced-";
+            kept_name += run_;
             const auto old = final.parent_path() / kept_name;
             std::filesystem::remove(old, ec);
             std::filesystem::create_hard_link(final, old, ec);
@@ -201,6 +213,7 @@ public:
 
 private:
     std::filesystem::path dir_;
+    std::string run_; // this run's suffix of its temporary and kept names
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;
     std::error_code ignored_;
 };

@@ -236,11 +236,31 @@ struct raw_grid {
     double origin_y_m = 0;   ///< world y of vertex (0, 0) (m)
 };
 
-/// Reads the sidecar `path + ".txt"` of the raw height file `path`: one `key value` pair a line, `#` comments;
-/// every key once, none unknown; 2 <= nx, ny <= 2^30 (a mapped file may exceed sss::max_elements; a file read
-/// into memory may not). Errors name the line and column.
-[[nodiscard]] inline raw_grid read_raw_sidecar(const std::string& path) {
+namespace detail {
+
+/// A sidecar as read: its grid, and the text of its three lengths, so that a float height field takes each of them
+/// rounded once from the text (parse_as) rather than twice, through double.
+struct raw_sidecar_read {
+    raw_grid grid;
+    std::string cell_text, origin_x_text, origin_y_text;
+
+    /// The cell size, rounded once to T.
+    template <Real T> [[nodiscard]] T cell_m() const { return number<T>(cell_text, grid.cell_m); }
+    /// The origin, each coordinate rounded once to T.
+    template <Real T> [[nodiscard]] vec2<T> origin_m() const {
+        return {number<T>(origin_x_text, grid.origin_x_m), number<T>(origin_y_text, grid.origin_y_m)};
+    }
+
+private:
+    template <Real T> static T number(const std::string& text, double v) {
+        return sss::detail::parse_as<T>(text).value_or(static_cast<T>(v)); // out of T's range: as T rounds v
+    }
+};
+
+/// read_raw_sidecar, keeping the lengths' text.
+[[nodiscard]] inline raw_sidecar_read read_raw_sidecar_text(const std::string& path) {
     const std::string side_path = raw_sidecar_path(path);
+    std::string texts[3];
     const std::string side = sss::detail::read_file(side_path);
     std::optional<std::size_t> nx, ny;
     std::optional<double> cell, ox, oy;
@@ -279,9 +299,11 @@ struct raw_grid {
                 throw sss::detail::error_at(side_path, line_no, col,
                                             "'" + k + "' must be a finite number, got '" + std::string(val) + "'");
             if (k == "cell_m" && !(*v > 0)) throw sss::detail::error_at(side_path, line_no, col, "'cell_m' must be > 0");
-            std::optional<double>& slot = k == "cell_m" ? cell : (k == "origin_x_m" ? ox : oy);
+            const int which = k == "cell_m" ? 0 : (k == "origin_x_m" ? 1 : 2);
+            std::optional<double>& slot = which == 0 ? cell : (which == 1 ? ox : oy);
             dup(slot.has_value());
             slot = v;
+            texts[which] = std::string(val);
         } else {
             throw sss::detail::error_at(side_path, line_no, fields[0].column, "unknown key '" + k + "'");
         }
@@ -298,7 +320,19 @@ struct raw_grid {
     if (missing) throw file_error(side_path, 0, std::string("lacks the key '") + missing + "'");
     if (*nx > (std::size_t(1) << 30) || *ny > (std::size_t(1) << 30))
         throw file_error(side_path, 0, "grid too large: nx and ny must be <= 2^30");
-    return {.nx = *nx, .ny = *ny, .cell_m = *cell, .origin_x_m = *ox, .origin_y_m = *oy};
+    return {.grid = {.nx = *nx, .ny = *ny, .cell_m = *cell, .origin_x_m = *ox, .origin_y_m = *oy},
+            .cell_text = std::move(texts[0]),
+            .origin_x_text = std::move(texts[1]),
+            .origin_y_text = std::move(texts[2])};
+}
+
+} // namespace detail
+
+/// Reads the sidecar `path + ".txt"` of the raw height file `path`: one `key value` pair a line, `#` comments;
+/// every key once, none unknown; 2 <= nx, ny <= 2^30 (a mapped file may exceed sss::max_elements; a file read
+/// into memory may not). Errors name the line and column.
+[[nodiscard]] inline raw_grid read_raw_sidecar(const std::string& path) {
+    return detail::read_raw_sidecar_text(path).grid;
 }
 
 /// The text of the sidecar of a raw height file, each number in the shortest text that reads back to it in `Number`
@@ -324,7 +358,8 @@ template <class Number = double> void write_raw_sidecar(const std::string& path,
 /// Reads `path` (raw float32) and its sidecar `path + ".txt"`.
 template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::string& path) {
     const std::string side_path = raw_sidecar_path(path);
-    const raw_grid g = read_raw_sidecar(path);
+    const detail::raw_sidecar_read sidecar = detail::read_raw_sidecar_text(path);
+    const raw_grid& g = sidecar.grid;
     if (checked_mul(g.nx, g.ny, "nx * ny") > max_elements)
         throw file_error(side_path, 0, "grid too large: nx * ny exceeds sss::max_elements");
     const std::string data = sss::detail::read_file(path);
@@ -350,8 +385,8 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
     try {
         return scene::height_field<T>({.nx = g.nx,
                                        .ny = g.ny,
-                                       .cell_m = static_cast<T>(g.cell_m),
-                                       .origin_m = vec2<T>{static_cast<T>(g.origin_x_m), static_cast<T>(g.origin_y_m)},
+                                       .cell_m = sidecar.cell_m<T>(),
+                                       .origin_m = sidecar.origin_m<T>(),
                                        .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
         throw file_error(side_path, 0, message_body(e));

@@ -101,7 +101,8 @@ private:
 /// and renders as read_raw_f32<float>(path), without holding the heights in memory.
 [[nodiscard]] inline scene::height_field<float> map_raw_f32(const std::string& path) {
     static_assert(std::endian::native == std::endian::little, "map_raw_f32 reads little-endian floats in place");
-    const raw_grid g = read_raw_sidecar(path);
+    const detail::raw_sidecar_read sidecar = detail::read_raw_sidecar_text(path);
+    const raw_grid& g = sidecar.grid;
     auto file = std::make_shared<const mapped_file>(path);
     const std::size_t n = g.nx * g.ny;
     if (file->size() != 4 * n)
@@ -113,8 +114,8 @@ private:
     try {
         scene::height_field<float> hf({.nx = g.nx,
                                        .ny = g.ny,
-                                       .cell_m = static_cast<float>(g.cell_m),
-                                       .origin_m = {static_cast<float>(g.origin_x_m), static_cast<float>(g.origin_y_m)}},
+                                       .cell_m = sidecar.cell_m<float>(),
+                                       .origin_m = sidecar.origin_m<float>()},
                                       scene::external_heights<float>{
                                           .data = heights,
                                           .keeper = file,
