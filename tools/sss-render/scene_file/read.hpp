@@ -229,7 +229,7 @@ public:
             if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
                 if (!std::isfinite(*d)) fail(key, "must be a finite number");
                 if (const auto b = unit_bound(key); b.limit > 0 && !(std::abs(*d) <= b.limit))
-                    fail(key, "must lie within +-" + fmt(b.limit) + " " + b.unit + ", got " + fmt(*d));
+                    fail(key, "must lie within +-" + fmt(b.limit) + unit_text(b) + ", got " + fmt(*d));
                 v = *d;
             } else
                 fail(key, std::string("must be a number, not ") + type_name(*n));
@@ -246,7 +246,9 @@ public:
     /// within 1e8 m (beyond any survey, UTM's 1e7 m northings included), at least 1e-9 m; levels (`_db`): within
     /// 300 dB (10^30 in power, within single precision with room for the echoes); angles (`_deg`): within 1e6
     /// degrees; times (`_s`): within 1e12 s, at least 1e-9 s; speeds (`_mps`): within 1e5 m/s, at least 1e-6 m/s;
-    /// frequencies (`_hz`): within 1e10 Hz, at least 1e-6 Hz. Other keys keep their own checks.
+    /// frequencies (`_hz`): within 1e10 Hz, at least 1e-6 Hz. Keys without a unit (ratios, indices, shape
+    /// parameters): within 1e30, at least 1e-30, so that single precision holds them (a symmetry index of 1e-300
+    /// would become 0); most of them keep narrower checks of their own.
     struct bound {
         double limit = 0; ///< largest magnitude; 0: none
         double least = 0; ///< least value of a quantity > 0
@@ -259,8 +261,10 @@ public:
         if (key.ends_with("_mps")) return {1e5, 1e-6, "m/s"};
         if (key.ends_with("_hz")) return {1e10, 1e-6, "Hz"};
         if (key.ends_with("_s")) return {1e12, 1e-9, "s"};
-        return {};
+        return {1e30, 1e-30, ""};
     }
+    /// " m", or nothing for a key without a unit.
+    [[nodiscard]] static std::string unit_text(const bound& b) { return *b.unit ? std::string(" ") + b.unit : std::string(); }
     void non_negative(std::string_view key, double& v) {
         number(key, v);
         if (!(v >= 0)) fail(key, "must be >= 0, got " + fmt(v));
@@ -269,7 +273,7 @@ public:
     /// A value > 0 that would vanish in the renderer's arithmetic (below its unit's least value) is an error.
     void not_vanishing(std::string_view key, double v, bool zero_allowed) const {
         if (const auto b = unit_bound(key); v < b.least)
-            fail(key, std::string(zero_allowed ? "must be 0 or at least " : "must be at least ") + fmt(b.least) + " " + b.unit +
+            fail(key, std::string(zero_allowed ? "must be 0 or at least " : "must be at least ") + fmt(b.least) + unit_text(b) +
                           ", got " + fmt(v));
     }
     void in_range(std::string_view key, double& v, double lo, double hi) {
@@ -316,7 +320,7 @@ public:
         const xy v{a->get(0)->value<double>().value(), a->get(1)->value<double>().value()};
         if (!std::isfinite(v[0]) || !std::isfinite(v[1])) fail_at(n.source(), key, "must be a pair of finite numbers");
         if (const auto b = unit_bound(key); b.limit > 0 && !(std::abs(v[0]) <= b.limit && std::abs(v[1]) <= b.limit))
-            fail_at(n.source(), key, "must lie within +-" + fmt(b.limit) + " " + b.unit);
+            fail_at(n.source(), key, "must lie within +-" + fmt(b.limit) + unit_text(b));
         return v;
     }
     /// The sub-table at key (absent: an empty table).
@@ -652,7 +656,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                         const double x = e.is_number() ? e.value<double>().value() : 0.0;
                         if (!e.is_number() || !std::isfinite(x)) w.fail(key, "must be a non-empty array of finite numbers");
                         if (const auto b = detail::table_reader::unit_bound(key); b.limit > 0 && !(std::abs(x) <= b.limit))
-                            w.fail(key, "each value must lie within +-" + detail::table_reader::fmt(b.limit) + " " + b.unit);
+                            w.fail(key, "each value must lie within +-" + detail::table_reader::fmt(b.limit) +
+                                            detail::table_reader::unit_text(b));
                         v.push_back(x);
                     }
                 }
