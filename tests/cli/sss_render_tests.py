@@ -83,6 +83,14 @@ elif case == "outputs":
         want = ["classes.txt", "small.json", "small.npy", "small.png", "small.txt", "small.xtf", "small_coco.json",
                 "small_labels_class.png", "small_labels_instance.png", "small_labels_legend.json"]
         check(r.returncode == 0 and files_in(os.path.join(d, "e")) == want, f"every product asked, and nothing else ({files_in(os.path.join(d, 'e'))}, {r.stderr})")
+        if r.returncode == 0:  # the record is not TVG'd: the XTF's ProcessingFlags say so, and with TVG they say that
+            xtf = open(os.path.join(d, "e", "small.xtf"), "rb").read()
+            check(struct.unpack_from("<H", xtf, 1024 + 256 + 24)[0] == 0, "without TVG, ProcessingFlags is 0")
+            open(os.path.join(d, "tvg.toml"), "w").write(everything + "\n[receiver]\ntvg = true\n")
+            r = run([os.path.join(d, "tvg.toml"), "-o", os.path.join(d, "tvg")])
+            xtf = open(os.path.join(d, "tvg", "small.xtf"), "rb").read() if r.returncode == 0 else b""
+            check(len(xtf) > 1024 + 256 + 26 and struct.unpack_from("<H", xtf, 1024 + 256 + 24)[0] == 4,
+                  f"with receiver.tvg the XTF's ProcessingFlags is 4, TVG applied ({r.stderr})")
         # With ground range, the label images come on the ground-range grid too, pixel for pixel with its PNG.
         open(scene3, "w").write(everything.replace("label_images = true", "label_images = true\nground_range = true"))
         r = run([scene3, "-o", os.path.join(d, "g")])
@@ -137,6 +145,9 @@ elif case == "outputs":
             lat, lon = struct.unpack_from("<dd", xtf, 1024 + 160)  # SensorYcoordinate, SensorXcoordinate
             check(nav_units == 3 and 54.0 < lat < 54.3 and 9.0 < lon < 9.1,
                   f"the UTM scene's XTF navigation is latitude and longitude in zone 32 (units {nav_units}, {lat}, {lon})")
+            # ThisFileName is the file's own name, not the temporary it was written under.
+            name = xtf[100:164].split(b"\0")[0]
+            check(name == b"georeferenced.xtf", f"the XTF's ThisFileName is its final name ({name})")
         # ... and in layered water, the survey double exists for (UTM bathymetry, a measured profile).
         open(os.path.join(d, "geo_layered.toml"), "w").write(open(os.path.join(scenes, "georeferenced.toml")).read() +
                                                              '\n[water]\nmodel = "layered"\ndepth_m = [0, 10, 30]\nspeed_mps = [1500, 1495, 1485]\n')

@@ -204,3 +204,29 @@ TEST_CASE("A label set's images and legend are replaced together: one that canno
     CHECK(slurp(stem + "_instance.png") == old_instance);
     for (const char* s : {"_class.png", "_instance.png", "_legend.json"}) CHECK(sss_test::temporaries_left(stem + s) == 0);
 }
+
+TEST_CASE("The legend names every value of the instance image, an object whose shadow alone is in the image included") {
+    scratch_dir d;
+    const std::vector<io::label_class> classes{{1, "rock"}, {2, "tyre"}, {3, "mine"}, {4, "wreck"}, {5, "pipe"}};
+    const label_image img = random_labels(40, 50, 120, 11);
+    std::map<std::uint32_t, std::uint32_t> in_image; // object -> class, over highlight and shadow samples
+    std::size_t shadow_only = 0;
+    for (const sample_label& l : img.values)
+        if (l.kind == sample_class::highlight || l.kind == sample_class::shadow) in_image.emplace(l.object, l.label);
+    const auto boxes = io::object_boxes(img, io::box_extent::highlight_and_shadow);
+    for (const auto& [object, cls] : in_image)
+        shadow_only += std::none_of(boxes.begin(), boxes.end(), [&](const io::object_box& b) { return b.object == object; });
+    REQUIRE(shadow_only > 0u); // the case in question occurs in this image
+    const std::string stem = d.file("set");
+    io::write_label_images(stem, img, classes);
+    const auto legend = nlohmann::json::parse(slurp(stem + "_legend.json"))["instance_png"];
+    CHECK(legend.size() == in_image.size() + 1); // and "0": none
+    CHECK(legend["0"] == "none");
+    for (const auto& [object, cls] : in_image) {
+        const std::string key = std::to_string(object + 1);
+        REQUIRE(legend.contains(key));
+        CHECK(legend[key]["object_id"] == object);
+        CHECK(legend[key]["class_id"] == cls);
+        CHECK(legend[key]["class"] == classes[cls - 1].name);
+    }
+}

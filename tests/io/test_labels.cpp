@@ -22,6 +22,7 @@
 
 #include "sss/io/labels.hpp"
 #include "sss/propagation/layered.hpp"
+#include "sss/receiver/ground_range.hpp"
 #include "sss/scene/flat_seabed.hpp"
 #include "sss/scene/height_field.hpp"
 #include "sss/scene/scene.hpp"
@@ -638,4 +639,36 @@ TEST_CASE("An image with no object in the swath gets an empty YOLO file and a CO
     }
     CHECK(water > 0u);
     CHECK(seabed > 0u);
+}
+
+TEST_CASE("Ground-range labels cover exactly the cells the ground-range image has a value for, far edge included") {
+    // Every slant sample is seabed and every image sample 1: a label cell must be covered where the image is 1.
+    const std::size_t n = 667;
+    const double dt = 5e-5, c = 1500.0, cell = 0.1;
+    label_image slant{.pings = 40, .samples = n, .dt_s = dt, .values = {}};
+    slant.values.assign(slant.pings * slant.width(), sample_label{.kind = sample_class::seabed, .object = no_object, .label = 1, .material = 0});
+    const waterfall<double> ones{.pings = slant.pings, .samples = n, .dt_s = dt, .values = std::vector<double>(slant.pings * 2 * n, 1.0)};
+    std::vector<double> alt;
+    for (std::size_t i = 0; i < slant.pings; ++i) alt.push_back(1.0 + 0.4731 * double(i)); // the far edge falls anywhere in a cell
+    const label_image g = ground_range_labels(slant, alt, {.cell_m = cell, .cells = 0, .sound_speed_mps = c});
+    const waterfall<double> image = to_ground_range(ones, alt, c, cell, g.samples);
+    REQUIRE(image.width() == g.width());
+    std::size_t covered = 0, edge_rows = 0;
+    for (std::size_t i = 0; i < g.pings; ++i) {
+        std::size_t last = 0;
+        for (std::size_t j = 0; j < g.width(); ++j) {
+            const bool labelled = g.at(i, j).kind != sample_class::no_coverage;
+            CHECK(labelled == (image.at(i, j) > 0.0));
+            covered += labelled;
+            if (labelled && j >= g.samples) last = j - g.samples;
+        }
+        // The last labelled cell is the last whose centre's range lies within half a sample of the last centre.
+        const double dr = 0.5 * c * dt;
+        const auto range = [&](std::size_t j) { return std::hypot((double(j) + 0.5) * cell, alt[i]) / dr; };
+        CHECK(range(last) - 0.5 <= double(n) - 1.0);
+        CHECK(range(last + 1) - 0.5 > double(n) - 1.0);
+        edge_rows += range(last + 1) < double(n); // a cell the old rule (floor(r) < n) labelled and the image leaves empty
+    }
+    CHECK(covered > 0u);
+    CHECK(edge_rows > 0u); // the case in question occurs here
 }

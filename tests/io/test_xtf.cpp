@@ -106,6 +106,8 @@ TEST_CASE("An XTF round trip of a render keeps every header field, navigation va
     const xtf_file g = io::read_xtf("float.xtf");
     check_same_header(f.header, g.header);
     CHECK(detail::get_chars(detail::read_file_bytes("float.xtf").data(), 100, 64) == "float.xtf"); // ThisFileName
+    CHECK(g.header.file_name == "float.xtf");
+    CHECK(!g.header.tvg_applied);
     REQUIRE(g.pings.size() == 6u);
     for (std::size_t i = 0; i < 6; ++i) {
         check_same_navigation(f.pings[i], g.pings[i]);
@@ -364,4 +366,74 @@ TEST_CASE("A ping time the header's calendar cannot hold (before the year 1 or a
             CHECK(e.parameter() == "xtf_ping.time_unix_s");
         }
     }
+}
+
+TEST_CASE("ThisFileName holds the final name given for a file written under another, and ProcessingFlags says TVG") {
+    const render r = small_render();
+    auto p = params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m);
+    p.header.file_name = "line7.xtf";
+    p.header.tvg_applied = true;
+    io::write_xtf(".line7.xtf.partial-0123", io::make_xtf<double>(r.w, r.poses, p));
+    const auto b = detail::read_file_bytes(".line7.xtf.partial-0123");
+    CHECK(detail::get_chars(b.data(), 100, 64) == "line7.xtf");
+    const std::size_t chan = 1024 + 256, samples = r.w.samples;
+    CHECK(detail::get_le<std::uint16_t>(b.data(), chan + 24) == 4);                // port: TVG applied
+    CHECK(detail::get_le<std::uint16_t>(b.data(), chan + 64 + 4 * samples + 24) == 4); // starboard
+    const xtf_file g = io::read_xtf(".line7.xtf.partial-0123");
+    CHECK(g.header.file_name == "line7.xtf");
+    CHECK(g.header.tvg_applied);
+    std::filesystem::remove(".line7.xtf.partial-0123");
+    // Without TVG the flags are 0.
+    p.header.tvg_applied = false;
+    const auto c = io::encode_xtf(io::make_xtf<double>(r.w, r.poses, p));
+    CHECK(detail::get_le<std::uint16_t>(c.data(), chan + 24) == 0);
+}
+
+TEST_CASE("SensorHeading lies in [0, 360) however many turns the yaw has made, either way") {
+    CHECK(io::heading_in_circle_deg(30.0) == 30.0);
+    CHECK(io::heading_in_circle_deg(-18.0) == 342.0);
+    CHECK(io::heading_in_circle_deg(-400.0) == 320.0);
+    CHECK(io::heading_in_circle_deg(-720.0) == 0.0);
+    CHECK(io::heading_in_circle_deg(1090.0) == 10.0);
+    CHECK(io::heading_in_circle_deg(-1e-12) == 0.0);       // 360 - 1e-12 is 360 in float: written as 0
+    CHECK(io::heading_in_circle_deg(359.9999999) == 0.0);  // likewise
+    CHECK(static_cast<float>(io::heading_in_circle_deg(359.99)) == 359.99f);
+    render r = small_render();
+    for (std::size_t i = 0; i < r.poses.size(); ++i) r.poses[i].yaw_rad = -7.0 + 3.0 * double(i); // -401 deg to 458 deg
+    const xtf_file g = io::parse_xtf(io::encode_xtf(io::make_xtf<double>(r.w, r.poses,
+                                                                         params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m))),
+                                     "turns.xtf");
+    for (std::size_t i = 0; i < g.pings.size(); ++i) {
+        const double deg = (-7.0 + 3.0 * double(i)) * 180.0 / 3.14159265358979323846;
+        CHECK(g.pings[i].heading_deg >= 0.0);
+        CHECK(g.pings[i].heading_deg < 360.0);
+        CHECK(g.pings[i].heading_deg == doctest::Approx(deg - 360.0 * std::floor(deg / 360.0)).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("Ping numbers that would wrap past 32 bits are refused by name; the last one that fits is written") {
+    const render r = small_render(); // six pings
+    auto p = params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m);
+    p.first_ping_number = 4294967291u; // the sixth is 4294967296
+    try {
+        (void)io::make_xtf<double>(r.w, r.poses, p);
+        FAIL("no error");
+    } catch (const invalid_parameter& e) {
+        CHECK(std::string(e.what()).find("xtf_render_params.first_ping_number") != std::string::npos);
+    }
+    p.first_ping_number = 4294967290u;
+    const xtf_file f = io::make_xtf<double>(r.w, r.poses, p);
+    CHECK(f.pings.back().ping_number == 4294967295u);
+}
+
+TEST_CASE("A ping whose channels differ in length is written and read back as it is") {
+    xtf_file f;
+    f.pings.resize(1);
+    f.pings[0].sound_speed_mps = 1500.0;
+    f.pings[0].port = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+    f.pings[0].starboard = {0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f};
+    const xtf_file g = io::parse_xtf(io::encode_xtf(f), "uneven.xtf");
+    REQUIRE(g.pings.size() == 1u);
+    CHECK(g.pings[0].port == f.pings[0].port);
+    CHECK(g.pings[0].starboard == f.pings[0].starboard);
 }

@@ -388,6 +388,8 @@ template <Real T> int render_scene(const description& d, const render_request& r
         xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
                           .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};
         xp.header.starboard = xp.header.port;
+        xp.header.file_name = stem + ".xtf"; // written under a temporary name, read under this one
+        xp.header.tvg_applied = d.rx.tvg;
         sss::io::write_xtf(files.add(stem + ".xtf"), sss::io::make_xtf<T>(image, poses, xp, altitude));
     }
     if (want_labels) {

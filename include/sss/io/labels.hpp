@@ -18,12 +18,13 @@
 ///   `yolo_classes_txt` lists the names in that order. An image with no object has an empty file.
 /// - Label images: an 8-bit PNG of sample_class values (0 no coverage, 1 water column, 2 seabed, 3 highlight,
 ///   4 shadow), a 16-bit PNG of instance values (object id + 1 on its highlight and shadow, 0 elsewhere), and a
-///   JSON legend of both.
+///   JSON legend of both: every instance value in the image, a shadow-only object's (which has no box) included.
 
 #include <algorithm>
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -255,11 +256,16 @@ inline void write_label_images(const std::string& stem, const label_image& img, 
     j.begin_object().key("class_png").begin_object();
     j.member("0", "no_coverage").member("1", "water_column").member("2", "seabed").member("3", "highlight").member("4", "shadow");
     j.end_object().key("instance_png").begin_object().member("0", "none");
-    for (const object_box& b : object_boxes(img, box_extent::highlight_and_shadow)) {
-        std::string name = "class_" + std::to_string(b.class_id);
+    // Every value of the instance image: an object whose shadow alone is in the image (its highlight beyond the
+    // swath, or nearer than the first return in ground range) has pixels too, though it has no box.
+    std::map<std::uint32_t, std::uint32_t> objects; // object id -> its class (its first sample's)
+    for (const sample_label& l : img.values)
+        if (l.kind == sample_class::highlight || l.kind == sample_class::shadow) objects.emplace(l.object, l.label);
+    for (const auto& [object, class_id] : objects) {
+        std::string name = "class_" + std::to_string(class_id);
         for (const label_class& c : classes)
-            if (c.id == b.class_id) name = c.name;
-        j.key(std::to_string(b.object + 1)).begin_object().member("object_id", b.object).member("class_id", b.class_id);
+            if (c.id == class_id) name = c.name;
+        j.key(std::to_string(object + 1)).begin_object().member("object_id", object).member("class_id", class_id);
         j.member("class", name).end_object();
     }
     j.end_object().end_object().newline();

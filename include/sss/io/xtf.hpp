@@ -13,7 +13,9 @@
 /// - SoundVelocity holds half the sound speed (750 m/s for 1500), Isis's convention; the reader doubles values
 ///   below 1000 m/s and takes larger ones as the full speed (some writers store 1500).
 /// - Time: Year ... HSeconds (UTC, 1/100 s) and JulianDay (day of the year, 1 = 1 January).
-/// - SensorSpeed in knots (1852 m per hour); heading, pitch (nose up positive), roll (starboard down positive)
+/// - ThisFileName: the file's own name (xtf_header::file_name, else the written path's last component);
+///   ProcessingFlags 4 in each channel header when the samples carry TVG (xtf_header::tvg_applied), else 0.
+/// - SensorSpeed in knots (1852 m per hour); heading (in [0, 360)), pitch (nose up positive), roll (starboard down positive)
 ///   in degrees; SensorXcoordinate / SensorYcoordinate: easting / northing (m) when NavUnits is 0, longitude /
 ///   latitude (deg) when it is 3: from the world's x and y as UTM easting and northing in a given zone (io/utm.hpp), or
 ///   as a local plane about a geodetic origin (io/geodetic.hpp).
@@ -46,6 +48,14 @@
 
 namespace sss::io {
 
+/// A heading (deg) in [0, 360) as a float holds it: any number of turns either way removed, and a heading that
+/// rounds to 360 in float (-1e-12 deg) written as 0.
+[[nodiscard]] inline double heading_in_circle_deg(double deg) noexcept {
+    double h = std::fmod(deg, 360.0);
+    if (h < 0.0) h += 360.0;
+    return static_cast<float>(h) >= 360.0f || h == 0.0 ? 0.0 : h; // -0 as 0 too
+}
+
 /// How a render becomes an XTF file.
 struct xtf_render_params {
     double start_unix_s = 0.0;               ///< UTC time of ping 0 (s since 1970)
@@ -70,6 +80,11 @@ template <Real T>
     sss::require_positive(p.ping_interval_s, "xtf_render_params.ping_interval_s");
     sss::require_positive(p.sound_speed_mps, "xtf_render_params.sound_speed_mps");
     sss::require_finite(p.start_unix_s, "xtf_render_params.start_unix_s");
+    sss::require(w.pings == 0 || w.pings - 1 <= std::numeric_limits<std::uint32_t>::max() - p.first_ping_number,
+                 "xtf_render_params.first_ping_number", [&] {
+                     return "leaves no room for " + std::to_string(w.pings) + " pings: PingNumber (32 bits) would wrap past " +
+                            std::to_string(std::numeric_limits<std::uint32_t>::max());
+                 });
     xtf_file f;
     f.header = p.header;
     f.pings.resize(w.pings);
@@ -95,7 +110,7 @@ template <Real T>
             const auto d = poses[b].position - poses[a].position;
             q.speed_mps = std::hypot(double(d.x), double(d.y)) / dt;
         }
-        q.heading_deg = std::fmod(double(s.yaw_rad) * deg + 360.0, 360.0);
+        q.heading_deg = heading_in_circle_deg(double(s.yaw_rad) * deg);
         q.pitch_deg = double(s.pitch_rad) * deg;
         q.roll_deg = double(s.roll_rad) * deg;
         q.sound_speed_mps = p.sound_speed_mps;
@@ -111,8 +126,9 @@ template <Real T>
     return f;
 }
 
-/// The bytes of an XTF file (see the file comment). Throws invalid_parameter for samples that are not finite,
-/// negative samples in an integer format, or pings whose channels differ in length.
+/// The bytes of an XTF file (see the file comment). Throws invalid_parameter for samples that are not finite or
+/// negative samples in an integer format. A ping's two channels may differ in length (each channel header gives its
+/// own NumSamples). ThisFileName is header.file_name (write_xtf fills it in from the path when it is empty).
 [[nodiscard]] inline std::vector<std::uint8_t> encode_xtf(const xtf_file& f) {
     using namespace sss::detail;
     const xtf_sample_format fmt = f.header.format;
@@ -130,6 +146,7 @@ template <Real T>
     put_chars(h, 10, "223", 8);
     put_chars(h, 18, f.header.sonar_name, 16);
     put_chars(h, 36, f.header.note, 64);
+    put_chars(h, 100, f.header.file_name, 64);
     put_le<std::uint16_t>(h, 164, static_cast<std::uint16_t>(f.header.nav_units));
     put_le<std::uint16_t>(h, 166, 2);
     xtf_put_chaninfo(h + 256, 1, f.header.port, fmt, "port");
@@ -182,6 +199,7 @@ template <Real T>
             put_le<float>(k, 8, static_cast<float>(ground));
             put_le<float>(k, 16, static_cast<float>(2.0 * p.slant_range_m / p.sound_speed_mps));
             put_le<float>(k, 20, static_cast<float>(p.seconds_per_ping));
+            put_le<std::uint16_t>(k, 24, f.header.tvg_applied ? 4 : 0); // ProcessingFlags: 4, TVG applied
             const double f_khz = ch == 0 ? f.header.port.frequency_khz : f.header.starboard.frequency_khz;
             put_le<std::uint16_t>(k, 26, static_cast<std::uint16_t>(std::clamp(std::lround(f_khz), 0L, 65535L)));
             put_le<std::uint32_t>(k, 42, static_cast<std::uint32_t>(s.size()));
@@ -208,11 +226,13 @@ template <Real T>
 }
 
 /// Writes `f` to `path` (through a temporary renamed when complete: a failure leaves no file).
-/// ThisFileName (file header byte 100) holds the path's last component.
+/// ThisFileName (file header byte 100) holds header.file_name, or when that is empty the path's last component.
 inline void write_xtf(const std::string& path, const xtf_file& f) {
     std::vector<std::uint8_t> bytes = encode_xtf(f);
-    const std::size_t slash = path.find_last_of("/\\");
-    sss::detail::put_chars(bytes.data(), 100, slash == std::string::npos ? path : path.substr(slash + 1), 64);
+    if (f.header.file_name.empty()) {
+        const std::size_t slash = path.find_last_of("/\\");
+        sss::detail::put_chars(bytes.data(), 100, slash == std::string::npos ? path : path.substr(slash + 1), 64);
+    }
     sss::detail::write_file_atomically(path, bytes.data(), bytes.size());
 }
 
@@ -231,6 +251,7 @@ inline void write_xtf(const std::string& path, const xtf_file& f) {
     f.header.program_name = get_chars(h, 2, 8);
     f.header.sonar_name = get_chars(h, 18, 16);
     f.header.note = get_chars(h, 36, 64);
+    f.header.file_name = get_chars(h, 100, 64);
     const auto nav = get_le<std::uint16_t>(h, 164);
     f.header.nav_units = nav == 3 ? xtf_nav_units::latitude_longitude : xtf_nav_units::projected_m;
     const std::size_t n_sonar = get_le<std::uint16_t>(h, 166);
@@ -312,6 +333,7 @@ inline void write_xtf(const std::string& path, const xtf_file& f) {
                     p.slant_range_m = get_le<float>(ch, 4);
                     p.seconds_per_ping = get_le<float>(ch, 20);
                     p.weight = get_le<std::int16_t>(ch, 58);
+                    if ((get_le<std::uint16_t>(ch, 24) & 4u) != 0) f.header.tvg_applied = true;
                 }
                 if (int(number) == port) p.port.assign(v.rbegin(), v.rend()); // stored far-to-near
                 if (int(number) == stbd) p.starboard = std::move(v);

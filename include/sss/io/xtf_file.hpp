@@ -25,6 +25,12 @@ struct xtf_header {
     std::string program_name = "sss";          ///< RecordingProgramName (8 characters kept)
     std::string sonar_name = "sss simulator";  ///< SonarName (16 characters kept)
     std::string note;                          ///< NoteString (64 characters kept)
+    /// ThisFileName (64 characters kept); empty: write_xtf writes the last component of the path it writes to
+    /// (give the final name here when the file is written under a temporary name and renamed later).
+    std::string file_name;
+    /// The samples carry time-varied gain: ProcessingFlags 4 ("TVG applied") in each channel header, so that a
+    /// reader does not apply its own on top.
+    bool tvg_applied = false;
     xtf_nav_units nav_units = xtf_nav_units::latitude_longitude;
     xtf_sample_format format = xtf_sample_format::f32;
     xtf_channel_info port{}, starboard{};

@@ -330,7 +330,10 @@ template <class Sim, class Seabed>
 /// Labels on a ground-range grid, by the flat-bottom mapping: ground cell j of width `cell_m` (centre
 /// y = (j + 1/2) cell_m) takes the label of the slant-range sample at r = sqrt(y^2 + H^2), H the towfish's
 /// altitude at that ping (`altitude_m[i]`, m), r in samples of c dt / 2 (`sound_speed_mps`, m/s). Columns: `cells`
-/// per side, port mirrored on the left as in the slant-range image; cells past the last sample are no_coverage.
+/// per side, port mirrored on the left as in the slant-range image. A cell takes the sample whose centre is nearest
+/// (k = floor(r)); cells beyond the last sample's centre (r - 1/2 > samples - 1), where the ground-range image
+/// (receiver/ground_range.hpp, interpolating between sample centres) has no value, are no_coverage, so that labels
+/// and image cover the same cells.
 struct ground_range_params {
     double cell_m = 0.05;            ///< ground-range cell (m), > 0
     std::size_t cells = 0;           ///< cells per side; 0: enough for the slant range at zero altitude
@@ -352,8 +355,9 @@ struct ground_range_params {
         const double h = altitude_m[i];
         for (std::size_t j = 0; j < out.samples; ++j) {
             const double y = (double(j) + 0.5) * g.cell_m;
-            const double k = std::floor(std::sqrt(y * y + h * h) / dr);
-            if (!(k < double(slant.samples))) continue;
+            const double r = std::sqrt(y * y + h * h) / dr;
+            if (!(r - 0.5 <= double(slant.samples) - 1.0)) continue; // as to_ground_range: past the last centre
+            const double k = std::floor(r);
             const auto s = static_cast<std::size_t>(k);
             out.values[i * out.width() + out.samples - 1 - j] = slant.at(i, slant.samples - 1 - s);
             out.values[i * out.width() + out.samples + j] = slant.at(i, slant.samples + s);
