@@ -1146,8 +1146,15 @@ private:
                 ray_end bounce;
                 const ray_end cur = shoot(scene, p, sd, along, static_cast<T>(e), f.t_max_one_way, column_sr, bounce,
                                           prev.valid ? &prev : nullptr);
-                emit_tube(prev, cur, step, visit);
-                if constexpr (bouncing) emit_tube(prev_bounce, bounce, step, visit);
+                if (cur.valid) {
+                    emit_tube(prev, cur, step, visit);
+                    if constexpr (bouncing) emit_tube(prev_bounce, bounce, step, visit);
+                } else {
+                    // The far edge of coverage lies within this step: located by refinement as any edge is
+                    // (detail::judge_tube), so that the last ray's echo does not stand for the whole part of the
+                    // step within the line (here, in refracting water, neighbours may land two samples apart).
+                    refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+                }
                 if (!cur.valid && !bounce.valid) break;
                 prev = cur;
                 prev_bounce = bounce;
@@ -1437,8 +1444,8 @@ private:
         const ray_end* guide = near ? near : outer;
         const ray_end* fallback = outer != guide ? outer : nullptr;
         const double de = std::abs(b.e - a.e);
-        detail::tube_verdict v = detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_,
-                                                    2.0 * double(col.t_max_one_way), depth == 0 ? intervals : 1);
+        detail::tube_verdict v =
+            detail::judge_tube(as_tube_end(a), as_tube_end(b), de, dt_, depth == 0 ? intervals : 1);
         // Two rays on one surface either side of a small target they both missed agree: where the interval is wider
         // than a target over the column allows, it is halved until it is not (trace_column, thin_window).
         const bool over_target =

@@ -1,6 +1,7 @@
 // The sampled trajectory: orientation derived from the path, interpolation, heave and sway, ping timing.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -198,6 +199,31 @@ TEST_CASE("Angles are interpolated along the shortest arc") {
     p.method = interpolation::cubic;
     const trajectory<double> cubic(s, p);
     CHECK(std::abs(angle_diff(cubic.pose_at(1).yaw_rad, 0.0)) < sss::deg_to_rad(1.0));
+}
+
+TEST_CASE_TEMPLATE("Interpolated roll and pitch stay within 90 degrees of level where a cubic overshoots samples near it",
+                   T, float, double) {
+    // Roll 0, 89, 89, 0 degrees: the cubic between the two 89s reaches about 100 degrees; pitch likewise, negative.
+    trajectory_samples<T> s;
+    s.time_s = {0.0, 1.0, 2.0, 3.0};
+    s.position_m = {{0, 0, 10}, {0, 2, 10}, {0, 4, 10}, {0, 6, 10}};
+    const T r = T(sss::deg_to_rad(89.0));
+    s.roll_rad = {T(0), r, r, T(0)};
+    s.pitch_rad = {T(0), -r, -r, T(0)};
+    const trajectory<T> traj(s, {.ping_interval_s = T(0.05)});
+    const double right = 0.5 * sss::pi_v<double>;
+    double most_roll = 0, most_pitch = 0;
+    for (std::size_t i = 0; i < traj.ping_count(); ++i) {
+        const auto q = traj.pose_at(i);
+        CHECK(std::abs(double(q.roll_rad)) < right);
+        CHECK(std::abs(double(q.pitch_rad)) < right);
+        most_roll = std::max(most_roll, double(q.roll_rad));
+        most_pitch = std::min(most_pitch, double(q.pitch_rad));
+    }
+    CHECK(most_roll > sss::deg_to_rad(89.9)); // held at the limit, not bent back below the samples
+    CHECK(most_pitch < -sss::deg_to_rad(89.9));
+    // Samples within the limit come back as they are.
+    CHECK(double(traj.pose_at(20).roll_rad) == doctest::Approx(double(r)));
 }
 
 TEST_CASE("Heave raises z and sway moves along the horizontal starboard direction") {

@@ -17,7 +17,6 @@ using sss::detail::tube_end;
 using sss::detail::tube_verdict;
 
 constexpr double dt_s = 6.5e-5;     // a sample (s)
-constexpr double t_line_s = 0.133;  // the line's end (s)
 
 // A seabed ray at two-way time t_s whose facet predicts `stretch` (s/rad), with echo per radian `gain`.
 tube_end seabed_end(double t_s, double stretch, double gain = 1.0, double nz = 1.0) {
@@ -66,18 +65,18 @@ TEST_CASE("a shadow between rays n launch intervals apart is found exactly when 
         for (const double shadow : {1.8, 1.95}) {
             CAPTURE(shadow);
             const tube_end b = seabed_end(0.05 + double(n) * p + shadow * p, stretch);
-            CHECK(judge_tube(a, b, de, dt_s, t_line_s, n) == tube_verdict::continuous);
+            CHECK(judge_tube(a, b, de, dt_s, n) == tube_verdict::continuous);
         }
         for (const double shadow : {2.05, 2.5, 10.0}) {
             CAPTURE(shadow);
             const tube_end b = seabed_end(0.05 + double(n) * p + shadow * p, stretch);
-            CHECK(judge_tube(a, b, de, dt_s, t_line_s, n) == tube_verdict::split);
+            CHECK(judge_tube(a, b, de, dt_s, n) == tube_verdict::split);
         }
     }
     // Judged as adjacent rays (the ratio 3), two intervals hide a shadow up to four intervals' span.
     const tube_end a = seabed_end(0.05, stretch), b = seabed_end(0.05 + 2 * p + 3.0 * p, stretch);
-    CHECK(judge_tube(a, b, 2 * de1, dt_s, t_line_s) == tube_verdict::continuous);
-    CHECK(judge_tube(a, b, 2 * de1, dt_s, t_line_s, 2) == tube_verdict::split);
+    CHECK(judge_tube(a, b, 2 * de1, dt_s) == tube_verdict::continuous);
+    CHECK(judge_tube(a, b, 2 * de1, dt_s, 2) == tube_verdict::split);
 }
 
 TEST_CASE("across a facet's edge, a ray grazing its facet is refined by its own stretch, not only by the time gap") {
@@ -87,15 +86,15 @@ TEST_CASE("across a facet's edge, a ray grazing its facet is refined by its own 
     const double de = 3.4e-4;
     const tube_end grazing = seabed_end(0.0266, 130.0, 0.0289, 0.467);
     const tube_end steady = seabed_end(0.0266 + 0.1 * dt_s, 0.058, 3.6e-6, 0.67);
-    CHECK(judge_tube(grazing, steady, de, dt_s, t_line_s) == tube_verdict::coarse);
-    CHECK(judge_tube(steady, grazing, de, dt_s, t_line_s) == tube_verdict::coarse);
+    CHECK(judge_tube(grazing, steady, de, dt_s) == tube_verdict::coarse);
+    CHECK(judge_tube(steady, grazing, de, dt_s) == tube_verdict::coarse);
     // Echoes within a factor 2 of each other: the time gap alone decides, and a tenth of a sample is below the
     // eighth the facets' edges are refined to.
     const tube_end near = seabed_end(0.0266 + 0.1 * dt_s, 0.058, 0.0289 / 1.5, 0.67);
-    CHECK(judge_tube(grazing, near, de, dt_s, t_line_s) == tube_verdict::continuous);
+    CHECK(judge_tube(grazing, near, de, dt_s) == tube_verdict::continuous);
     // One facet (the same normal): nothing jumps between the rays, whatever their stretches.
     const tube_end same_facet = seabed_end(0.0266 + 0.1 * dt_s, 0.058, 3.6e-6, 0.467);
-    CHECK(judge_tube(grazing, same_facet, de, dt_s, t_line_s) == tube_verdict::continuous);
+    CHECK(judge_tube(grazing, same_facet, de, dt_s) == tube_verdict::continuous);
 }
 
 TEST_CASE("a located edge's grazing end stays unresolved until its stretch over the step is a sixteenth of a sample") {
@@ -245,7 +244,7 @@ TEST_CASE("halving never locates a facet's edge as an edge of the line below a f
             };
             // Depth first, as the simulator refines; true once a sub-pair is a located edge.
             const auto halve = [&](const auto& self, double e0, double e1, int depth) -> bool {
-                const tube_verdict v = judge_tube(end(e0), end(e1), e1 - e0, dt_s, t_line_s);
+                const tube_verdict v = judge_tube(end(e0), end(e1), e1 - e0, dt_s);
                 if (v == tube_verdict::located) return true;
                 if (v == tube_verdict::continuous || depth > 30) return false;
                 const double m = 0.5 * (e0 + e1);
@@ -274,4 +273,20 @@ TEST_CASE("halving never locates a facet's edge as an edge of the line below a f
     // One facet, or an end that met nothing: never.
     CHECK_FALSE(sss::detail::facet_edge_marks_line(seabed_end(t0, s_a), seabed_end(t0, 10 * s_a)));
     CHECK_FALSE(sss::detail::facet_edge_marks_line(tube_end{}, seabed_end(t0, 10 * s_a, 10.0, 0.95)));
+}
+
+TEST_CASE("a lit ray beside one that returned after the line's end is refined until the edge is located, as any edge") {
+    // The far edge of coverage: the part of the step within the line holds echo, wherever the lit ray's facet says the
+    // step would reach (its stretch is for straight rays, several times short in refracting water).
+    const tube_end lit = seabed_end(0.1349, 0.06), beyond{};
+    const double located = sss::detail::located_fraction * dt_s;
+    for (const double de : {1e-2, 1e-3, 1e-4}) {
+        CAPTURE(de);
+        CHECK(judge_tube(lit, beyond, de, dt_s) == tube_verdict::split);
+        CHECK(judge_tube(beyond, lit, de, dt_s) == tube_verdict::split);
+    }
+    const double de_located = 0.9 * located / 0.06;
+    CHECK(judge_tube(lit, beyond, de_located, dt_s) == tube_verdict::located);
+    CHECK(judge_tube(beyond, lit, de_located, dt_s) == tube_verdict::located);
+    CHECK(judge_tube(beyond, beyond, 1e-3, dt_s) == tube_verdict::continuous); // nothing on either side
 }

@@ -25,7 +25,9 @@
 /// - cubic (default): piecewise cubic Hermite whose slope at each sample is that of the parabola through the
 ///   sample and its two neighbours (one-sided parabola at the ends; the chord with two samples). It passes
 ///   through the samples, is C1, and reproduces quadratics exactly.
-/// Output angles: yaw in [0, 2 pi), pitch and roll in (-pi, pi].
+/// Output angles: yaw in [0, 2 pi), pitch and roll within 90 degrees of level, as the samples are: where a cubic
+/// between samples near 90 degrees overshoots (samples 0, 89, 89, 0 degrees reach 100), the angle is held just short
+/// of 90 degrees.
 ///
 /// Pings. Keyed by time: ping i is at time t0 + i * ping_interval_s, t0 = `ping_zero_at` (default the first
 /// sample's time). Keyed by ping: ping i is the sample key k0 + i, k0 = `ping_zero_at` (default the first
@@ -187,8 +189,8 @@ public:
             y -= sw * std::sin(yaw);
         }
         const vec3<T> position{static_cast<T>(x), static_cast<T>(y), static_cast<T>(z)};
-        return make_pose(static_cast<T>(t), position, static_cast<T>(wrap_pi(eval(roll_, k))),
-                         static_cast<T>(wrap_pi(eval(pitch_, k))), static_cast<T>(wrap_two_pi(yaw)));
+        return make_pose(static_cast<T>(t), position, static_cast<T>(near_level(eval(roll_, k))),
+                         static_cast<T>(near_level(eval(pitch_, k))), static_cast<T>(wrap_two_pi(yaw)));
     }
 
 private:
@@ -227,6 +229,12 @@ private:
     [[nodiscard]] static double wrap_pi(double a) noexcept {
         const double w = std::remainder(a, 2.0 * pi_v<double>);
         return w <= -pi_v<double> ? w + 2.0 * pi_v<double> : w;
+    }
+    /// An interpolated roll or pitch wrapped to (-pi, pi] and held within 90 degrees of level (file comment): at least
+    /// 1e-6 rad short of it, which float too keeps below 90 degrees (pi/2 in float rounds up).
+    [[nodiscard]] static double near_level(double a) noexcept {
+        constexpr double limit = 0.5 * pi_v<double> - 1e-6;
+        return std::clamp(wrap_pi(a), -limit, limit);
     }
     [[nodiscard]] static double wrap_two_pi(double a) noexcept {
         double w = std::fmod(a, 2.0 * pi_v<double>);

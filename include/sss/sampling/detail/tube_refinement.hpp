@@ -55,8 +55,12 @@
 /// L > 2 p (gap > 3 p), and across n intervals the same L is found when the gap exceeds (1 + 2 / n) times the
 /// prediction n p.
 ///
-/// A pair whose valid ray's surface would carry on beyond the end of the line (the far edge of coverage) is left
-/// as it is: nothing the receiver records lies between them.
+/// The far edge of coverage (a valid ray whose neighbour returns after the line ends) is located as any edge is: the
+/// part of the step within the line holds echo, and the valid end's half step as a point at its own time would put
+/// up to twice or none of it into one of the line's last samples. In refracting water the launch angles' spacing
+/// (made for straight rays) leaves the last rays a sample or two short of the line's end, with neighbours two
+/// samples apart and a stretch (from the facet alone) several times short: a thermocline's line gained 29 % in its
+/// second-to-last sample against a render at 16 rays per sample, and is within 0.5 % of it once located.
 
 #include <algorithm>
 #include <array>
@@ -125,11 +129,11 @@ enum class tube_verdict : unsigned char {
     return a.valid && b.valid && facet_edge(a, b) && hi > 6.0 * lo;
 }
 
-/// Judges two rays `de` (rad) apart, with sample interval `dt_s` and the line ending at two-way time `t_line_s`.
+/// Judges two rays `de` (rad) apart, with sample interval `dt_s`.
 /// `stride`: the launch intervals of their column between them (a sparse column, ray_density::along_split_sparse):
 /// their gap is an edge where it exceeds the prediction by twice one interval's, as between adjacent rays.
 [[nodiscard]] inline tube_verdict judge_tube(const tube_end& a, const tube_end& b, double de, double dt_s,
-                                             double t_line_s, std::size_t stride = 1) noexcept {
+                                             std::size_t stride = 1) noexcept {
     // A time gap this many times the prediction is an edge: 3 between adjacent rays, 1 + 2 / stride across more.
     const double gap_ratio = 1.0 + 2.0 / double(std::max<std::size_t>(stride, 1));
     const double gap_floor = 0.25 * dt_s;    // a gap below a quarter sample never is
@@ -141,7 +145,6 @@ enum class tube_verdict : unsigned char {
     if (!a.valid && !b.valid) return tube_verdict::continuous;
     if (a.valid != b.valid) {
         const tube_end& v = a.valid ? a : b;
-        if (v.t_s + v.stretch * de >= t_line_s) return tube_verdict::continuous; // the far edge of coverage
         return v.stretch * de <= located ? tube_verdict::located : tube_verdict::split;
     }
     const double gap = std::abs(b.t_s - a.t_s);
