@@ -1153,7 +1153,9 @@ private:
                     // The far edge of coverage lies within this step: located by refinement as any edge is
                     // (detail::judge_tube), so that the last ray's echo does not stand for the whole part of the
                     // step within the line (here, in refracting water, neighbours may land two samples apart).
-                    refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit);
+                    // No edge is recorded for the along-track check: these rays lie past the column's launch
+                    // intervals, which the check divides and compares.
+                    refine(scene, col, prev, prev_bounce, cur, bounce, 0, budget, visit, /*recorded=*/true);
                 }
                 if (!cur.valid && !bounce.valid) break;
                 prev = cur;

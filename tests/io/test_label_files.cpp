@@ -209,11 +209,12 @@ TEST_CASE("The legend names every value of the instance image, an object whose s
     scratch_dir d;
     const std::vector<io::label_class> classes{{1, "rock"}, {2, "tyre"}, {3, "mine"}, {4, "wreck"}, {5, "pipe"}};
     const label_image img = random_labels(40, 50, 120, 11);
-    std::map<std::uint32_t, std::uint32_t> in_image; // object -> class, over highlight and shadow samples
+    std::map<std::uint32_t, std::uint32_t> in_image; // object -> class: its box's, else its first shadow sample's
     std::size_t shadow_only = 0;
-    for (const sample_label& l : img.values)
-        if (l.kind == sample_class::highlight || l.kind == sample_class::shadow) in_image.emplace(l.object, l.label);
     const auto boxes = io::object_boxes(img, io::box_extent::highlight_and_shadow);
+    for (const io::object_box& b : boxes) in_image.emplace(b.object, b.class_id);
+    for (const sample_label& l : img.values)
+        if (l.kind == sample_class::shadow) in_image.emplace(l.object, l.label);
     for (const auto& [object, cls] : in_image)
         shadow_only += std::none_of(boxes.begin(), boxes.end(), [&](const io::object_box& b) { return b.object == object; });
     REQUIRE(shadow_only > 0u); // the case in question occurs in this image
@@ -229,4 +230,24 @@ TEST_CASE("The legend names every value of the instance image, an object whose s
         CHECK(legend[key]["class_id"] == cls);
         CHECK(legend[key]["class"] == classes[cls - 1].name);
     }
+}
+
+TEST_CASE("The legend gives an object the class of its box, whose highlight may be labelled apart from its shadow") {
+    // One object of two parts: its shadow, cast by a part labelled 2, comes first in the row (port: farther out, to
+    // the left); its highlight is labelled 1. Its box, COCO and YOLO say class 1, and so must the legend.
+    scratch_dir d;
+    const std::vector<io::label_class> classes{{1, "mine"}, {2, "chain"}};
+    label_image img{.pings = 1, .samples = 2, .dt_s = 1e-4, .values = {}};
+    img.values = {{.kind = sample_class::shadow, .object = 4, .label = 2, .material = 0},
+                  {.kind = sample_class::highlight, .object = 4, .label = 1, .material = 0},
+                  {.kind = sample_class::seabed, .object = no_object, .label = 0, .material = 0},
+                  {.kind = sample_class::seabed, .object = no_object, .label = 0, .material = 0}};
+    const auto boxes = io::object_boxes(img, io::box_extent::highlight_and_shadow);
+    REQUIRE(boxes.size() == 1u);
+    CHECK(boxes[0].class_id == 1u);
+    const std::string stem = d.file("parts");
+    io::write_label_images(stem, img, classes);
+    const auto legend = nlohmann::json::parse(slurp(stem + "_legend.json"))["instance_png"];
+    CHECK(legend["5"]["class_id"] == 1);
+    CHECK(legend["5"]["class"] == "mine");
 }

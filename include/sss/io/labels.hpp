@@ -257,10 +257,13 @@ inline void write_label_images(const std::string& stem, const label_image& img, 
     j.member("0", "no_coverage").member("1", "water_column").member("2", "seabed").member("3", "highlight").member("4", "shadow");
     j.end_object().key("instance_png").begin_object().member("0", "none");
     // Every value of the instance image: an object whose shadow alone is in the image (its highlight beyond the
-    // swath, or nearer than the first return in ground range) has pixels too, though it has no box.
-    std::map<std::uint32_t, std::uint32_t> objects; // object id -> its class (its first sample's)
+    // swath, or nearer than the first return in ground range) has pixels too, though it has no box. An object's class
+    // is its box's (its first highlight sample's), as in COCO and YOLO; a shadow-only object's, its first shadow
+    // sample's (a shadow carries the label of the part that casts it, which may differ from the highlight's).
+    std::map<std::uint32_t, std::uint32_t> objects; // object id -> its class
+    for (const object_box& b : object_boxes(img, box_extent::highlight)) objects.emplace(b.object, b.class_id);
     for (const sample_label& l : img.values)
-        if (l.kind == sample_class::highlight || l.kind == sample_class::shadow) objects.emplace(l.object, l.label);
+        if (l.kind == sample_class::shadow) objects.emplace(l.object, l.label);
     for (const auto& [object, class_id] : objects) {
         std::string name = "class_" + std::to_string(class_id);
         for (const label_class& c : classes)

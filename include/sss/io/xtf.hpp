@@ -251,7 +251,6 @@ inline void write_xtf(const std::string& path, const xtf_file& f) {
     f.header.program_name = get_chars(h, 2, 8);
     f.header.sonar_name = get_chars(h, 18, 16);
     f.header.note = get_chars(h, 36, 64);
-    f.header.file_name = get_chars(h, 100, 64);
     const auto nav = get_le<std::uint16_t>(h, 164);
     f.header.nav_units = nav == 3 ? xtf_nav_units::latitude_longitude : xtf_nav_units::projected_m;
     const std::size_t n_sonar = get_le<std::uint16_t>(h, 166);

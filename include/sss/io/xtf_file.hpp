@@ -26,7 +26,8 @@ struct xtf_header {
     std::string sonar_name = "sss simulator";  ///< SonarName (16 characters kept)
     std::string note;                          ///< NoteString (64 characters kept)
     /// ThisFileName (64 characters kept); empty: write_xtf writes the last component of the path it writes to
-    /// (give the final name here when the file is written under a temporary name and renamed later).
+    /// (give the final name here when the file is written under a temporary name and renamed later). The reader
+    /// leaves it empty, so that a file read and written elsewhere takes its new name.
     std::string file_name;
     /// The samples carry time-varied gain: ProcessingFlags 4 ("TVG applied") in each channel header, so that a
     /// reader does not apply its own on top.

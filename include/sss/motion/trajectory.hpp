@@ -25,9 +25,9 @@
 /// - cubic (default): piecewise cubic Hermite whose slope at each sample is that of the parabola through the
 ///   sample and its two neighbours (one-sided parabola at the ends; the chord with two samples). It passes
 ///   through the samples, is C1, and reproduces quadratics exactly.
-/// Output angles: yaw in [0, 2 pi), pitch and roll within 90 degrees of level, as the samples are: where a cubic
-/// between samples near 90 degrees overshoots (samples 0, 89, 89, 0 degrees reach 100), the angle is held just short
-/// of 90 degrees.
+/// Output angles: yaw in [0, 2 pi), pitch and roll within 90 degrees of level, as the samples are (each taken
+/// modulo 2 pi): where a cubic between samples near 90 degrees overshoots (samples 0, 89, 89, 0 degrees reach 100),
+/// the angle is held just short of 90 degrees.
 ///
 /// Pings. Keyed by time: ping i is at time t0 + i * ping_interval_s, t0 = `ping_zero_at` (default the first
 /// sample's time). Keyed by ping: ping i is the sample key k0 + i, k0 = `ping_zero_at` (default the first
@@ -141,7 +141,7 @@ public:
             if (s.pitch_rad.empty()) pitch = derived_pitch;
         }
         yaw_ = make_channel(unwrap(std::move(yaw)), "trajectory.yaw_rad");
-        pitch_ = make_channel(unwrap(std::move(pitch)), "trajectory.pitch_rad");
+        pitch_ = make_channel(wrapped(std::move(pitch)), "trajectory.pitch_rad");
 
         // Sample times, for the ping times and the turn rate.
         std::vector<double> t(n);
@@ -157,7 +157,7 @@ public:
             const std::vector<double> vx = slopes(t, pos_[0].value), vy = slopes(t, pos_[1].value);
             for (std::size_t i = 0; i < n; ++i) roll[i] = std::atan(std::hypot(vx[i], vy[i]) * r[i] / gravity_mps2);
         }
-        roll_ = make_channel(unwrap(std::move(roll)), "trajectory.roll_rad");
+        roll_ = make_channel(wrapped(std::move(roll)), "trajectory.roll_rad");
         if (!s.heave_m.empty()) heave_ = make_channel(to_double(s.heave_m), "trajectory.heave_m");
         if (!s.sway_m.empty()) sway_ = make_channel(to_double(s.sway_m), "trajectory.sway_m");
         if (has_time_) t0_ = eval(time_, k0_);
@@ -189,8 +189,8 @@ public:
             y -= sw * std::sin(yaw);
         }
         const vec3<T> position{static_cast<T>(x), static_cast<T>(y), static_cast<T>(z)};
-        return make_pose(static_cast<T>(t), position, static_cast<T>(near_level(eval(roll_, k))),
-                         static_cast<T>(near_level(eval(pitch_, k))), static_cast<T>(wrap_two_pi(yaw)));
+        return make_pose(static_cast<T>(t), position, static_cast<T>(held_near_level(eval(roll_, k))),
+                         static_cast<T>(held_near_level(eval(pitch_, k))), static_cast<T>(wrap_two_pi(yaw)));
     }
 
 private:
@@ -230,11 +230,18 @@ private:
         const double w = std::remainder(a, 2.0 * pi_v<double>);
         return w <= -pi_v<double> ? w + 2.0 * pi_v<double> : w;
     }
-    /// An interpolated roll or pitch wrapped to (-pi, pi] and held within 90 degrees of level (file comment): at least
-    /// 1e-6 rad short of it, which float too keeps below 90 degrees (pi/2 in float rounds up).
-    [[nodiscard]] static double near_level(double a) noexcept {
+    /// An interpolated roll or pitch (its channel's samples wrapped to within 90 degrees of level: `wrapped`) held
+    /// within 90 degrees of level (file comment): at least 1e-6 rad short of it, which float too keeps below 90 degrees
+    /// (pi/2 in float rounds up). An overshoot of any size stays on its own side.
+    [[nodiscard]] static double held_near_level(double a) noexcept {
         constexpr double limit = 0.5 * pi_v<double> - 1e-6;
-        return std::clamp(wrap_pi(a), -limit, limit);
+        return std::clamp(a, -limit, limit);
+    }
+    /// Roll or pitch samples each wrapped to (-pi, pi]: within 90 degrees of level (require_near_level, or derived
+    /// so), neighbours then differ by less than pi, so the shortest arc between them is the plain difference.
+    [[nodiscard]] static std::vector<double> wrapped(std::vector<double> a) {
+        for (double& x : a) x = wrap_pi(x);
+        return a;
     }
     [[nodiscard]] static double wrap_two_pi(double a) noexcept {
         double w = std::fmod(a, 2.0 * pi_v<double>);
