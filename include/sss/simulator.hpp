@@ -66,6 +66,7 @@
 #include "sss/receiver/line_stage.hpp"
 #include "sss/receiver/receiver.hpp"
 #include "sss/receiver/time_sampler.hpp"
+#include "sss/sampling/column_edges.hpp"
 #include "sss/sampling/detail/tube_refinement.hpp"
 #include "sss/sampling/division_depths.hpp"
 #include "sss/sampling/launch_angles.hpp"
@@ -198,6 +199,15 @@ struct ray_density {
     /// 1.5 times the rays for no less error). 0 switches it off. Like the rest of the along-track check, it needs
     /// refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     double along_split_echo = 0.1;
+    /// How far (in range samples) the first return over a level seabed may move across one along-track column near
+    /// the nearest first return, a quarter of that where it turns within a column, and more farther out
+    /// (sampling/column_edges.hpp): where it moves further (a beam wide along track), the columns there are
+    /// narrower, up to 4096 per side. A column puts all it sees at its centre's times, so across a wide column the
+    /// onset of the echo was one step where the beam's integral ramps (8 dB in single samples under a 1 mm element
+    /// at 100 kHz; with this, 0.3 dB, for about 14 times the time per ping). Beams a few degrees wide along track
+    /// (the survey's 100 kHz array) keep their evenly spaced columns bit for bit. 0: evenly spaced columns,
+    /// whatever the beam's width.
+    double along_onset = 1.0;
 };
 
 /// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
@@ -239,6 +249,7 @@ public:
         if (density_.across == 0) sss::require_positive(density_.per_sample, "ray_density.per_sample");
         sss::require(density_.along_split <= 6561, "ray_density.along_split", "must be <= 6561 (3^8)");
         sss::require_non_negative(density_.along_split_echo, "ray_density.along_split_echo");
+        sss::require_non_negative(density_.along_onset, "ray_density.along_onset");
         c_ref_ = double(propagation_.reference_speed_mps());
         samples_ = receiver_.samples(c_ref_);
         sss::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
@@ -487,14 +498,23 @@ private:
         f.clearance = p.position.z - top_m;
         if (density_.across != 0) f.cd.rays = density_.across;
         else f.cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
-        const std::size_t n_along = along_columns(ext, sd);
         const double a0 = ext.along_min_rad, a1 = ext.along_max_rad;
-        auto bounds = [&](std::size_t j) {
-            return std::pair<double, double>{a0 + (a1 - a0) * double(j) / double(n_along),
-                                             a0 + (a1 - a0) * double(j + 1) / double(n_along)};
-        };
         const buffer_lease lease(*buffers_);
         trace_buffers& b = *lease.buffers;
+        // The columns' edges: evenly spaced, or narrower where the first return moves across them (column_edges.hpp).
+        std::vector<double>& edges = b.edges;
+        const double onset_tolerance_m = density_.along_onset * 0.5 * c_ref_ * dt_;
+        const double altitude_m = double(f.altitude);
+        const std::size_t n_even = along_columns(ext, sd);
+        column_edges(edges, a0, a1, n_even, onset_tolerance_m, double(f.max_range_m), [&](double a) {
+            return nearest_range_m(sd, a, double(ext.depression_min_rad), double(ext.depression_max_rad),
+                                   p.body_to_world, altitude_m);
+        });
+        const std::size_t n_along = edges.size() - 1;
+        auto bounds = [&](std::size_t j) { return std::pair<double, double>{edges[j], edges[j + 1]}; };
+        double widest = (a1 - a0) / double(n_along); // the widest column (rad): every one where they are even
+        if (n_along != n_even)
+            for (std::size_t j = 0; j < n_along; ++j) widest = std::max(widest, edges[j + 1] - edges[j]);
         column_scratch& scratch = b.scratch;
         const std::size_t levels = division_levels();
         if (density_.refine_depth == 0 || levels == 0 || n_along < 2) {
@@ -511,7 +531,7 @@ private:
         bool hold_all = false;
         auto rec = [&](std::size_t j) -> column_record& { return records[hold_all ? j : j % 3]; };
         // The columns' spacing at the end of the line against the range sample.
-        const bool coarse = double(f.max_range_m) * (a1 - a0) / double(n_along) > 2.0 * 0.5 * c_ref_ * dt_;
+        const bool coarse = double(f.max_range_m) * widest > 2.0 * 0.5 * c_ref_ * dt_;
         // The columns' echoes compared sample by sample there too (ray_density::along_split_echo).
         const bool echo_check = density_.along_split_echo > 0.0 && coarse;
         auto trace_into = [&](std::size_t j) {
@@ -546,7 +566,7 @@ private:
         std::vector<target_span>& targets = b.targets;
         targets.clear();
         if (objects && density_.along_split_targets && !objects->empty())
-            target_spans(propagation_, *objects, p, sd, ext, (a1 - a0) / double(n_along), f.t_max_one_way,
+            target_spans(propagation_, *objects, p, sd, ext, widest, f.t_max_one_way,
                          double(f.max_range_m), targets);
         if (!targets.empty()) f.targets = &targets;
         std::vector<double>& line = b.line;
@@ -755,6 +775,7 @@ private:
         std::vector<double> weights;     ///< the beam's weight on each column
         std::vector<target_span> targets; ///< the side's small targets (ray_density::along_split_targets)
         std::vector<unsigned char> flags; ///< the samples where a column's echo departs (ray_density::along_split_echo)
+        std::vector<double> edges;        ///< the side's columns' along-track edges (rad): sampling/column_edges.hpp
     };
 
     /// Buffers kept between trace calls, so that a ping reuses the memory of the pings before it instead of

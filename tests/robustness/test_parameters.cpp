@@ -91,6 +91,8 @@ TEST_CASE("propagation, scattering, motion and ray density parameters are reject
           "ray_density.along_split_echo");
     CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_split_echo = nan_v}); }) ==
           "ray_density.along_split_echo");
+    CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_onset = -1.0}); }) == "ray_density.along_onset");
+    CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_onset = nan_v}); }) == "ray_density.along_onset");
     CHECK(named([] { sss::scene::flat_seabed<double>{nan_v}; }) == "flat_seabed.height_m");
 }
 

@@ -209,6 +209,7 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
     r.along_split_targets = d.run.along_split_targets;
     r.along_split_nadir = d.run.along_split_nadir;
     r.along_split_echo = d.run.along_split_echo;
+    r.along_onset = d.run.along_onset;
     if (d.run.seabed_edges_along != "auto") r.along_split_seabed = d.run.seabed_edges_along == "on";
     return r;
 }

@@ -471,6 +471,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.boolean("along_split_targets", d.run.along_split_targets);
         r.boolean("along_split_nadir", d.run.along_split_nadir);
         r.non_negative("along_split_echo", d.run.along_split_echo);
+        r.non_negative("along_onset", d.run.along_onset);
         r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }

@@ -196,6 +196,7 @@ struct render {
     bool along_split_nadir = true;           ///< near the first return, columns over a seabed not one plane divide
     double along_split_echo = 0.1;           ///< columns divide where their echo departs from their neighbours' by
                                              ///< more than this fraction of the three columns' echo
+    double along_onset = 1.0;                ///< how far (range samples) the first return may move across a column
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 

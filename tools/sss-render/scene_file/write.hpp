@@ -68,6 +68,7 @@ struct toml_out {
     o.kv("along_split_targets", d.run.along_split_targets);
     o.kv("along_split_nadir", d.run.along_split_nadir);
     o.kv("along_split_echo", d.run.along_split_echo);
+    o.kv("along_onset", d.run.along_onset);
     o.kv("precision", d.run.precision);
 
     const auto& b = d.bed;
