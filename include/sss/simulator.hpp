@@ -519,6 +519,7 @@ private:
         const std::size_t levels = division_levels();
         if (density_.refine_depth == 0 || levels == 0 || n_along < 2) {
             for (std::size_t j = 0; j < n_along; ++j) {
+                detail::ping_stop_point(); // a stopped render ends its pings here (core/render_control.hpp)
                 const auto [lo, hi] = bounds(j);
                 in_column(scene, f, lo, hi, [&](const Sc& col) { trace_column(col, f, lo, hi, scratch, nullptr, visit); });
             }
@@ -535,6 +536,7 @@ private:
         // The columns' echoes compared sample by sample there too (ray_density::along_split_echo).
         const bool echo_check = density_.along_split_echo > 0.0 && coarse;
         auto trace_into = [&](std::size_t j) {
+            detail::ping_stop_point(); // a stopped render ends its pings here (core/render_control.hpp)
             column_record& r = rec(j);
             r.echoes.clear();
             r.edges.clear();

@@ -1,11 +1,13 @@
 // simulator::render on a persistent pool: every ping is rendered once whatever the threads, progress reaches every
-// count in order, and cancelling stops the render with render_cancelled and leaves simulator and pool reusable.
+// count in order, and cancelling stops the render with render_cancelled and leaves simulator and pool reusable; a
+// stop flag set during a ping ends it at its next column.
 
 #include <doctest/doctest.h>
 
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -102,4 +104,59 @@ TEST_CASE("returning false from progress cancels: render_cancelled says how far 
     const auto again = sim.render(seabed, 0, 12, sss::render_control{.threads = 2, .pool = &pool});
     const auto ref = sim.render(seabed, 0, 12, 1);
     CHECK(again.values == ref.values);
+}
+
+namespace {
+
+// A flat seabed that counts the rays it is asked about and sets `stop` when the count reaches `stop_at`.
+class stopping_seabed {
+public:
+    using value_type = float;
+    stopping_seabed(std::atomic<bool>& stop, std::size_t stop_at) : stop_(&stop), stop_at_(stop_at) {}
+    [[nodiscard]] std::optional<sss::hit<float>> intersect(const sss::ray<float>& r, float t_max_m) const {
+        if (++count_ == stop_at_) stop_->store(true);
+        return seabed_.intersect(r, t_max_m);
+    }
+    [[nodiscard]] float seabed_height_m(float x, float y) const { return seabed_.seabed_height_m(x, y); }
+    [[nodiscard]] float top_m() const { return seabed_.top_m(); }
+    [[nodiscard]] std::size_t count() const noexcept { return count_; }
+
+private:
+    sss::scene::flat_seabed<float> seabed_{};
+    std::atomic<bool>* stop_;
+    std::size_t stop_at_;
+    mutable std::size_t count_ = 0;
+};
+
+} // namespace
+
+TEST_CASE("a stop flag set during a ping ends it at the next column: render_cancelled counts no ping done") {
+    const sim_t sim = make_sim();
+    std::atomic<bool> stop{false};
+    stopping_seabed whole(stop, 0);
+    (void)sim.ping(whole, 0);
+    const std::size_t per_ping = whole.count();
+    REQUIRE(per_ping > 1000);
+    stop.store(false);
+    sss::thread_pool pool(1);
+    stopping_seabed halfway(stop, per_ping / 2);
+    try {
+        (void)sim.render(halfway, 0, 4, sss::render_control{.threads = 1, .pool = &pool, .stop = &stop});
+        FAIL("render was not stopped");
+    } catch (const sss::render_cancelled& e) {
+        CHECK(e.done() == 0);
+        CHECK(e.total() == 4);
+    }
+    // Set halfway through the first ping, the flag let at most a column's rays more be traced (16 columns a ping),
+    // where finishing the ping would have taken half of its rays.
+    CHECK(halfway.count() - per_ping / 2 < per_ping / 8);
+    // A flag set before the render: nothing is traced. Cleared: the next render is whole.
+    stopping_seabed none(stop, 0);
+    CHECK_THROWS_AS((void)sim.render(none, 0, 4, sss::render_control{.threads = 1, .pool = &pool, .stop = &stop}),
+                    sss::render_cancelled);
+    CHECK(none.count() == 0);
+    stop.store(false);
+    const sss::scene::flat_seabed<float> seabed;
+    CHECK(sim.render(seabed, 0, 4, sss::render_control{.threads = 1, .pool = &pool, .stop = &stop}).values ==
+          sim.render(seabed, 0, 4, 1).values);
 }

@@ -25,9 +25,13 @@ struct render_request {
     bool dry_run = false;        ///< print the resolved scene and the coverage problems, render nothing
 };
 
-/// Set by SIGINT, SIGTERM or SIGHUP to the signal's number: the render stops (pings under way finish) and no file is
-/// kept. 0: none.
+/// Set by SIGINT, SIGTERM or SIGHUP to the signal's number: the render stops and no file is kept. 0: none.
 inline std::atomic<int> interrupted{0};
+/// Set with `interrupted`: the render's stop flag (sss::render_control::stop), which ends the pings under way at
+/// their next along-track column.
+inline std::atomic<bool> stop_render{false};
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free,
+              "the stop flags are set in a signal handler");
 
 struct interrupted_error : std::exception {
     [[nodiscard]] const char* what() const noexcept override { return "interrupted: no file written"; }

@@ -36,10 +36,12 @@
 /// The signals that stop a render: SIGINT, SIGTERM, SIGHUP.
 inline constexpr int sss_render_stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
 
-/// One of them: the render stops at the next ping and writes nothing; a second one, of any of them, ends the process
-/// at once (a ping under way can take long) by the signal's default action, which may leave temporary files.
+/// One of them: the render stops within the pings under way, at their next along-track column, and writes nothing;
+/// a second one, of any of them, ends the process at once (building a large seabed can take long) by the signal's
+/// default action, which may leave temporary files.
 extern "C" inline void sss_render_on_sigint(int sig) {
     sss::scene_file::interrupted.store(sig);
+    sss::scene_file::stop_render.store(true);
     for (const int s : sss_render_stop_signals) std::signal(s, SIG_DFL); // async-signal-safe
 }
 
@@ -91,16 +93,18 @@ private:
 };
 
 /// Pings [first, first + count) in one render, with their labels into *labels unless it is null (one trace for
-/// both: sss::render_labelled); its progress callback draws the bar and stops the render at Ctrl-C (pings under
-/// way finish, nothing is kept).
+/// both: sss::render_labelled); its progress callback draws the bar, and Ctrl-C stops the render within the pings
+/// under way (render_control::stop; nothing is kept).
 template <class Sim, Real T>
 sss::waterfall<T> render(const Sim& sim, const world<T>& w, std::size_t first, std::size_t count, unsigned threads,
                          sss::label_image* labels) {
     progress bar(count);
-    const sss::render_control control{.threads = threads, .progress = [&bar](const sss::render_progress& p) {
+    const sss::render_control control{.threads = threads,
+                                      .progress = [&bar](const sss::render_progress& p) {
                                           bar.update(p.done);
                                           return interrupted.load() == 0;
-                                      }};
+                                      },
+                                      .stop = &stop_render};
     try {
         if (labels == nullptr) return sim.render(w, first, count, control);
         auto both = sss::render_labelled(sim, w, first, count, control);
