@@ -17,7 +17,11 @@
 // reference (the same simulator doubled from {16, 0, 4} until a doubling changes the line by < 0.05 dB RMS):
 // RMS, median and 99th percentile of |dB| over the samples within 40 dB of the reference's peak, and how many of
 // the reference's shadow samples (>= 40 dB below their lit surroundings) the line fails to keep as dark.
-// Options: --quick (or a short --benchmark_min_time, as the perf smoke test passes) keeps to the default density;
+// Wide beams: the relief under ideal fans 30 and 90 deg wide along track (a short array, one element), at the
+// default density, with the along-track columns narrowed where the first return moves across them (the default,
+// ray_density::along_onset = 1) and evenly spaced (0), against the same simulator's converged reference.
+// Options: --quick (or a short --benchmark_min_time, as the perf smoke test passes) keeps to the default density
+// and leaves out the trench and the wide beams;
 // --density=ALONG,PER_SAMPLE (repeatable) measures those densities instead of the usual five.
 
 #include <algorithm>
@@ -113,6 +117,45 @@ void run_scene(const char* name, const Scene& scene, bool with_reference, const 
     }
 }
 
+/// The relief under an ideal fan `along_deg` wide along track: columns narrowed by the first return (the default)
+/// against evenly spaced ones, at the default density, against the converged reference.
+template <class Scene> void run_wide(const char* name, const Scene& scene, double along_deg) {
+    const auto pose = sss_test::rough_pose<double>(false);
+    auto make = [&](const sss::ray_density& d) {
+        return sss::simulator<>({}, {}, sss::beam::ideal_fan<double>({.along_width_deg = along_deg}), {},
+                                sss_test::rough_receiver(), d);
+    };
+    const auto r = sss_test::converged_line(make, scene, pose, sss::side::starboard,
+                                            {.start = {.along = 32, .across = 0, .per_sample = 4.0}, .max_doublings = 4});
+    std::printf("\n%s under a fan %g deg wide along track: reference {%zu, 0, %g}, last doubling %.3f dB%s\n", name,
+                along_deg, r.density.along, r.density.per_sample, r.last_change_db, r.converged ? "" : " (NOT converged)");
+    std::printf("| columns | rays/side | ms/side | RMS dB | median dB | 99th pct dB | shadow missed |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    row rows[2];
+    std::vector<double> lines[2];
+    const double onsets[2] = {1.0, 0.0};
+    for (int i = 0; i < 2; ++i) {
+        std::size_t n = 0;
+        const sss_test::counting_scene<Scene> counted(scene, n);
+        (void)starboard(make({.along_onset = onsets[i]}), counted, pose);
+        rows[i].rays = n;
+    }
+    for (int rep = 0; rep < 5; ++rep)
+        for (int i = 0; i < 2; ++i) {
+            const auto sim = make({.along_onset = onsets[i]});
+            const auto t0 = std::chrono::steady_clock::now();
+            lines[i] = starboard(sim, scene, pose);
+            const auto t1 = std::chrono::steady_clock::now();
+            rows[i].ms = std::min(rows[i].ms, 1e3 * std::chrono::duration<double>(t1 - t0).count());
+        }
+    for (int i = 0; i < 2; ++i) {
+        const auto e = sss_test::compare_lines(lines[i], r.values);
+        std::printf("| %s | %zu | %.2f | %.3f | %.3f | %.3f | %zu of %zu |\n",
+                    i == 0 ? "narrowed where the first return moves (default)" : "evenly spaced (along_onset = 0)",
+                    rows[i].rays, rows[i].ms, e.rms_db, e.median_db, e.p99_db, e.shadow_misses, e.shadow_samples);
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -141,5 +184,9 @@ int main(int argc, char** argv) {
     if (!quick) run_scene("trench", sss_test::trench_field<double>(), true, densities);
     run_scene("lee", sss_test::lee_slope_field<double>(0.057), true, densities);
     run_scene("targets", sss_test::target_scene<double>(), true, densities);
+    if (!quick) {
+        run_wide("relief", sss_test::ripple_field<double>(), 30.0);
+        run_wide("relief", sss_test::ripple_field<double>(), 90.0);
+    }
     return 0;
 }

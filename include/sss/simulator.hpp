@@ -204,9 +204,12 @@ struct ray_density {
     /// (sampling/column_edges.hpp): where it moves further (a beam wide along track), the columns there are
     /// narrower, up to 4096 per side. A column puts all it sees at its centre's times, so across a wide column the
     /// onset of the echo was one step where the beam's integral ramps (8 dB in single samples under a 1 mm element
-    /// at 100 kHz; with this, 0.3 dB, for about 14 times the time per ping). Beams a few degrees wide along track
-    /// (the survey's 100 kHz array) keep their evenly spaced columns bit for bit. 0: evenly spaced columns,
-    /// whatever the beam's width.
+    /// at 100 kHz; with this, 0.3 dB, for about 14 times the time per ping). Where the first return moves by less
+    /// than half the tolerance across every even column, nothing changes, bit for bit: the survey's 100 kHz array
+    /// under its towfish at 10 m (bench/bench_survey.cpp). A beam a few degrees wide can still narrow its columns
+    /// under a pitched towfish at a high sample rate (the default 100 kHz planar array, 5.6 deg along track, at 10 m:
+    /// 10 deg of pitch sampled at 100 kHz gives 24 columns for 10; 5 deg at 20 kHz, 30 m up, 11). 0: evenly spaced
+    /// columns, whatever the beam's width.
     double along_onset = 1.0;
 };
 
@@ -340,8 +343,9 @@ public:
     }
 
     /// Renders pings [first, first + count) into a waterfall as `control` says (core/render_control.hpp): threads
-    /// take pings one at a time from a persistent pool (dynamic scheduling), and a progress callback may cancel
-    /// (then render throws render_cancelled). The result does not depend on the number of threads or the pool.
+    /// take pings one at a time from a persistent pool (dynamic scheduling), a progress callback may cancel, and a
+    /// stop flag stops the pings under way between columns (then render throws render_cancelled). The result does
+    /// not depend on the number of threads or the pool.
     /// Throws invalid_parameter naming `render.count` when the image would hold more than sss::max_elements values
     /// (or `render.first` when first + count overflows), before anything is allocated.
     template <Scene Sc>
@@ -583,6 +587,7 @@ private:
         }
         std::vector<redo_range>& deep = b.deep;
         for (std::size_t j = 0; j < n_along; ++j) {
+            detail::ping_stop_point(); // also where every column was traced first (hold_all): column j's division
             if (!hold_all && j + 1 < n_along) trace_into(j + 1);
             const column_record& here = rec(j);
             windows.clear();

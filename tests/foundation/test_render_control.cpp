@@ -14,6 +14,8 @@
 
 #include <sss/sss.hpp>
 
+#include "../support/rough_scenes.hpp"
+
 namespace {
 
 using sim_t = sss::simulator<sss::scattering::lambertian<float>, sss::propagation::straight<float>,
@@ -159,4 +161,54 @@ TEST_CASE("a stop flag set during a ping ends it at the next column: render_canc
     const sss::scene::flat_seabed<float> seabed;
     CHECK(sim.render(seabed, 0, 4, sss::render_control{.threads = 1, .pool = &pool, .stop = &stop}).values ==
           sim.render(seabed, 0, 4, 1).values);
+}
+
+TEST_CASE("under an array whose columns are all traced before any is divided, a stop flag set meanwhile ends the "
+          "ping at the next column, and a flag cleared again before the ping unwinds still cancels the render") {
+    using array_sim = sss::simulator<sss::scattering::lambertian<double>, sss::propagation::straight<double>,
+                                     sss::beam::planar_array<double>, sss::motion::straight_line<double>>;
+    sss::beam::planar_array_params<double> ap;
+    ap.frequency_hz = 100e3;
+    const array_sim sim({}, {}, sss::beam::planar_array<double>(ap), {}, sss_test::rough_receiver());
+    // Rippled relief: the columns' echoes differ sample by sample, so every column of a side is traced and held
+    // before the first is divided, and the echoes reach the observer only then.
+    const auto ripples = sss_test::ripple_field<double>();
+    std::size_t whole = 0;
+    (void)sim.ping(ripples, 0, [&](sss::side, const auto&) { ++whole; });
+    REQUIRE(whole > 1000);
+    sss::thread_pool pool(1);
+    std::atomic<bool> stop{false};
+    std::size_t after = 0;
+    try {
+        sss::run_pings(4, sss::render_control{.threads = 1, .pool = &pool, .stop = &stop}, [&](std::size_t i) {
+            (void)sim.ping(ripples, i, [&](sss::side, const auto&) {
+                if (!stop.exchange(true)) return;
+                ++after;
+            });
+        });
+        FAIL("render was not stopped");
+    } catch (const sss::render_cancelled& e) {
+        CHECK(e.done() == 0);
+    }
+    CHECK(after < whole / 4); // set at the first echo of the first side: at most a column's echoes more
+    // A flag set during ping 2 and cleared as it unwinds: ping 2 stopped, so the render is cancelled after 2.
+    stop.store(false);
+    struct clear_on_exit {
+        std::atomic<bool>& flag;
+        bool armed;
+        ~clear_on_exit() {
+            if (armed) flag.store(false);
+        }
+    };
+    try {
+        sss::run_pings(4, sss::render_control{.threads = 1, .pool = &pool, .stop = &stop}, [&](std::size_t i) {
+            const clear_on_exit clear{stop, i == 2};
+            (void)sim.ping(ripples, i, [&](sss::side, const auto&) {
+                if (i == 2) stop.store(true);
+            });
+        });
+        FAIL("render was not cancelled");
+    } catch (const sss::render_cancelled& e) {
+        CHECK(e.done() == 2);
+    }
 }

@@ -140,3 +140,23 @@ TEST_CASE_TEMPLATE("a fan 120 degrees wide along track matches the flat-seabed q
     CHECK(err.rms_db <= 0.15);
     CHECK(std::abs(err.worst_db) <= 1.0); // the first sample, a third of it after the nadir time: 0.6 dB
 }
+
+TEST_CASE("a tolerance too fine for the cap keeps every column no wider than the even ones, and a vanishing one the cap") {
+    const sss::mat3<double> level = sss::body_to_world_rotation(0.0, 0.0, 0.0);
+    auto onset = [&](double a) {
+        return sss::nearest_range_m<double>(sss::side::starboard, a, -10.0 * deg, 70.0 * deg, level, 10.0);
+    };
+    const double a0 = -80.0 * deg, a1 = 80.0 * deg;
+    std::vector<double> edges;
+    for (const double tol : {7.5e-4, 1e-19, 1e-300}) {
+        CAPTURE(tol);
+        sss::column_edges(edges, a0, a1, 8, tol, 15.0, onset);
+        REQUIRE(edges.size() == 4097);
+        CHECK(edges.front() == a0);
+        CHECK(edges.back() == a1);
+        for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
+            CHECK(edges[j + 1] >= edges[j]);
+            CHECK(edges[j + 1] - edges[j] <= (a1 - a0) / 8.0 * (1.0 + 1e-9));
+        }
+    }
+}

@@ -46,13 +46,13 @@ struct render_control {
     const std::atomic<bool>* stop = nullptr; ///< set: the render stops (file comment); nullptr: never
 };
 
-/// Thrown by simulator::render when its progress callback returned false.
+/// Thrown by simulator::render when its progress callback returned false or its stop flag was set.
 class render_cancelled : public error {
 public:
     render_cancelled(std::size_t done, std::size_t total)
         : error("sss: render cancelled after " + std::to_string(done) + " of " + std::to_string(total) + " pings"),
           done_(done), total_(total) {}
-    /// Pings finished when the callback asked to cancel.
+    /// Pings finished when the callback asked to cancel, or before the render stopped.
     [[nodiscard]] std::size_t done() const noexcept { return done_; }
     /// Pings the render was asked for.
     [[nodiscard]] std::size_t total() const noexcept { return total_; }
@@ -106,7 +106,8 @@ private:
 /// pool and threads, one i at a time per thread, with control's progress, cancellation and stop; throws
 /// render_cancelled when the callback cancels or the stop flag is set, and rethrows the first exception work throws.
 /// work(i) must write only what belongs to i (calls for different i overlap); a simulator's traces within it stop
-/// between columns when the render is stopped (detail::ping_stop_point).
+/// between columns when the render is stopped, by throwing detail::ping_stopped, which work must let pass (a
+/// catch (...) in it that does not rethrow would count a stopped ping as done).
 template <class Work> void run_pings(std::size_t count, const render_control& control, Work&& work) {
     const auto& progress = control.progress;
     const auto stop_set = [&] { return control.stop != nullptr && control.stop->load(std::memory_order_relaxed); };
@@ -132,8 +133,8 @@ template <class Work> void run_pings(std::size_t count, const render_control& co
                 const detail::ping_stop_scope scope({&cancel_flag, control.stop});
                 work(i);
             } catch (const detail::ping_stopped&) {
-                if (stop_set()) throw stopped();
-                return; // cancelled by progress on another thread: dropped
+                if (cancel_flag.load(std::memory_order_relaxed)) return; // cancelled by progress: dropped
+                throw stopped(); // stopped by the flag (even if it was cleared since)
             }
             const std::lock_guard<std::mutex> hold(report_lock);
             if (cancelled) return; // finished after the cancellation: dropped

@@ -48,15 +48,15 @@ template <Real T>
     return altitude_m / best;
 }
 
-/// The edges of a side's along-track columns: `edges` receives the increasing angles a0 = edges[0] < ... < edges[m] = a1
-/// (rad) of m >= n columns (m = n, evenly spaced, where the tolerance holds for those).
+/// The edges of a side's along-track columns: `edges` receives the angles a0 = edges[0] < ... < edges[m] = a1 (rad)
+/// of m >= n columns (m = n, evenly spaced, where the tolerance holds for those, or a1 <= a0).
 /// \param n             columns asked for (ray_density::along, or more for the beam's pattern); at least 1
 /// \param tolerance_m   how far (m of slant range) the first return may move across one column
 /// \param max_range_m   the line's range: first returns beyond it are not seen and ask for nothing
 /// \param nearest_m     nearest_m(a): the slant range (m) of the first return of the launch plane at angle a
 ///                      (nearest_range_m; infinity where none)
-/// \param max_columns   at most this many columns; where the tolerance asks for more, each column's share of the
-///                      density is widened alike
+/// \param max_columns   at most this many columns; where the tolerance asks for more, the density it asks for
+///                      beyond the even columns' is scaled down alike (no column is wider than the even ones)
 template <class Nearest>
 void column_edges(std::vector<double>& edges, double a0, double a1, std::size_t n, double tolerance_m,
                   double max_range_m, Nearest&& nearest_m, std::size_t max_columns = 4096) {
@@ -84,8 +84,10 @@ void column_edges(std::vector<double>& edges, double a0, double a1, std::size_t 
     auto moving = [&](double r, double r_min) { return tolerance_m * std::max(1.0, 8.0 * (r - r_min) / r_min); };
     auto turning = [&](double r, double r_min) { return tolerance_m * std::max(0.25, 8.0 * (r - r_min) / r_min); };
     // The even columns stand where the onset moves across each by at most half the tolerance (its ends, quarters
-    // and centre sampled: the onset is smooth and turns at most once within a column).
-    std::vector<double> sampled(4 * n + 1);
+    // and centre sampled: the onset is smooth and turns at most once within a column). The samples are kept in
+    // `edges` meanwhile.
+    std::vector<double>& sampled = edges;
+    sampled.resize(4 * n + 1);
     for (std::size_t i = 0; i < sampled.size(); ++i) sampled[i] = onset(a0 + (a1 - a0) * double(i) / double(4 * n));
     const double sampled_min = *std::min_element(sampled.begin(), sampled.end());
     bool even_holds = true;
@@ -95,17 +97,19 @@ void column_edges(std::vector<double>& edges, double a0, double a1, std::size_t 
         const bool turns = lo != first && lo != last - 1;
         even_holds = *hi - *lo <= 0.5 * (turns ? turning(*lo, sampled_min) : moving(*lo, sampled_min));
     }
+    even(n);
     if (even_holds) return;
     // Density of columns (per rad) on a grid: 1 / the width w over which the onset, with its local slope r' and
     // curvature r'', moves by the tolerance (|r'| w / moving + |r''| w^2 / (8 turning) = 1), and at least
-    // n / (a1 - a0).
+    // n / (a1 - a0): `extra` accumulates what it asks for beyond that floor.
     const std::size_t cells = std::clamp<std::size_t>(64 * n, 2048, 16384);
     const double h = (a1 - a0) / double(cells);
     std::vector<double> r(cells + 3);
     for (std::size_t i = 0; i < r.size(); ++i) r[i] = onset(a0 + h * (double(i) - 1.0)); // r[i]: angle a0 + (i - 1) h
     const double base = double(n) / (a1 - a0);
     const double r_min = *std::min_element(r.begin(), r.end());
-    std::vector<double> cumulative(cells + 1, 0.0);
+    const double most = double(max_columns) / h; // no cell needs more than every column
+    std::vector<double> extra(cells + 1, 0.0);
     for (std::size_t i = 0; i < cells; ++i) {
         // the cell from a0 + i h to a0 + (i + 1) h, its ends r[i + 1] and r[i + 2]
         const double near = std::min(r[i + 1], r[i + 2]);
@@ -113,21 +117,27 @@ void column_edges(std::vector<double>& edges, double a0, double a1, std::size_t 
         const double a = std::max(std::abs(r[i + 2] - 2.0 * r[i + 1] + r[i]),
                                   std::abs(r[i + 3] - 2.0 * r[i + 2] + r[i + 1])) / (h * h) / (8.0 * turning(near, r_min));
         // 1 / w, w the positive root of a w^2 + b w - 1 = 0
-        const double per_rad = 0.5 * (b + std::sqrt(b * b + 4.0 * a));
-        cumulative[i + 1] = cumulative[i] + h * std::max(base, per_rad);
+        const double per_rad = std::min(most, 0.5 * (b + std::sqrt(b * b + 4.0 * a)));
+        extra[i + 1] = extra[i] + h * std::max(0.0, per_rad - base);
     }
-    const double total = cumulative.back();
-    const std::size_t m = std::min(max_columns, std::max(n, static_cast<std::size_t>(std::ceil(total - 1e-9))));
+    // m columns: what the density asks for, or at most max_columns, the extra density then scaled down alike (the
+    // floor stays: no column wider than the even ones).
+    const double asked = double(n) + extra.back();
+    if (!(asked > double(n) + 1e-9)) return;
+    const std::size_t m = asked >= double(max_columns) ? max_columns : static_cast<std::size_t>(std::ceil(asked - 1e-9));
     if (m <= n) return;
-    // Edge j where the cumulative density reaches j total / m, linear within a cell.
+    const double scale = (double(m) - double(n)) / extra.back();
+    // Edge j where the cumulative density, base h i + scale extra[i], reaches j (m columns of one each), linear
+    // within a cell.
+    auto cumulative = [&](std::size_t i) { return base * h * double(i) + scale * extra[i]; };
     edges.resize(m + 1);
     edges[0] = a0;
     std::size_t i = 0;
     for (std::size_t j = 1; j < m; ++j) {
-        const double target = total * double(j) / double(m);
-        while (i + 1 < cells && cumulative[i + 1] < target) ++i;
-        const double span = cumulative[i + 1] - cumulative[i];
-        const double f = span > 0.0 ? std::clamp((target - cumulative[i]) / span, 0.0, 1.0) : 0.0;
+        const double target = double(j);
+        while (i + 1 < cells && cumulative(i + 1) < target) ++i;
+        const double span = cumulative(i + 1) - cumulative(i);
+        const double f = span > 0.0 ? std::clamp((target - cumulative(i)) / span, 0.0, 1.0) : 0.0;
         edges[j] = std::max(edges[j - 1], a0 + h * (double(i) + f));
     }
     edges[m] = a1;
