@@ -431,7 +431,9 @@ public:
         }
     }
 
-    /// Along-track columns on one side: the requested count, or more where the beam's pattern needs them.
+    /// Along-track columns on one side: the requested count, or more where the beam's pattern needs them; evenly
+    /// spaced. A trace narrows them where the first return moves across them (ray_density::along_onset), and then
+    /// traces more.
     [[nodiscard]] std::size_t along_columns(const beam_extent<T>& ext, side sd) const noexcept {
         std::size_t n = density_.along;
         if constexpr (AlongResolvedBeam<B>) {
