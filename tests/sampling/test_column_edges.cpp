@@ -1,7 +1,8 @@
 // Along-track columns narrow where the first return moves across them: the nearest range a launch plane reaches is
 // the closed form a brute-force search over depressions finds; columns stay even, bit for bit, under a beam narrow
 // along track; under a wide one each column holds the onset's movement to the tolerance; and a fan 120 degrees wide
-// along track over a level seabed matches the flat-seabed quadrature from its first sample on.
+// along track over a level seabed matches the flat-seabed quadrature from its first sample on; and a beam a few degrees
+// wide, pitched and sampled finely, narrows its columns where that makes its first samples right.
 
 #include <doctest/doctest.h>
 
@@ -159,4 +160,60 @@ TEST_CASE("a tolerance too fine for the cap keeps every column no wider than the
             CHECK(edges[j + 1] - edges[j] <= (a1 - a0) / 8.0 * (1.0 + 1e-9));
         }
     }
+}
+
+namespace {
+
+// A towfish held at one pose: pitched bow up, 10 m above a level seabed.
+struct pitched_towfish {
+    using value_type = double;
+    double pitch_rad = 0.0;
+    [[nodiscard]] sss::pose<double> pose_at(std::size_t) const noexcept {
+        return sss::make_pose<double>(0.0, sss::vec3<double>{0.0, 0.0, 10.0}, 0.0, pitch_rad, 0.0);
+    }
+};
+
+} // namespace
+
+TEST_CASE("under a pitched towfish sampled finely, a beam a few degrees wide narrows its columns and its first samples "
+          "match a render at 256 even columns where even ones are more than a dB off") {
+    // The default 100 kHz planar array (5.6 degrees along track), 10 degrees of pitch, 100 kHz sampling: the first
+    // return moves 23 samples across the beam, 2.3 across each of its 10 even columns.
+    static_assert(sss::Motion<pitched_towfish>);
+    const sss::beam::planar_array<double> array(sss::beam::planar_array_params<double>{.frequency_hz = 100e3});
+    sss::receiver_params rx;
+    rx.sample_rate_hz = 100e3;
+    rx.max_range_m = 20.0;
+    using sim_t = sss::simulator<sss::scattering::lambertian<double>, sss::propagation::straight<double>,
+                                 sss::beam::planar_array<double>, pitched_towfish>;
+    const auto make = [&](sss::ray_density d) {
+        return sim_t(sss::scattering::lambertian<double>(-27.0),
+                     sss::propagation::straight<double>({.sound_speed_mps = 1500.0, .absorption_db_per_km = 0.0}), array,
+                     pitched_towfish{10.0 * deg}, rx, d);
+    };
+    const sim_t narrowed = make(sss::ray_density{});
+    const sim_t even = make(sss::ray_density{.along_onset = 0.0});
+    const sim_t converged = make(sss::ray_density{.along = 256, .along_onset = 0.0});
+    const sss::scene::flat_seabed<double> bed(0.0);
+    const auto reference = converged.ping(bed, 0).starboard;
+    const auto e_narrowed = sss_test::compare_db(narrowed.ping(bed, 0).starboard, reference, 40.0);
+    const auto e_even = sss_test::compare_db(even.ping(bed, 0).starboard, reference, 40.0);
+    INFO("narrowed: rms " << e_narrowed.rms_db << " dB, worst " << e_narrowed.worst_db << " dB at sample "
+                          << e_narrowed.worst_index << "; even: rms " << e_even.rms_db << " dB, worst " << e_even.worst_db
+                          << " dB at sample " << e_even.worst_index);
+    CHECK(std::abs(e_even.worst_db) > 1.0); // 1.3 dB, in the first samples
+    CHECK(std::abs(e_narrowed.worst_db) <= 0.25); // 0.09 dB
+    CHECK(e_narrowed.rms_db <= 0.01);
+    // The columns the trace takes: 24 for the even 10.
+    const auto ext = array.extent(sss::side::starboard);
+    const std::size_t n_even = narrowed.along_columns(ext, sss::side::starboard);
+    CHECK(n_even == 10);
+    const sss::mat3<double> R = pitched_towfish{10.0 * deg}.pose_at(0).body_to_world;
+    std::vector<double> edges;
+    sss::column_edges(edges, ext.along_min_rad, ext.along_max_rad, n_even, 0.5 * 1500.0 / rx.sample_rate_hz,
+                      rx.max_range_m, [&](double a) {
+                          return sss::nearest_range_m<double>(sss::side::starboard, a, ext.depression_min_rad,
+                                                              ext.depression_max_rad, R, 10.0);
+                      });
+    CHECK(edges.size() - 1 > n_even);
 }
