@@ -606,7 +606,8 @@ private:
             if (density_.along_split_nadir) nadir_windows(here, nadir_end_s(f), windows);
             if (echo_check)
                 echo_windows(here, j > 0 ? &rec(j - 1) : nullptr, j + 1 < n_along ? &rec(j + 1) : nullptr, weights, j,
-                             b.flags, windows, hold_all && depths[j] < levels ? &line : nullptr, deep);
+                             n_along == n_even ? 0.5 : toward_right(edges, j), b.flags, windows,
+                             hold_all && depths[j] < levels ? &line : nullptr, deep);
             if (windows.empty()) {
                 for (const tube_echo<T>& t : here.echoes) visit(t);
                 continue;
@@ -986,13 +987,23 @@ private:
         }
     }
 
+    /// How far column j's centre lies from its left neighbour's toward its right one's, as a fraction of the distance
+    /// between them (0.5 where the three are alike wide), from the side's column edges; 0.5 at either end of the side.
+    [[nodiscard]] static double toward_right(const std::vector<double>& edges, std::size_t j) noexcept {
+        if (j == 0 || j + 2 >= edges.size()) return 0.5;
+        const double left = 0.5 * (edges[j - 1] + edges[j]), centre = 0.5 * (edges[j] + edges[j + 1]),
+                     right = 0.5 * (edges[j + 1] + edges[j + 2]);
+        return right > left ? std::clamp((centre - left) / (right - left), 0.0, 1.0) : 0.5;
+    }
+
     /// Where column j's echo departs from what its neighbours' make likely (ray_density::along_split_echo), the launch
     /// intervals whose echoes fall in those samples, added to `out`. With I the echo per unit of the beam's weight,
-    /// a sample departs where w_j |I_j - (I_left + I_right) / 2| > along_split_echo (S_left + S_j + S_right), S the
-    /// columns' echoes there (the one neighbour's I at the side's ends): the midpoint rule's value for the column is
-    /// then not its width's, and thirds sample it where it changes.
+    /// a sample departs where w_j |I_j - ((1 - f) I_left + f I_right)| > along_split_echo (S_left + S_j + S_right),
+    /// S the columns' echoes there, f how far column j's centre lies from the left one's toward the right one's
+    /// (toward_right: 0.5 for even columns; the one neighbour's I at the side's ends): the midpoint rule's value for
+    /// the column is then not its width's, and thirds sample it where it changes.
     void echo_windows(const column_record& here, const column_record* left, const column_record* right,
-                      const std::vector<double>& weights, std::size_t j, std::vector<unsigned char>& flags,
+                      const std::vector<double>& weights, std::size_t j, double f, std::vector<unsigned char>& flags,
                       std::vector<redo_range>& out, const std::vector<double>* line, std::vector<redo_range>& deep) const {
         // One plane under all three (a level or sloping seabed and nothing else): nothing to divide.
         auto on_plane = [&](const column_record* r) {
@@ -1015,7 +1026,7 @@ private:
             const double s3 = three(k);
             if (!(s3 > floor)) continue;
             const double il = wl > 0.0 ? left->per_sample[k] / wl : 0.0, ir = wr > 0.0 ? right->per_sample[k] / wr : 0.0;
-            const double expected = both ? 0.5 * (il + ir) : (wl > 0.0 ? il : ir);
+            const double expected = both ? (1.0 - f) * il + f * ir : (wl > 0.0 ? il : ir);
             if (std::abs(here.per_sample[k] - wj * expected) > density_.along_split_echo * s3) {
                 flags[k] = line && here.per_sample[k] > faint_share * (*line)[k] ? 2 : 1;
                 any = true;
