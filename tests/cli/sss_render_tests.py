@@ -2,7 +2,8 @@
 """The cli tests of sss-render: sss_render_tests.py SSS_RENDER SOURCE_DIR CASE (one case per CTest/Meson test).
 
 broken         every scene in tests/cli/broken/ fails with exit status 1, one error line holding its expected
-               fragment (file, line:column or key path, what is wrong), and writes no file
+               fragment (file, line:column or key path, what is wrong), and writes no file nor leaves the output
+               directory it made; --dry-run, which builds the scene and the simulator, finds the same error
 roundtrip      --dry-run output, read again, prints the same resolved scene
 outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them);
                a planar-array scene, a trajectory scene and a double scene render, --pings beyond the trajectory
@@ -47,7 +48,11 @@ if case == "broken":
             check(r.returncode == 1, f"{name}: exit status 1 (got {r.returncode})")
             check(len(errors) == 1, f"{name}: one error line (got {errors})")
             check(bool(errors) and fragment in errors[0], f"{name}: message holds '{fragment}' (got {errors})")
-            check(files_in(os.path.join(out, "o")) == [], f"{name}: no file written")
+            check(not os.path.exists(os.path.join(out, "o")), f"{name}: no file written, no directory left")
+            r = run([name, "--dry-run"], cwd=broken)
+            errors = [l for l in r.stderr.splitlines() if "warning:" not in l]
+            check(r.returncode == 1 and bool(errors) and fragment in errors[0],
+                  f"{name}: --dry-run finds the same error ({r.returncode}, {errors})")
 
 elif case == "roundtrip":
     with tempfile.TemporaryDirectory() as d:
@@ -196,6 +201,38 @@ elif case == "outputs":
         r = run([loud, "-o", os.path.join(d, "l"), "--pings", "0:2"])
         check(r.returncode == 1 and "not finite" in r.stderr and "sonar.source_level_db" in r.stderr and files_in(os.path.join(d, "l")) == [],
               f"a render that overflows is an error, not a file of infinities ({r.stderr})")
+        # A directory no file can be written in: one error before the render (no progress line), nothing made.
+        r = run([small, "-o", "/proc"])
+        check(r.returncode == 1 and "/proc: cannot write files in the output directory" in r.stderr and "pings" not in r.stderr,
+              f"an output directory that takes no file is refused before the render ({r.stderr})")
+        # YOLO's classes.txt is the directory's class list: a second scene's new class is added at its end, and the
+        # first scene's indices stay right.
+        y = os.path.join(d, "y")
+        first_scene = open(small).read().replace("npy = true", "npy = false\nyolo = true")
+        open(os.path.join(d, "y1.toml"), "w").write(first_scene)
+        r = run([os.path.join(d, "y1.toml"), "-o", y, "--pings", "0:24"])
+        before = open(os.path.join(y, "classes.txt")).read().splitlines() if r.returncode == 0 else []
+        check(r.returncode == 0 and len(before) >= 1, f"a YOLO render writes classes.txt ({before}, {r.stderr})")
+        r = run([os.path.join(cli, "scenes", "primitives.toml"), "-o", y])
+        after = open(os.path.join(y, "classes.txt")).read().splitlines() if r.returncode == 0 else []
+        check(r.returncode == 0 and after[:len(before)] == before and len(after) > len(before),
+              f"a second scene's classes are added after the first's, which keep their place ({before} -> {after}, {r.stderr})")
+        if r.returncode == 0:
+            names = [after[int(line.split()[0])] for line in open(os.path.join(y, "prim.txt")).read().splitlines()]
+            # Both primitives are class_id 1, named by the first of them.
+            check(names == ["sphere", "sphere"] and after[0] == "lying_cylinder",
+                  f"the second scene's boxes index their own class in the shared list ({after}, {names})")
+        # The .npy sidecar says which receiver stages made the values.
+        stages = os.path.join(d, "stages.toml")
+        open(stages, "w").write(open(small).read() + "\n[receiver]\ntvg = true\nspeckle = true\n")
+        r = run([stages, "-o", os.path.join(d, "st"), "--pings", "0:2"])
+        import json
+        side = json.load(open(os.path.join(d, "st", "small.json"))) if r.returncode == 0 else {}
+        check([x["stage"] for x in side.get("receiver_stages", [])] == ["speckle", "tvg"] and "after the receiver stages" in side.get("values", ""),
+              f"the sidecar lists the receiver stages applied, in order ({side.get('receiver_stages')}, {r.stderr})")
+        plain = json.load(open(os.path.join(d, "a", "small.json")))
+        check(plain.get("receiver_stages") == [] and plain.get("values", "").startswith("mean received power"),
+              f"without stages the sidecar says the values are the mean echo power ({plain.get('values')})")
         # The scene path is a directory.
         r = run([d, "-o", os.path.join(d, "m")])
         check(r.returncode == 1 and "is a directory, not a scene file" in r.stderr, f"a directory is not a scene ({r.stderr})")

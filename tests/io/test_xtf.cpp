@@ -391,6 +391,22 @@ TEST_CASE("ThisFileName holds the final name given for a file written under anot
     CHECK(detail::get_le<std::uint16_t>(c.data(), chan + 24) == 0);
 }
 
+TEST_CASE("a character field always ends in a zero byte: a longer text is cut short of the field, not inside a character") {
+    const render r = small_render();
+    auto p = params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m);
+    p.header.file_name = std::string(70, 'a') + ".xtf";
+    p.header.program_name = "sss-render";       // 10 bytes for 8
+    p.header.sonar_name = std::string(14, 's') + "\xc3\xa9"; // 16 bytes, the last character two of them
+    const auto b = io::encode_xtf(io::make_xtf<double>(r.w, r.poses, p));
+    CHECK(b[100 + 63] == 0);
+    CHECK(detail::get_chars(b.data(), 100, 64) == std::string(63, 'a'));
+    CHECK(detail::get_chars(b.data(), 2, 8) == "sss-ren");
+    CHECK(detail::get_chars(b.data(), 18, 16) == std::string(14, 's')); // the two-byte character does not fit in 15
+    p.header.file_name = std::string(63, 'b');                          // fits exactly
+    const auto c = io::encode_xtf(io::make_xtf<double>(r.w, r.poses, p));
+    CHECK(detail::get_chars(c.data(), 100, 64) == std::string(63, 'b'));
+}
+
 TEST_CASE("SensorHeading lies in [0, 360) however many turns the yaw has made, either way") {
     CHECK(io::heading_in_circle_deg(30.0) == 30.0);
     CHECK(io::heading_in_circle_deg(-18.0) == 342.0);

@@ -25,7 +25,13 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
 #include <limits>
 #include <span>
 #include <string>
@@ -144,22 +150,27 @@ public:
         for (const char* s : suffixes) files_.emplace_back(dir_ / (tmp + s), dir_ / (stem + s));
         return (dir_ / tmp).string();
     }
-    /// Renames every file to its final name. Before the first rename, every final name is checked: none may be an
-    /// existing directory or name two outputs. Each old file is kept under a second name (a hard link, else a copy)
+    /// Before the render: no final name is an existing directory or names two outputs, and every temporary name
+    /// (with the writer's own ".tmp-" and 16 hexadecimal digits) fits the directory's file names.
+    void check() const {
+        check_final_names();
+        const long most = pathconf(dir_.c_str(), _PC_NAME_MAX);
+        const std::size_t name_max = most > 0 ? std::size_t(most) : 255;
+        for (const auto& [tmp, final] : files_) {
+            const std::size_t longest = tmp.filename().string().size() + 21;
+            if (longest > name_max)
+                throw scene_error("output.stem: " + final.filename().string() + " is written under a temporary name of " +
+                                  std::to_string(longest) + " bytes, more than the " + std::to_string(name_max) +
+                                  " that file names in " + dir_.string() + " hold: choose a shorter stem");
+        }
+    }
+    /// Renames every file to its final name. Before the first rename, every final name is checked again: none may be
+    /// an existing directory or name two outputs. Each old file is kept under a second name (a hard link, else a copy)
     /// before the new one is renamed over it, so that every name holds a whole file at every moment; a rename that
     /// fails (a file the system will not let go of) puts the old files back, so that none of the new ones is kept.
     std::vector<std::string> commit() {
         if (interrupted.load()) throw interrupted_error{};
-        for (std::size_t i = 0; i < files_.size(); ++i) {
-            const auto& final = files_[i].second;
-            std::error_code ec;
-            if (std::filesystem::is_directory(final, ec))
-                throw scene_error(final.string() + ": an output would replace this directory: remove it or choose "
-                                                   "another output.stem or -o");
-            for (std::size_t j = 0; j < i; ++j)
-                if (files_[j].second == final)
-                    throw scene_error(final.string() + ": two outputs would have this name: choose another output.stem");
-        }
+        check_final_names();
         std::vector<std::pair<std::filesystem::path, std::filesystem::path>> kept; // (final name, its old file's copy)
         std::vector<std::filesystem::path> renamed;                                  // final names holding a new file
         const auto drop_kept = [&] {
@@ -216,6 +227,20 @@ public:
     }
 
 private:
+    /// No final name is an existing directory or names two outputs.
+    void check_final_names() const {
+        for (std::size_t i = 0; i < files_.size(); ++i) {
+            const auto& final = files_[i].second;
+            std::error_code ec;
+            if (std::filesystem::is_directory(final, ec))
+                throw scene_error(final.string() + ": an output would replace this directory: remove it or choose "
+                                                   "another output.stem or -o");
+            for (std::size_t j = 0; j < i; ++j)
+                if (files_[j].second == final)
+                    throw scene_error(final.string() + ": two outputs would have this name: choose another output.stem");
+        }
+    }
+
     std::filesystem::path dir_;
     std::string run_; // this run's suffix of its temporary and kept names
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;
@@ -283,6 +308,79 @@ template <Real T> void check_memory(const description& d, const render_request& 
                       (d.out.ground_range ? ", the ground-range image " + gib(ground) + " (output.ground_range_cell_m)" : std::string()));
 }
 
+/// The class list of YOLO's files in directory `dir`: the names its classes.txt already lists, in their order (each
+/// taking the id of this scene's class of that name, or an id no object has: 0), then this scene's classes that it
+/// does not list. Other scenes' label files in the directory keep their indices, and this scene's take the same
+/// ones for the same names. A classes.txt that cannot be read, or is not a class list, is a scene error.
+inline std::vector<sss::io::label_class> yolo_classes(const std::filesystem::path& dir, const std::vector<sss::io::label_class>& ours) {
+    const auto path = dir / "classes.txt";
+    std::error_code ec;
+    std::vector<sss::io::label_class> out;
+    if (std::filesystem::exists(path, ec)) {
+        std::ifstream in(path, std::ios::binary);
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in.good() && !in.eof()) throw scene_error(path.string() + ": cannot be read: it holds the class list of the YOLO files beside it");
+        std::size_t line = 0;
+        for (std::size_t at = 0; at < text.size();) {
+            const std::size_t nl = text.find('\n', at);
+            std::string name = text.substr(at, nl == std::string::npos ? std::string::npos : nl - at);
+            at = nl == std::string::npos ? text.size() : nl + 1;
+            ++line;
+            if (!name.empty() && name.back() == '\r') name.pop_back();
+            const auto found = std::find_if(ours.begin(), ours.end(), [&](const auto& c) { return c.name == name; });
+            out.push_back({found == ours.end() ? 0u : found->id, name});
+            try {
+                sss::io::check_class_names(std::span<const sss::io::label_class>(&out.back(), 1));
+            } catch (const sss::error&) {
+                throw scene_error(path.string() + ":" + std::to_string(line) + ": is not a class name (one per line, non-empty "
+                                  "UTF-8 text): yolo = true adds this scene's classes to this list; remove the file or "
+                                  "render into another directory (-o)");
+            }
+        }
+    }
+    for (const auto& c : ours)
+        if (std::none_of(out.begin(), out.end(), [&](const auto& k) { return k.name == c.name && k.id == c.id; })) out.push_back(c);
+    return out;
+}
+
+/// The output directory, made if missing; removed again (with the parents it made, each only if empty) unless the
+/// run keeps it, so that a failed run leaves no new directory behind.
+class output_directory {
+public:
+    explicit output_directory(const std::string& dir) {
+        std::error_code ec;
+        if (dir.empty()) throw scene_error("-o: the output directory must not be empty");
+        for (std::filesystem::path p = std::filesystem::absolute(dir, ec); !ec && !p.empty() && !std::filesystem::exists(p, ec);
+             p = p.parent_path()) {
+            made_.push_back(p);
+            if (p == p.parent_path()) break;
+        }
+        std::filesystem::create_directories(dir, ec);
+        if (ec || !std::filesystem::is_directory(dir, ec))
+            throw scene_error(dir + ": cannot be the output directory (" + (ec ? ec.message() : "not a directory") + ")");
+        // Writable: a file made and removed (as root, access() says yes even where the file system says no).
+        const std::string probe = (std::filesystem::path(dir) / (".sss-render-probe-" + sss::detail::temporary_suffix())).string();
+        const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+        if (fd < 0) {
+            const std::string why = std::strerror(errno);
+            throw scene_error(dir + ": cannot write files in the output directory (" + why + ")");
+        }
+        ::close(fd);
+        std::filesystem::remove(probe, ec);
+    }
+    output_directory(const output_directory&) = delete;
+    output_directory& operator=(const output_directory&) = delete;
+    ~output_directory() {
+        std::error_code ec;
+        for (const auto& p : made_) // the deepest first; a directory that is not empty stays
+            if (!std::filesystem::remove(p, ec)) break;
+    }
+    void keep() noexcept { made_.clear(); }
+
+private:
+    std::vector<std::filesystem::path> made_;
+};
+
 } // namespace detail
 
 template <Real T> int render_scene(const description& d, const render_request& r) {
@@ -297,26 +395,56 @@ template <Real T> int render_scene(const description& d, const render_request& r
     const scene_motion<T> track = motion_of(d, T(d.tow.altitude_m));
     if (const auto beyond = pings_beyond(d, track, r.last, r.pings_asked); !beyond.empty())
         throw scene_error(r.scene_path + ": " + beyond);
+    // XTF's dates end with the year 9999, to the hundredth of a second: the last ping's time too.
+    if (d.out.xtf) {
+        const double last_s = xtf_start_unix_s(d, track, r.last - 1);
+        char stamped[64];
+        std::snprintf(stamped, sizeof stamped, "%.2f", last_s);
+        if (!(last_s < 253402300799.995))
+            throw scene_error(r.scene_path + ": output.xtf_start_unix_s: ping " + std::to_string(r.last - 1) + " would be stamped " +
+                              stamped + " s, past the end of the year 9999 that XTF's dates hold (" +
+                              r.pings_asked + ", motion.ping_interval_s = " + detail::fmt(d.tow.ping_interval_s) + " s)");
+    }
     const auto problems = swath_problems(d, e, track, r.first, count);
     check_sound_speed_file(d);
-    if (r.dry_run) {
-        std::fputs(to_toml(d).c_str(), stdout);
-        if (std::fflush(stdout) != 0 || std::ferror(stdout))
-            throw scene_error("--dry-run: cannot write the resolved scene to standard output");
-        for (const auto& p : problems) std::fprintf(stderr, "sss-render: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
-        return 0;
-    }
     for (const auto& p : problems) std::fprintf(stderr, "sss-render: warning: %s: coverage: %s\n", r.scene_path.c_str(), p.c_str());
-    // The output directory, made and checked before the render rather than after it.
-    {
-        std::error_code ec;
-        if (r.out_dir.empty()) throw scene_error("-o: the output directory must not be empty");
-        std::filesystem::create_directories(r.out_dir, ec);
-        if (ec || !std::filesystem::is_directory(r.out_dir, ec))
-            throw scene_error(r.out_dir + ": cannot be the output directory (" + (ec ? ec.message() : "not a directory") + ")");
-        if (access(r.out_dir.c_str(), W_OK) != 0) throw scene_error(r.out_dir + ": the output directory is not writable");
+
+    // The outputs' names, and the output directory made and checked, before the render rather than after it.
+    std::optional<detail::output_directory> out_dir;
+    std::optional<detail::output_set> files;
+    const std::string& stem = d.out.stem;
+    struct temporaries {
+        std::string png, ground, npy, json, xtf, coco, yolo, classes, labels, ground_labels;
+    } tmp;
+    const bool want_labels = d.out.coco || d.out.yolo || d.out.label_images;
+    std::vector<sss::io::label_class> classes, yolo_list;
+    for (const auto& o : d.objects)
+        if (std::none_of(classes.begin(), classes.end(), [&](const auto& c) { return c.id == std::uint32_t(o.class_id); }))
+            classes.push_back({std::uint32_t(o.class_id), o.class_name});
+    if (!r.dry_run) {
+        out_dir.emplace(r.out_dir);
+        files.emplace(r.out_dir);
+        if (d.out.png) tmp.png = files->add(stem + ".png");
+        if (d.out.ground_range) tmp.ground = files->add(stem + "_ground.png");
+        if (d.out.npy) {
+            tmp.npy = files->add(stem + ".npy");
+            tmp.json = files->add(stem + ".json");
+        }
+        if (d.out.xtf) tmp.xtf = files->add(stem + ".xtf");
+        if (d.out.coco) tmp.coco = files->add(stem + "_coco.json");
+        if (d.out.yolo) {
+            tmp.yolo = files->add(stem + ".txt");
+            tmp.classes = files->add("classes.txt");
+        }
+        if (d.out.label_images) {
+            tmp.labels = files->add_stem(stem + "_labels", {"_class.png", "_instance.png", "_legend.json"});
+            if (d.out.ground_range)
+                tmp.ground_labels = files->add_stem(stem + "_ground_labels", {"_class.png", "_instance.png", "_legend.json"});
+        }
+        files->check();
+        if (d.out.yolo) yolo_list = detail::yolo_classes(r.out_dir, classes);
+        sss_render_catch_stop_signals();
     }
-    sss_render_catch_stop_signals();
 
     const auto t0 = std::chrono::steady_clock::now();
     const world<T> w = make_world<T>(d);
@@ -328,8 +456,15 @@ template <Real T> int render_scene(const description& d, const render_request& r
     if (const auto below = below_seabed(w, sampled ? track : motion_of(d, tow_z(d, w)), r.first, count); !below.empty())
         throw scene_error(r.scene_path + (sampled ? ": motion.trajectory_file: " : ": motion.altitude_m: ") + below);
     const auto t1 = std::chrono::steady_clock::now();
+    if (r.dry_run) {
+        // The simulator built as a render builds it, so that what its policies refuse is found here too.
+        with_simulator(d, w, [](const auto&) { return 0; });
+        std::fputs(to_toml(d).c_str(), stdout);
+        if (std::fflush(stdout) != 0 || std::ferror(stdout))
+            throw scene_error("--dry-run: cannot write the resolved scene to standard output");
+        return 0;
+    }
     std::vector<sss::pose<T>> poses;
-    const bool want_labels = d.out.coco || d.out.yolo || d.out.label_images;
     sss::label_image labels;
     const auto image = with_simulator(d, w, [&](const auto& sim) {
         for (std::size_t i = r.first; i < r.last; ++i) poses.push_back(sim.motion().pose_at(i));
@@ -341,8 +476,6 @@ template <Real T> int render_scene(const description& d, const render_request& r
                           (std::is_same_v<T, float> ? "single precision" : "double precision") +
                           "; lower sonar.source_level_db or receiver.tvg_gain_db (or set render.precision = \"double\")");
 
-    detail::output_set files(r.out_dir);
-    const std::string& stem = d.out.stem;
     // Each ping's altitude above the seabed under the towfish (XTF, ground range), and the ground-range cells per
     // side that cover the slant range (the flat-bottom mapping of the waterfall and of the label images).
     const auto tow_altitudes = [&] {
@@ -367,17 +500,19 @@ template <Real T> int render_scene(const description& d, const render_request& r
             return sss::io::to_grey_db<std::uint8_t>(std::span<const double>(v), {.dynamic_range_db = d.out.png_dynamic_range_db,
                                                                                    .top_db = detail::white_level_db(v)});
         };
-        if (d.out.png) sss::io::write_png_grey8(files.add(stem + ".png"), image.width(), image.pings, grey(shown.values));
+        if (d.out.png) sss::io::write_png_grey8(tmp.png, image.width(), image.pings, grey(shown.values));
         if (d.out.ground_range) {
             const auto ground = sss::to_ground_range(shown, tow_altitudes(), d.sea.sound_speed_mps, d.out.ground_range_cell_m,
                                                      ground_cells());
-            sss::io::write_png_grey8(files.add(stem + "_ground.png"), ground.width(), ground.pings, grey(ground.values));
+            sss::io::write_png_grey8(tmp.ground, ground.width(), ground.pings, grey(ground.values));
         }
     }
     if (d.out.npy) {
-        sss::io::write_npy(files.add(stem + ".npy"), image);
-        sss::io::write_render_sidecar<T>(files.add(stem + ".json"), image, poses,
-                                         {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps});
+        sss::io::write_npy(tmp.npy, image);
+        sss::io::write_render_sidecar<T>(tmp.json, image, poses,
+                                         {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps,
+                                          .source_level_db = d.sensor.source_level_db,
+                                          .receiver_stages = receiver_stage_list(d)});
     }
     if (d.out.xtf) {
         const std::vector<double> altitude = tow_altitudes();
@@ -394,33 +529,30 @@ template <Real T> int render_scene(const description& d, const render_request& r
         xp.header.starboard = xp.header.port;
         xp.header.file_name = stem + ".xtf"; // written under a temporary name, read under this one
         xp.header.tvg_applied = d.rx.tvg;
-        sss::io::write_xtf(files.add(stem + ".xtf"), sss::io::make_xtf<T>(image, poses, xp, altitude));
+        sss::io::write_xtf(tmp.xtf, sss::io::make_xtf<T>(image, poses, xp, altitude));
     }
     if (want_labels) {
-        std::vector<sss::io::label_class> classes;
-        for (const auto& o : d.objects)
-            if (std::none_of(classes.begin(), classes.end(), [&](const auto& c) { return c.id == std::uint32_t(o.class_id); }))
-                classes.push_back({std::uint32_t(o.class_id), o.class_name});
         const auto box = sss::io::box_extent::highlight_and_shadow;
         if (d.out.coco) {
             const std::vector<sss::io::coco_image> set{{stem + ".png", &labels}};
-            sss::io::write_text(files.add(stem + "_coco.json"), sss::io::coco_json(set, classes, box));
+            sss::io::write_text(tmp.coco, sss::io::coco_json(set, classes, box));
         }
         if (d.out.yolo) {
-            sss::io::write_text(files.add(stem + ".txt"), sss::io::yolo_txt(labels, classes, box));
-            sss::io::write_text(files.add("classes.txt"), sss::io::yolo_classes_txt(classes));
+            sss::io::write_text(tmp.yolo, sss::io::yolo_txt(labels, yolo_list, box));
+            sss::io::write_text(tmp.classes, sss::io::yolo_classes_txt(yolo_list));
         }
         if (d.out.label_images) {
-            sss::io::write_label_images(files.add_stem(stem + "_labels", {"_class.png", "_instance.png", "_legend.json"}), labels, classes);
+            sss::io::write_label_images(tmp.labels, labels, classes);
             if (d.out.ground_range) // pixel for pixel with stem_ground.png: the same altitudes, cell and width
-                sss::io::write_label_images(files.add_stem(stem + "_ground_labels", {"_class.png", "_instance.png", "_legend.json"}),
+                sss::io::write_label_images(tmp.ground_labels,
                                             sss::ground_range_labels(labels, tow_altitudes(), {.cell_m = d.out.ground_range_cell_m,
                                                                                                   .cells = ground_cells(),
                                                                                                   .sound_speed_mps = d.sea.sound_speed_mps}),
                                             classes);
         }
     }
-    const auto written = files.commit();
+    const auto written = files->commit();
+    out_dir->keep();
     auto s = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     std::fprintf(stderr, "sss-render: %zu pings x 2 x %zu samples in %.2f s (%.2f ms/ping; scene %.2f s)\n", count,
                  image.samples, s(t1, t2), 1e3 * s(t1, t2) / double(count), s(t0, t1));

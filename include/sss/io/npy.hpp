@@ -10,9 +10,11 @@
 /// range in column 0), starboard on the right (receiver/image.hpp).
 ///
 /// The sidecar (`write_render_sidecar`) is a JSON object: the array's file name, shape and dtype, the sample
-/// interval (s), the sound speed (m/s), the range of the last sample (m), the column layout, and the pose of
-/// every ping (time_s, x_m, y_m, z_m world metres; heading_deg clockwise from north, pitch_deg nose up,
-/// roll_deg starboard down).
+/// interval (s), the sound speed (m/s), the range of the last sample (m), the column layout, what the values are
+/// (`values`; the source level, dB, they are relative to; the receiver's stages applied to them in order, each
+/// {stage, parameters}: speckle, noise, a TVG's gain, none for the mean echo power), and the pose of every ping
+/// (time_s, x_m, y_m, z_m world metres; heading_deg clockwise from north, pitch_deg nose up, roll_deg starboard
+/// down).
 
 #include <bit>
 #include <cstddef>
@@ -21,6 +23,7 @@
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "sss/core/constants.hpp"
@@ -61,6 +64,10 @@ template <Real T> void write_npy(const std::string& path, const waterfall<T>& w)
 struct render_sidecar_params {
     std::string array_file;          ///< the .npy file it describes (as the sidecar should name it)
     double sound_speed_mps = 1500.0; ///< the render's reference sound speed (m/s)
+    double source_level_db = 0.0;    ///< the source level the powers are relative to (receiver_params::source_level_db)
+    /// The receiver's line stages applied to the values, in order: (stage, its parameters in words); none: the mean
+    /// echo power per sample as the simulator gives it.
+    std::vector<std::pair<std::string, std::string>> receiver_stages{};
 };
 
 /// The sidecar's JSON text (see the file comment). `poses` holds one pose per ping, or none.
@@ -78,7 +85,18 @@ template <Real T>
     j.member("max_range_m", double(w.samples) * w.dt_s * 0.5 * p.sound_speed_mps);
     j.member("columns", "port far-to-near in [0, samples), starboard near-to-far in [samples, 2 samples); sample k "
                         "covers two-way time [k dt, (k + 1) dt)");
-    j.member("values", "mean received power per sample, relative to the source level reference");
+    j.member("values", p.receiver_stages.empty()
+                           ? "mean received power per sample, relative to the source level reference"
+                           : "received power per sample, relative to the source level reference, after the receiver "
+                             "stages listed in receiver_stages (in that order)");
+    j.member("source_level_db", p.source_level_db);
+    j.key("receiver_stages").begin_array();
+    for (const auto& [stage, parameters] : p.receiver_stages) {
+        j.newline().begin_object();
+        j.member("stage", stage).member("parameters", parameters);
+        j.end_object();
+    }
+    j.end_array();
     j.key("poses").begin_array();
     for (const pose<T>& q : poses) {
         j.newline().begin_object();

@@ -22,10 +22,10 @@ struct xtf_channel_info {
 
 /// What the file header says.
 struct xtf_header {
-    std::string program_name = "sss";          ///< RecordingProgramName (8 characters kept)
-    std::string sonar_name = "sss simulator";  ///< SonarName (16 characters kept)
-    std::string note;                          ///< NoteString (64 characters kept)
-    /// ThisFileName (64 characters kept); empty: write_xtf writes the last component of the path it writes to
+    std::string program_name = "sss";          ///< RecordingProgramName (7 bytes kept, and a zero)
+    std::string sonar_name = "sss simulator";  ///< SonarName (15 bytes kept, and a zero)
+    std::string note;                          ///< NoteString (63 bytes kept, and a zero)
+    /// ThisFileName (63 bytes kept, and a zero); empty: write_xtf writes the last component of the path it writes to
     /// (give the final name here when the file is written under a temporary name and renamed later). The reader
     /// leaves it empty, so that a file read and written elsewhere takes its new name.
     std::string file_name;

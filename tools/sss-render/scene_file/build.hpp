@@ -85,11 +85,17 @@ template <Real T> void apply_stamps(const description& d, sss::seabed::raster<T>
 template <Real T = float> [[nodiscard]] sss::scene::height_field<T> load_seabed(const description& d) {
     const auto& b = d.bed;
     const auto ext = b.file.substr(b.file.size() - 4);
-    if (ext == ".raw") return sss::io::read_raw_f32<T>(b.file);
-    if (ext == ".pgm")
-        return sss::io::read_pgm16<T>(b.file, T(b.cell_m), {T(b.origin_m[0]), T(b.origin_m[1])},
-                                      {.scale_m = T(b.pgm_scale_m), .offset_m = T(b.pgm_offset_m)});
-    return sss::io::read_esri_ascii<T>(b.file);
+    try {
+        if (ext == ".raw") return sss::io::read_raw_f32<T>(b.file);
+        if (ext == ".pgm")
+            return sss::io::read_pgm16<T>(b.file, T(b.cell_m), {T(b.origin_m[0]), T(b.origin_m[1])},
+                                          {.scale_m = T(b.pgm_scale_m), .offset_m = T(b.pgm_offset_m)});
+        return sss::io::read_esri_ascii<T>(b.file);
+    } catch (const sss::error& e) { // the file's own message (with its line or byte), under the scene's key
+        std::string what = e.what();
+        if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
+        throw scene_error(d.path + ": seabed.file: " + what);
+    }
 }
 
 /// A generated seabed's heights (m, raster-local: world minus origin_m) and the region of each vertex, synthesised
@@ -149,7 +155,7 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
     const auto h = sb::seabed_height_of(seabed);
     const std::uint32_t material = object_material(d);
     std::vector<sss::scene::object<T>> objects;
-    for (std::size_t k = 0; k < d.objects.size(); ++k) {
+    for (std::size_t k = 0; k < d.objects.size(); ++k) try {
         const auto& o = d.objects[k];
         const auto id = std::uint32_t(k + 1), label = std::uint32_t(o.class_id);
         if (o.type == "lying_cylinder") {
@@ -183,6 +189,11 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
             if (o.max_span_m > 0) p.max_span_m = T(o.max_span_m);
             objects.push_back(sb::pipeline(p, h));
         }
+    } catch (const sss::error& e) { // laid on the seabed (a mine's case below it): the object's table and line
+        std::string what = e.what();
+        if (what.rfind("sss: ", 0) == 0) what = what.substr(5);
+        throw scene_error((d.objects[k].origin.empty() ? d.path + ": object[" + std::to_string(k) + "]" : d.objects[k].origin) +
+                          ": " + what);
     }
     return world<T>(std::move(seabed), sss::scene::object_set<T>(std::move(objects)));
 }
@@ -317,6 +328,30 @@ template <Real T>
 template <Real T> [[nodiscard]] double xtf_start_unix_s(const description& d, const scene_motion<T>& tow, std::size_t first) {
     const double ping0_s = tow.sampled() ? tow.sampled()->start_time_s() : 0.0;
     return d.out.xtf_start_unix_s + ping0_s + double(first) * d.tow.ping_interval_s;
+}
+
+/// The receiver's stages a scene applies to the lines, in order, each with its parameters in words (the .npy
+/// sidecar's receiver_stages): speckle, then noise and volume reverberation added, then the TVG.
+[[nodiscard]] inline std::vector<std::pair<std::string, std::string>> receiver_stage_list(const description& d) {
+    const auto& r = d.rx;
+    std::vector<std::pair<std::string, std::string>> out;
+    const std::string seed = ", seed " + std::to_string(r.seed);
+    if (r.speckle)
+        out.push_back({"speckle", (r.k_shape > 0 ? "K-distributed, shape " + detail::fmt(r.k_shape) + ", texture patch " +
+                                                       detail::fmt(r.texture_patch_m) + " m"
+                                                 : std::string("Rayleigh")) +
+                                      ", transducer length " + detail::fmt(r.transducer_length_m) + " m" + seed});
+    if (r.noise)
+        out.push_back({"noise", "ambient noise at sea state " + detail::fmt(r.sea_state) + ", directivity index " +
+                                    detail::fmt(r.directivity_index_db) + " dB, referred to a source level of " +
+                                    detail::fmt(r.noise_source_level_db) + " dB" + seed});
+    if (r.volume)
+        out.push_back({"volume_reverberation", "Sv " + detail::fmt(r.sv_db) + " dB, equivalent beam angle " +
+                                                   detail::fmt(r.psi_sr) + " sr" + seed});
+    if (r.tvg)
+        out.push_back({"tvg", "gain " + detail::fmt(r.tvg_spreading_n) + " log10(r) + 2 alpha r + " + detail::fmt(r.tvg_gain_db) +
+                                  " dB, alpha " + detail::fmt(d.sea.absorption_db_per_km) + " dB/km"});
+    return out;
 }
 
 /// The receiver's stages chosen at run time: echo statistics (speckle, noise, volume reverberation), then TVG,

@@ -27,9 +27,10 @@ template <Real T> [[nodiscard]] extent extent_of(const sss::scene::height_field<
     return {x0, y0, x0 + double(h.nx() - 1) * c, y0 + double(h.ny() - 1) * c};
 }
 
-/// The problems of pings [first, first + count) of motion `tow` (motion_of(d, altitude_m)): each a sentence
-/// naming the ping and the edge. Planar geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side
-/// of the track; the altitude is altitude_m, or with a trajectory each checked ping's z (a seabed near z = 0).
+/// The problems of pings [first, first + count) of motion `tow` (motion_of(d, altitude_m)), every ping checked: for
+/// the towfish and each swath edge that leaves the seabed, a sentence naming how many pings, the first of them and
+/// the edges it crosses there. Planar geometry: the swath reaches sqrt(max_range^2 - altitude^2) to each side of the
+/// track; the altitude is altitude_m, or with a trajectory each ping's z (a seabed near z = 0).
 template <Real T>
 [[nodiscard]] std::vector<std::string> swath_problems(const description& d, const extent& e, const scene_motion<T>& tow, std::size_t first,
                                                       std::size_t count) {
@@ -37,30 +38,50 @@ template <Real T>
     const bool sampled = d.tow.model == "trajectory";
     const double r = d.sensor.max_range_m;
     double alt = d.tow.altitude_m;
-    auto check = [&](std::size_t ping, const char* what, double x, double y) {
+    // Distances printed to the millimetre (a float track's 0.699999 m reads 0.7 m).
+    const auto mm = [](double v) { return detail::fmt(std::round(v * 1e3) / 1e3); };
+    struct beyond {
+        const char* what = "";
+        std::size_t pings = 0, first_ping = 0;
+        std::string edges{}; // at the first such ping
+    } parts[3];
+    parts[0].what = "the towfish";
+    parts[1].what = "the port swath edge";
+    parts[2].what = "the starboard swath edge";
+    auto check = [&](beyond& b, std::size_t ping, double x, double y) {
         std::string edges;
-        if (x < e.west_m - 1e-9) edges += " west by " + detail::fmt(e.west_m - x) + " m";
-        if (x > e.east_m + 1e-9) edges += " east by " + detail::fmt(x - e.east_m) + " m";
-        if (y < e.south_m - 1e-9) edges += " south by " + detail::fmt(e.south_m - y) + " m";
-        if (y > e.north_m + 1e-9) edges += " north by " + detail::fmt(y - e.north_m) + " m";
-        if (!edges.empty()) out.push_back(std::string(what) + " at ping " + std::to_string(ping) + " lies beyond the seabed:" + edges);
+        if (x < e.west_m - 1e-9) edges += " west by " + mm(e.west_m - x) + " m";
+        if (x > e.east_m + 1e-9) edges += " east by " + mm(x - e.east_m) + " m";
+        if (y < e.south_m - 1e-9) edges += " south by " + mm(e.south_m - y) + " m";
+        if (y > e.north_m + 1e-9) edges += " north by " + mm(y - e.north_m) + " m";
+        if (edges.empty()) return;
+        if (b.pings++ == 0) {
+            b.first_ping = ping;
+            b.edges = edges;
+        }
     };
-    std::vector<std::size_t> pings{first, first + count / 2, first + count - 1};
-    pings.erase(std::unique(pings.begin(), pings.end()), pings.end()); // one or two pings: each once
-    for (std::size_t ping : pings) {
+    double lowest = alt;
+    for (std::size_t ping = first; ping < first + count; ++ping) {
         const auto pose = tow.nominal_pose_at(ping);
         if (sampled) alt = pose.position.z;
+        lowest = std::min(lowest, alt);
         const double reach = r > alt ? std::sqrt(r * r - alt * alt) : 0.0;
         const double x = pose.position.x, y = pose.position.y;
         const auto f = pose.to_world({T(1), T(0), T(0)});
         const double fl = std::hypot(double(f.x), double(f.y));
         const double fx = double(f.x) / fl, fy = double(f.y) / fl; // forward; starboard is (fy, -fx)
-        check(ping, "the towfish", x, y);
-        check(ping, "the port swath edge", x - reach * fy, y + reach * fx);
-        check(ping, "the starboard swath edge", x + reach * fy, y - reach * fx);
+        check(parts[0], ping, x, y);
+        check(parts[1], ping, x - reach * fy, y + reach * fx);
+        check(parts[2], ping, x + reach * fy, y - reach * fx);
     }
-    if (!(r > alt)) out.push_back("sonar.max_range_m (" + detail::fmt(r) + " m) does not reach the seabed " +
-                                  detail::fmt(alt) + " m below: the image holds only water");
+    for (const beyond& b : parts)
+        if (b.pings > 0)
+            out.push_back(std::string(b.what) + (b.pings == 1 ? " at ping " + std::to_string(b.first_ping)
+                                                                 : " at " + std::to_string(b.pings) + " of " + std::to_string(count) +
+                                                                       " pings, first at ping " + std::to_string(b.first_ping) + ",") +
+                          " lies beyond the seabed:" + b.edges);
+    if (!(r > lowest)) out.push_back("sonar.max_range_m (" + detail::fmt(r) + " m) does not reach the seabed " +
+                                     mm(lowest) + " m below: the image holds only water");
     return out;
 }
 

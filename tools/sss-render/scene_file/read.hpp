@@ -217,6 +217,15 @@ public:
         const toml::node* n = t_.get(key);
         fail_at(n ? n->source() : t_.source(), key, why);
     }
+    /// Where this table begins and its key path ("scene.toml:12:1: object[0]"), for errors found once the scene is
+    /// built.
+    [[nodiscard]] std::string where() const {
+        std::ostringstream s;
+        s << file_;
+        if (t_.source().begin.line != 0) s << ':' << t_.source().begin.line << ':' << t_.source().begin.column;
+        s << ": " << path_;
+        return from_plane16(s.str());
+    }
 
     [[nodiscard]] const toml::node* node(std::string_view key) {
         seen_.insert(std::string(key));
@@ -370,7 +379,13 @@ public:
     static std::string suggestion(std::string_view got, std::initializer_list<std::string_view> known) {
         return suggestion<std::initializer_list<std::string_view>>(got, known);
     }
-    static std::string fmt(double v) { return detail::fmt(v); }
+    /// A number in a message: 15 significant digits, so that a bound and a value just past it read apart.
+    static std::string fmt(double v) {
+        std::ostringstream s;
+        s.precision(15);
+        s << v;
+        return s.str();
+    }
 
 private:
     static bool all_numbers(const toml::array& a) {
@@ -427,6 +442,14 @@ inline void read_array_axis(table_reader& t, const std::string& axis, array_axis
 }
 
 /// A transmit or receive array table (`[sonar.transmit]`, `[sonar.receive]`): an along and a vertical axis.
+/// A Lambertian parameter (dB) at most 10 log10(1/pi) = -4.97 dB: a perfectly diffuse surface scatters at most what it
+/// receives (the library's lambertian holds the same bound; here it names the scene's key and line).
+inline void lambert_bound(const table_reader& t, std::string_view key, double mu_db) {
+    if (mu_db > -4.97)
+        t.fail(key, "must be <= -4.97 dB (a Lambertian surface scatters at most 1/pi of what it receives), got " +
+                        table_reader::fmt(mu_db));
+}
+
 inline void read_array_layout(table_reader t, array_layout& a) {
     read_array_axis(t, "along", a.along);
     read_array_axis(t, "vertical", a.vertical);
@@ -511,6 +534,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             rt.number("mean_height_m", g.mean_height_m);
             rt.non_negative("outer_scale_m", g.outer_scale_m);
             rt.number("mu_db", g.mu_db);
+            lambert_bound(rt, "mu_db", g.mu_db);
             for (auto& pt : rt.tables("ripples")) {
                 ripples p;
                 pt.positive("wavelength_m", p.wavelength_m);
@@ -589,6 +613,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
     }
     for (auto& ot : top.tables("object")) {
         object o;
+        o.origin = ot.where();
         ot.choice("type", o.type, {"lying_cylinder", "tethered_mine", "pipeline", "sphere", "cylinder"});
         ot.integer("class_id", o.class_id, 1, std::numeric_limits<std::uint32_t>::max());
         o.class_name = o.type;
@@ -690,6 +715,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         s.choice("beam", o.beam, {"ideal_fan", "planar_array"});
         s.positive("frequency_hz", o.frequency_hz);
         s.number("target_mu_db", o.target_mu_db);
+        lambert_bound(s, "target_mu_db", o.target_mu_db);
         s.in_range("along_width_deg", o.along_width_deg, 1e-6, 179.999);
         s.in_range("vertical_width_deg", o.vertical_width_deg, 1e-6, 180);
         s.in_range("depression_deg", o.depression_deg, -90, 90);
@@ -739,6 +765,9 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         m.number("heading_deg", o.heading_deg);
         m.non_negative("speed_mps", o.speed_mps);
         m.positive("altitude_m", o.altitude_m);
+        if (o.altitude_m < 1e-3)
+            m.fail("altitude_m", "must be at least 0.001 m (the simulator's least clearance above the seabed), got " +
+                                     detail::table_reader::fmt(o.altitude_m));
         m.positive("ping_interval_s", o.ping_interval_s);
         m.choice("turn", o.turn, {"none", "port", "starboard"});
         m.non_negative("turn_radius_m", o.turn_radius_m);
@@ -790,7 +819,9 @@ inline void read_array_layout(table_reader t, array_layout& a) {
     {
         auto o = top.sub("output");
         o.string("stem", d.out.stem);
-        if (d.out.stem.size() > 200) o.fail("stem", "must be at most 200 bytes (file names hold 255 with the suffixes)");
+        if (d.out.stem.size() > max_stem_bytes)
+            o.fail("stem", "must be at most " + std::to_string(max_stem_bytes) +
+                               " bytes (file names hold 255 with the outputs' suffixes and temporary names)");
         if (d.out.stem.empty() || d.out.stem.find('/') != std::string::npos ||
             std::any_of(d.out.stem.begin(), d.out.stem.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
             o.fail("stem", "must be a non-empty file name without '/' or control characters");
@@ -817,6 +848,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (d.out.coco && !d.out.png) o.fail("coco", "needs png = true: its annotations name the image STEM.png");
         o.boolean("yolo", d.out.yolo);
         o.boolean("label_images", d.out.label_images);
+        // The instance image holds object id + 1 in 16 bits; object k has id k + 1.
+        if (d.out.label_images && d.objects.size() > 65534)
+            o.fail("label_images", "its 16-bit instance image holds 65534 objects; the scene has " +
+                                       std::to_string(d.objects.size()) + ": leave it out, or split the objects over scenes");
         if (d.out.yolo && d.out.stem == "classes")
             o.fail("stem", "'classes' would write both the boxes and the class list of yolo = true to classes.txt: choose another");
         o.finish();

@@ -19,6 +19,10 @@ using xy = std::array<double, 2>;
 inline constexpr std::int64_t max_pings = 10'000'000;
 /// Most worker threads (`render.threads`, `--threads`).
 inline constexpr std::int64_t max_threads = 1024;
+/// The longest output.stem (bytes): with the longest suffix ("_ground_labels_instance.png"), the run's temporary
+/// names (".STEM....partial-" and 16 hexadecimal digits) and the writer's own (".tmp-" and 16 more), a file name
+/// of 255 bytes.
+inline constexpr std::size_t max_stem_bytes = 180;
 
 struct ripples {
     double wavelength_m = 0.5, height_m = 0.05, crest_heading_deg = 90, symmetry_index = 1;
@@ -67,6 +71,7 @@ struct seabed {
 };
 
 struct object {
+    std::string origin; ///< where the scene file defines it ("scene.toml:12:1: object[0]"), for errors of the built scene
     std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline, sphere, cylinder
     std::int64_t class_id = 1;
     std::string class_name; ///< the class's name in the label files; "" in a file: the type

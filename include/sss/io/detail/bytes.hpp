@@ -39,10 +39,15 @@ template <class V> [[nodiscard]] V get_le(const std::uint8_t* in, std::size_t of
     return std::bit_cast<V>(u);
 }
 
-/// Copies `text` into a fixed, zero-filled character field of `size` bytes (truncated if longer).
+/// Copies `text` into a fixed, zero-filled character field of `size` bytes, always ending in a zero byte (readers
+/// take such fields as C strings): a longer text is cut to size - 1 bytes, not inside a UTF-8 character.
 inline void put_chars(std::uint8_t* out, std::size_t offset, std::string_view text, std::size_t size) noexcept {
     std::memset(out + offset, 0, size);
-    std::memcpy(out + offset, text.data(), text.size() < size ? text.size() : size);
+    if (size == 0) return;
+    std::size_t n = text.size() < size ? text.size() : size - 1;
+    if (n < text.size())
+        while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n; // text[n] continues a character
+    std::memcpy(out + offset, text.data(), n);
 }
 
 /// The text of a fixed character field, up to its first zero byte.
