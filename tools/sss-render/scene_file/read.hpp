@@ -825,6 +825,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (d.out.stem.empty() || d.out.stem.find('/') != std::string::npos ||
             std::any_of(d.out.stem.begin(), d.out.stem.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
             o.fail("stem", "must be a non-empty file name without '/' or control characters");
+        if (d.out.stem == "." || d.out.stem == "..")
+            o.fail("stem", "'" + d.out.stem + "' names a directory, not a file stem (its outputs would be hidden files)");
         o.boolean("png", d.out.png);
         o.positive("png_dynamic_range_db", d.out.png_dynamic_range_db);
         o.choice("png_scale", d.out.png_scale, {"db", "quantised"});
