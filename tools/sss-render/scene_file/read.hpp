@@ -364,6 +364,7 @@ public:
         }
     }
     [[nodiscard]] const toml::table& table() const noexcept { return t_; }
+    [[nodiscard]] bool was_read(const std::string& key) const { return seen_.count(key) != 0; }
     [[nodiscard]] const std::string& path() const noexcept { return path_; }
 
     template <class Range> static std::string suggestion(std::string_view got, const Range& known) {
@@ -442,6 +443,15 @@ inline void read_array_axis(table_reader& t, const std::string& axis, array_axis
 }
 
 /// A transmit or receive array table (`[sonar.transmit]`, `[sonar.receive]`): an along and a vertical axis.
+/// The keys of each type of [[object]] besides type, class_id and class_name.
+inline const std::vector<std::pair<std::string_view, std::vector<std::string_view>>> object_keys{
+    {"lying_cylinder", {"center_m", "heading_deg", "length_m", "radius_m"}},
+    {"sphere", {"center_m", "height_m", "radius_m"}},
+    {"cylinder", {"center_m", "end_m", "end0_height_m", "end1_height_m", "radius_m"}},
+    {"tethered_mine", {"anchor_m", "case_shape", "case_height_m", "case_radius_m", "case_length_m", "case_heading_deg"}},
+    {"pipeline", {"route_m", "radius_m", "max_span_m"}},
+};
+
 /// A Lambertian parameter (dB) at most 10 log10(1/pi) = -4.97 dB: a perfectly diffuse surface scatters at most what it
 /// receives (the library's lambertian holds the same bound; here it names the scene's key and line).
 inline void lambert_bound(const table_reader& t, std::string_view key, double mu_db) {
@@ -661,6 +671,15 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                 ot.fail("type", "a pipeline needs route_m");
             ot.positive("radius_m", o.radius_m);
             ot.non_negative("max_span_m", o.max_span_m);
+        }
+        // A key of another type of object: say whose, rather than suggest the nearest key of this one.
+        for (const auto& [k, v] : ot.table()) {
+            const std::string name(k.str());
+            if (ot.was_read(name)) continue;
+            for (const auto& [type, keys] : detail::object_keys)
+                if (type != o.type && std::find(keys.begin(), keys.end(), name) != keys.end())
+                    ot.fail_at(k.source(), name, "unknown key for type \"" + o.type + "\": it is a key of type \"" +
+                                                     std::string(type) + "\"");
         }
         ot.finish();
         d.objects.push_back(o);
