@@ -222,6 +222,21 @@ elif case == "outputs":
             # Both primitives are class_id 1, named by the first of them.
             check(names == ["sphere", "sphere"] and after[0] == "lying_cylinder",
                   f"the second scene's boxes index their own class in the shared list ({after}, {names})")
+        # Two classes of one name share its index, and rendering again adds nothing to the list.
+        twice = open(small).read().replace("npy = true", "npy = false\nyolo = true") + (
+            '\n[[object]]\ntype = "lying_cylinder"\nclass_id = 2\ncenter_m = [14, 12]\nheading_deg = 0\nlength_m = 2\nradius_m = 0.3\n')
+        open(os.path.join(d, "twice.toml"), "w").write(twice)
+        for _ in range(2):
+            r = run([os.path.join(d, "twice.toml"), "-o", os.path.join(d, "tw")])
+        names = open(os.path.join(d, "tw", "classes.txt")).read().splitlines() if r.returncode == 0 else []
+        boxes = [line.split()[0] for line in open(os.path.join(d, "tw", "small.txt")).read().splitlines()] if r.returncode == 0 else []
+        check(names == ["lying_cylinder"] and boxes == ["0", "0"],
+              f"classes of one name share one index, and a second render adds nothing ({names}, {boxes}, {r.stderr})")
+        # A failed run removes exactly the directories it made: `new` (made on the way), not `existing`.
+        os.makedirs(os.path.join(d, "existing"))
+        r = run([os.path.join(cli, "broken", "mine_case_below_anchor.toml"), "-o", os.path.join(d, "new", "..", "existing", "x")])
+        check(r.returncode == 1 and os.path.isdir(os.path.join(d, "existing")) and not os.path.exists(os.path.join(d, "new"))
+              and files_in(os.path.join(d, "existing")) == [], f"a failed run removes the directories it made, and only those ({r.stderr})")
         # The .npy sidecar says which receiver stages made the values.
         stages = os.path.join(d, "stages.toml")
         open(stages, "w").write(open(small).read() + "\n[receiver]\ntvg = true\nspeckle = true\n")

@@ -87,6 +87,20 @@ template <class R> sss::waterfall<R> scene_lines(const sss::scene_file::descript
 
 } // namespace
 
+namespace {
+
+// The message of the scene error parsing `text` (as s.toml) gives, or "no error".
+std::string error_of(const std::string& text) {
+    try {
+        (void)sss::scene_file::parse(text, "s.toml");
+    } catch (const sss::scene_file::scene_error& e) {
+        return std::string(e.what());
+    }
+    return std::string("no error");
+}
+
+} // namespace
+
 TEST_CASE("a scene file and the equivalent C++ program render bit-identical waterfalls") {
     const auto d = sss::scene_file::parse_file(small_scene_path());
     const auto from_file = sss::scene_file::make_world(d);
@@ -367,14 +381,6 @@ TEST_CASE("the planar array's and the trajectory's keys read back from the resol
 }
 
 TEST_CASE("the planar array's elements and the trajectory's keys are rejected where they cannot apply, naming the key") {
-    const auto error_of = [](const std::string& text) {
-        try {
-            (void)sss::scene_file::parse(text, "s.toml");
-        } catch (const sss::scene_file::scene_error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
     CHECK(error_of("[sonar.transmit]\nalong_count = 2\n") ==
           "s.toml:1:1: sonar.transmit: needs beam = \"planar_array\" (the ideal fan has no elements; its keys are along_width_deg, "
           "vertical_width_deg and depression_deg)");
@@ -417,4 +423,12 @@ TEST_CASE("the XTF beam angles of a uniform array are its two-way half-power wid
     const auto fan = sss::scene_file::widths_of(sss::scene_file::beam_of(d), d.sensor.depression_deg);
     CHECK(fan.along_deg == doctest::Approx(1.0));
     CHECK(fan.vertical_deg == doctest::Approx(50.0));
+}
+
+TEST_CASE("a Lambert parameter above -4.97 dB (mu above 1/pi) is refused where Lambert's law is used, with its key and line") {
+    CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = -4\n").starts_with("s.toml:3:9: seabed.region[0].mu_db: must be <= -4.97 dB"));
+    CHECK(error_of("[sonar]\ntarget_mu_db = 0\n").starts_with("s.toml:2:16: sonar.target_mu_db: must be <= -4.97 dB"));
+    CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = -5\n") == "no error");
+    // Under Jackson's model neither is used: left as given.
+    CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = 0\n[sonar]\nscattering = \"jackson\"\ntarget_mu_db = 0\n") == "no error");
 }

@@ -28,6 +28,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -308,59 +309,119 @@ template <Real T> void check_memory(const description& d, const render_request& 
                       (d.out.ground_range ? ", the ground-range image " + gib(ground) + " (output.ground_range_cell_m)" : std::string()));
 }
 
-/// The class list of YOLO's files in directory `dir`: the names its classes.txt already lists, in their order (each
-/// taking the id of this scene's class of that name, or an id no object has: 0), then this scene's classes that it
-/// does not list. Other scenes' label files in the directory keep their indices, and this scene's take the same
-/// ones for the same names. A classes.txt that cannot be read, or is not a class list, is a scene error.
+/// The class list of YOLO's files in directory `dir`, one name per index: the names its classes.txt already lists, in
+/// their order, then this scene's class names it does not list. Each name stands for this scene's first class of that
+/// name (`ours`; classes of one name share its index), or for none (id 0, which no object has). Other scenes' label
+/// files in the directory keep their indices, and this scene's take the same ones for the same names. A UTF-8 byte
+/// order mark and blank lines at the end are dropped, CRLF line ends read as LF (the list is written with LF). A
+/// classes.txt that cannot be read, or is not a class list, is a scene error.
 inline std::vector<sss::io::label_class> yolo_classes(const std::filesystem::path& dir, const std::vector<sss::io::label_class>& ours) {
     const auto path = dir / "classes.txt";
     std::error_code ec;
     std::vector<sss::io::label_class> out;
+    auto id_of = [&](const std::string& name) {
+        const auto found = std::find_if(ours.begin(), ours.end(), [&](const auto& c) { return c.name == name; });
+        return found == ours.end() ? 0u : found->id;
+    };
     if (std::filesystem::exists(path, ec)) {
         std::ifstream in(path, std::ios::binary);
         std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         if (!in.good() && !in.eof()) throw scene_error(path.string() + ": cannot be read: it holds the class list of the YOLO files beside it");
-        std::size_t line = 0;
+        if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+        std::vector<std::string> lines;
         for (std::size_t at = 0; at < text.size();) {
             const std::size_t nl = text.find('\n', at);
             std::string name = text.substr(at, nl == std::string::npos ? std::string::npos : nl - at);
             at = nl == std::string::npos ? text.size() : nl + 1;
-            ++line;
             if (!name.empty() && name.back() == '\r') name.pop_back();
-            const auto found = std::find_if(ours.begin(), ours.end(), [&](const auto& c) { return c.name == name; });
-            out.push_back({found == ours.end() ? 0u : found->id, name});
+            lines.push_back(std::move(name));
+        }
+        while (!lines.empty() && lines.back().empty()) lines.pop_back();
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            out.push_back({id_of(lines[i]), lines[i]});
             try {
                 sss::io::check_class_names(std::span<const sss::io::label_class>(&out.back(), 1));
             } catch (const sss::error&) {
-                throw scene_error(path.string() + ":" + std::to_string(line) + ": is not a class name (one per line, non-empty "
+                throw scene_error(path.string() + ":" + std::to_string(i + 1) + ": is not a class name (one per line, non-empty "
                                   "UTF-8 text): yolo = true adds this scene's classes to this list; remove the file or "
                                   "render into another directory (-o)");
             }
         }
     }
     for (const auto& c : ours)
-        if (std::none_of(out.begin(), out.end(), [&](const auto& k) { return k.name == c.name && k.id == c.id; })) out.push_back(c);
+        if (std::none_of(out.begin(), out.end(), [&](const auto& k) { return k.name == c.name; })) out.push_back({c.id, c.name});
     return out;
 }
 
-/// The output directory, made if missing; removed again (with the parents it made, each only if empty) unless the
-/// run keeps it, so that a failed run leaves no new directory behind.
+/// The label image with every object's class id replaced by the first id in `classes` of the same name, so that
+/// classes of one name take one YOLO index; nullopt where no two classes share a name (the labels stand as they are).
+inline std::optional<sss::label_image> one_id_per_name(const sss::label_image& labels, const std::vector<sss::io::label_class>& classes) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> to; // (id, the first id of its name)
+    for (const auto& c : classes) {
+        const auto first = std::find_if(classes.begin(), classes.end(), [&](const auto& k) { return k.name == c.name; });
+        if (first->id != c.id) to.emplace_back(c.id, first->id);
+    }
+    if (to.empty()) return std::nullopt;
+    sss::label_image out = labels;
+    for (auto& l : out.values)
+        for (const auto& [id, first] : to)
+            if (l.label == id) l.label = first;
+    return out;
+}
+
+/// An exclusive lock on a directory (flock), held while its shared class list is read, merged and renamed, so that
+/// two runs writing YOLO files into one directory at once each add their classes to the other's.
+class directory_lock {
+public:
+    explicit directory_lock(const std::string& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+        if (fd_ >= 0) ::flock(fd_, LOCK_EX);
+    }
+    directory_lock(const directory_lock&) = delete;
+    directory_lock& operator=(const directory_lock&) = delete;
+    ~directory_lock() {
+        if (fd_ >= 0) ::close(fd_); // releases the lock
+    }
+
+private:
+    int fd_;
+};
+
+/// The output directory, made if missing, one component at a time as the path is written (`a/../b/c/`: `a`, then
+/// `a/../b` if missing, then `a/../b/c`); the ones made are removed again, the last first and each only if empty,
+/// unless the run keeps them, so that a failed run leaves no new directory behind.
 class output_directory {
 public:
     explicit output_directory(const std::string& dir) {
-        std::error_code ec;
         if (dir.empty()) throw scene_error("-o: the output directory must not be empty");
-        for (std::filesystem::path p = std::filesystem::absolute(dir, ec); !ec && !p.empty() && !std::filesystem::exists(p, ec);
-             p = p.parent_path()) {
-            made_.push_back(p);
-            if (p == p.parent_path()) break;
+        try {
+            make(dir);
+        } catch (...) {
+            remove_made();
+            throw;
         }
-        std::filesystem::create_directories(dir, ec);
-        if (ec || !std::filesystem::is_directory(dir, ec))
+    }
+    output_directory(const output_directory&) = delete;
+    output_directory& operator=(const output_directory&) = delete;
+    ~output_directory() { remove_made(); }
+    void keep() noexcept { made_.clear(); }
+
+private:
+    void make(const std::string& dir) {
+        std::error_code ec;
+        std::filesystem::path p;
+        for (const auto& part : std::filesystem::path(dir)) {
+            p /= part;
+            if (part.empty() || part == "." || part == ".." || part == p.root_path()) continue;
+            if (std::filesystem::exists(p, ec)) continue;
+            const bool made = std::filesystem::create_directory(p, ec);
+            if (ec) throw scene_error(dir + ": cannot be the output directory (" + p.string() + ": " + ec.message() + ")");
+            if (made) made_.push_back(p); // else another process made it meanwhile
+        }
+        if (!std::filesystem::is_directory(dir, ec))
             throw scene_error(dir + ": cannot be the output directory (" + (ec ? ec.message() : "not a directory") + ")");
         // Writable: a file made and removed (as root, access() says yes even where the file system says no).
         const std::string probe = (std::filesystem::path(dir) / (".sss-render-probe-" + sss::detail::temporary_suffix())).string();
-        const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+        const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
         if (fd < 0) {
             const std::string why = std::strerror(errno);
             throw scene_error(dir + ": cannot write files in the output directory (" + why + ")");
@@ -368,16 +429,13 @@ public:
         ::close(fd);
         std::filesystem::remove(probe, ec);
     }
-    output_directory(const output_directory&) = delete;
-    output_directory& operator=(const output_directory&) = delete;
-    ~output_directory() {
+    void remove_made() noexcept {
         std::error_code ec;
-        for (const auto& p : made_) // the deepest first; a directory that is not empty stays
-            if (!std::filesystem::remove(p, ec)) break;
+        for (auto p = made_.rbegin(); p != made_.rend(); ++p) // the last made first; one that is not empty stays
+            if (!std::filesystem::remove(*p, ec)) break;
+        made_.clear();
     }
-    void keep() noexcept { made_.clear(); }
 
-private:
     std::vector<std::filesystem::path> made_;
 };
 
@@ -417,11 +475,12 @@ template <Real T> int render_scene(const description& d, const render_request& r
         std::string png, ground, npy, json, xtf, coco, yolo, classes, labels, ground_labels;
     } tmp;
     const bool want_labels = d.out.coco || d.out.yolo || d.out.label_images;
-    std::vector<sss::io::label_class> classes, yolo_list;
+    std::vector<sss::io::label_class> classes;
     for (const auto& o : d.objects)
         if (std::none_of(classes.begin(), classes.end(), [&](const auto& c) { return c.id == std::uint32_t(o.class_id); }))
             classes.push_back({std::uint32_t(o.class_id), o.class_name});
     if (!r.dry_run) {
+        sss_render_catch_stop_signals(); // a signal from here on removes what the run made
         out_dir.emplace(r.out_dir);
         files.emplace(r.out_dir);
         if (d.out.png) tmp.png = files->add(stem + ".png");
@@ -442,8 +501,8 @@ template <Real T> int render_scene(const description& d, const render_request& r
                 tmp.ground_labels = files->add_stem(stem + "_ground_labels", {"_class.png", "_instance.png", "_legend.json"});
         }
         files->check();
-        if (d.out.yolo) yolo_list = detail::yolo_classes(r.out_dir, classes);
-        sss_render_catch_stop_signals();
+        if (d.out.yolo) (void)detail::yolo_classes(r.out_dir, classes); // read again, under a lock, once rendered
+        if (interrupted.load()) throw interrupted_error{};
     }
 
     const auto t0 = std::chrono::steady_clock::now();
@@ -531,6 +590,7 @@ template <Real T> int render_scene(const description& d, const render_request& r
         xp.header.tvg_applied = d.rx.tvg;
         sss::io::write_xtf(tmp.xtf, sss::io::make_xtf<T>(image, poses, xp, altitude));
     }
+    std::optional<detail::directory_lock> class_list_lock;
     if (want_labels) {
         const auto box = sss::io::box_extent::highlight_and_shadow;
         if (d.out.coco) {
@@ -538,7 +598,11 @@ template <Real T> int render_scene(const description& d, const render_request& r
             sss::io::write_text(tmp.coco, sss::io::coco_json(set, classes, box));
         }
         if (d.out.yolo) {
-            sss::io::write_text(tmp.yolo, sss::io::yolo_txt(labels, yolo_list, box));
+            // The directory's class list read, merged and renamed under its lock (released when the run returns).
+            class_list_lock.emplace(r.out_dir);
+            const auto yolo_list = detail::yolo_classes(r.out_dir, classes);
+            const auto relabelled = detail::one_id_per_name(labels, classes);
+            sss::io::write_text(tmp.yolo, sss::io::yolo_txt(relabelled ? *relabelled : labels, yolo_list, box));
             sss::io::write_text(tmp.classes, sss::io::yolo_classes_txt(yolo_list));
         }
         if (d.out.label_images) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,7 @@ template <Real T>
             b.edges = edges;
         }
     };
-    double lowest = alt;
+    double lowest = sampled && count > 0 ? std::numeric_limits<double>::infinity() : alt; // a trajectory: its pings' z
     for (std::size_t ping = first; ping < first + count; ++ping) {
         const auto pose = tow.nominal_pose_at(ping);
         if (sampled) alt = pose.position.z;

@@ -509,6 +509,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.finish();
     }
     {
+        // The Lambert bound holds where Lambert's law is used: sonar.scattering, peeked at before it is read.
+        const auto* sonar_table = top.table().get_as<toml::table>("sonar");
+        const auto* scattering = sonar_table ? sonar_table->get_as<std::string>("scattering") : nullptr;
+        const bool lambert_scene = !scattering || scattering->get() == "lambertian";
         auto s = top.sub("seabed");
         auto& b = d.bed;
         s.string("file", b.file);
@@ -544,7 +548,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             rt.number("mean_height_m", g.mean_height_m);
             rt.non_negative("outer_scale_m", g.outer_scale_m);
             rt.number("mu_db", g.mu_db);
-            lambert_bound(rt, "mu_db", g.mu_db);
+            if (lambert_scene) lambert_bound(rt, "mu_db", g.mu_db);
             for (auto& pt : rt.tables("ripples")) {
                 ripples p;
                 pt.positive("wavelength_m", p.wavelength_m);
@@ -734,7 +738,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         s.choice("beam", o.beam, {"ideal_fan", "planar_array"});
         s.positive("frequency_hz", o.frequency_hz);
         s.number("target_mu_db", o.target_mu_db);
-        lambert_bound(s, "target_mu_db", o.target_mu_db);
+        if (o.scattering == "lambertian") lambert_bound(s, "target_mu_db", o.target_mu_db);
         s.in_range("along_width_deg", o.along_width_deg, 1e-6, 179.999);
         s.in_range("vertical_width_deg", o.vertical_width_deg, 1e-6, 180);
         s.in_range("depression_deg", o.depression_deg, -90, 90);
