@@ -237,6 +237,12 @@ elif case == "outputs":
         r = run([os.path.join(cli, "broken", "mine_case_below_anchor.toml"), "-o", os.path.join(d, "new", "..", "existing", "x")])
         check(r.returncode == 1 and os.path.isdir(os.path.join(d, "existing")) and not os.path.exists(os.path.join(d, "new"))
               and files_in(os.path.join(d, "existing")) == [], f"a failed run removes the directories it made, and only those ({r.stderr})")
+        # A range that reaches the seabed but a beam that does not (the default fan's steepest ray, 45 degrees, meets
+        # it 7.07 m out from 5 m up): a coverage warning, not a silent black image.
+        open(os.path.join(d, "short.toml"), "w").write("[motion]\naltitude_m = 5\n[sonar]\nmax_range_m = 5.5\n")
+        r = run([os.path.join(d, "short.toml"), "--dry-run"])
+        check(r.returncode == 0 and "the beam's steepest ray (depression 45 deg) meets the seabed 5 m below at 7.071 m" in r.stderr,
+              f"a beam that never reaches the seabed within the range is reported ({r.stderr})")
         # The .npy sidecar says which receiver stages made the values.
         stages = os.path.join(d, "stages.toml")
         open(stages, "w").write(open(small).read() + "\n[receiver]\ntvg = true\nspeckle = true\n")

@@ -81,8 +81,20 @@ template <Real T>
                                                                  : " at " + std::to_string(b.pings) + " of " + std::to_string(count) +
                                                                        " pings, first at ping " + std::to_string(b.first_ping) + ",") +
                           " lies beyond the seabed:" + b.edges);
-    if (!(r > lowest)) out.push_back("sonar.max_range_m (" + detail::fmt(r) + " m) does not reach the seabed " +
-                                     mm(lowest) + " m below: the image holds only water");
+    if (!(r > lowest)) {
+        out.push_back("sonar.max_range_m (" + detail::fmt(r) + " m) does not reach the seabed " + mm(lowest) +
+                      " m below: the image holds only water");
+    } else if (count > 0) {
+        // The range reaches the seabed, but the beam's steepest ray may meet it only beyond the range (a level
+        // towfish over a level seabed at the lowest altitude).
+        const double steepest = double(beam_of<T>(d).extent(sss::side::starboard).depression_max_rad);
+        const double nearest = steepest > 0 ? lowest / std::sin(std::min(steepest, 1.5707963267948966))
+                                            : std::numeric_limits<double>::infinity();
+        if (nearest > r)
+            out.push_back("the beam's steepest ray (depression " + mm(steepest * 57.29577951308232) + " deg) meets the seabed " +
+                          mm(lowest) + " m below at " + (std::isfinite(nearest) ? mm(nearest) + " m" : std::string("no range")) +
+                          ", beyond sonar.max_range_m (" + detail::fmt(r) + " m): the image holds only water");
+    }
     return out;
 }
 
