@@ -432,3 +432,36 @@ TEST_CASE("a Lambert parameter above -4.97 dB (mu above 1/pi) is refused where L
     // Under Jackson's model neither is used: left as given.
     CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = 0\n[sonar]\nscattering = \"jackson\"\ntarget_mu_db = 0\n") == "no error");
 }
+
+TEST_CASE("a loaded seabed refuses the keys it would ignore, and its resolved scene leaves them out and reads back") {
+    // A .asc or .raw brings its size, cell and place; a .pgm its size only; a generated seabed has no samples
+    // to scale. Each refused key is named with its line and column.
+    CHECK(error_of("[seabed]\nfile = \"b.asc\"\ncell_m = 0.5\n").starts_with("s.toml:3:10: seabed.cell_m: a loaded .asc seabed is placed by its header"));
+    CHECK(error_of("[seabed]\nfile = \"b.raw\"\norigin_m = [1, 2]\n").starts_with("s.toml:3:12: seabed.origin_m: a loaded .raw seabed is placed by its .raw.txt sidecar"));
+    CHECK(error_of("[seabed]\nfile = \"b.pgm\"\nnx = 64\n").starts_with("s.toml:3:6: seabed.nx: a loaded seabed's size is its file's"));
+    CHECK(error_of("[seabed]\nfile = \"b.asc\"\nblend_m = 1\n").starts_with("s.toml:3:11: seabed.blend_m: sets the generated seabed"));
+    CHECK(error_of("[seabed]\npgm_offset_m = 1\n").starts_with("s.toml:2:16: seabed.pgm_offset_m: applies only to a .pgm seabed.file"));
+    // What each one uses is taken.
+    CHECK(error_of("[seabed]\nfile = \"b.pgm\"\ncell_m = 0.5\norigin_m = [1, 2]\npgm_scale_m = 0.1\npgm_offset_m = -3\n") == "no error");
+    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\n") == "no error");
+    for (const char* file : {"b.asc", "b.raw", "b.pgm", ""}) {
+        CAPTURE(file);
+        auto d = sss::scene_file::parse("[render]\npings = 3\n", "s.toml");
+        d.bed.file = file;
+        const std::string text = sss::scene_file::to_toml(d);
+        const auto again = sss::scene_file::parse(text, "resolved.toml");
+        CHECK(sss::scene_file::to_toml(again) == text);
+        const bool pgm = std::string(file).ends_with(".pgm"), loaded = *file != 0;
+        const auto from = text.find("[seabed]\n");
+        REQUIRE(from != std::string::npos);
+        const std::string bed = text.substr(from, text.find("\n[", from) - from + 1);
+        const auto has = [&](const char* key) { return bed.find("\n" + std::string(key) + " = ") != std::string::npos; };
+        CHECK(has("file"));
+        CHECK(has("pgm_scale_m") == pgm);
+        CHECK(has("cell_m") == (pgm || !loaded));
+        CHECK(has("origin_m") == (pgm || !loaded));
+        CHECK(has("nx") == !loaded);
+        CHECK(has("seed") == !loaded);
+        CHECK(has("warp_m") == !loaded);
+    }
+}

@@ -18,8 +18,9 @@
 ///       origin_x_m 0
 ///       origin_y_m 0
 ///   A double height field is rounded to float32 on writing.
-/// - 16-bit binary PGM (P5, maxval <= 65535, big-endian samples, first row north): heights
-///   h = offset_m + scale_m * sample. PGM holds no geometry: the reader takes cell size and origin, and the
+/// - Binary PGM (P5, first row north): heights h = offset_m + scale_m * sample. The writer writes 16-bit
+///   samples (big-endian); the reader takes any maxval up to 65535, one byte per sample below 256 as the format
+///   says, so 8-bit images load too. PGM holds no geometry: the reader takes cell size and origin, and the
 ///   writer notes all four numbers in a header comment for people (the reader ignores comments).
 ///
 /// Errors are sss::file_error naming the file and the line (text) or the byte offset (binary). Heights

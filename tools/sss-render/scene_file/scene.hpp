@@ -70,6 +70,34 @@ struct seabed {
     std::vector<stamp> stamps;   ///< features stamped on the generated heights, in order
 };
 
+/// A [seabed] key that the seabed from `file` does not use, with why.
+struct unused_seabed_key {
+    const char* key;
+    const char* why;
+};
+
+/// The [seabed] keys that a seabed from `file` ("" generates one) does not use: a loaded seabed takes no
+/// generation keys and its size is the file's; a .asc or .raw also brings its cell size and place (header or
+/// sidecar), a .pgm does not; only a .pgm has samples to scale. The reader refuses them, the writer leaves them out.
+inline std::vector<unused_seabed_key> unused_seabed_keys(const std::string& file) {
+    const auto ends = [&](const char* x) {
+        const std::string tail(x);
+        return file.size() >= tail.size() && file.compare(file.size() - tail.size(), tail.size(), tail) == 0;
+    };
+    std::vector<unused_seabed_key> out;
+    if (!ends(".pgm"))
+        for (const char* k : {"pgm_scale_m", "pgm_offset_m"}) out.push_back({k, "applies only to a .pgm seabed.file (its samples' heights)"});
+    if (file.empty()) return out;
+    for (const char* k : {"nx", "ny"}) out.push_back({k, "a loaded seabed's size is its file's"});
+    if (!ends(".pgm"))
+        for (const char* k : {"cell_m", "origin_m"})
+            out.push_back({k, ends(".raw") ? "a loaded .raw seabed is placed by its .raw.txt sidecar"
+                                           : "a loaded .asc seabed is placed by its header (cellsize, xllcorner, yllcorner)"});
+    for (const char* k : {"seed", "blend_m", "warp_m", "warp_scale_m", "partition_seed"})
+        out.push_back({k, "sets the generated seabed, and seabed.file loads one"});
+    return out;
+}
+
 struct object {
     std::string origin; ///< where the scene file defines it ("scene.toml:12:1: object[0]"), for errors of the built scene
     std::string type = "lying_cylinder"; ///< lying_cylinder, tethered_mine, pipeline, sphere, cylinder

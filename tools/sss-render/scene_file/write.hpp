@@ -1,13 +1,15 @@
 #pragma once
 /// \file
-/// Writing a resolved `description` back as a scene file (TOML): every key, every default filled in, numbers
+/// Writing a resolved `description` back as a scene file (TOML): every key it uses, every default filled in, numbers
 /// in their shortest round-trip form, so that reading the text again gives the same description.
 
 #include "scene.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <utility>
 
 namespace sss::scene_file {
@@ -74,17 +76,22 @@ struct toml_out {
     const auto& b = d.bed;
     o.header("[seabed]");
     o.kv("file", b.file);
-    o.kv("pgm_scale_m", b.pgm_scale_m);
-    o.kv("pgm_offset_m", b.pgm_offset_m);
-    o.kv("nx", b.nx);
-    o.kv("ny", b.ny);
-    o.kv("cell_m", b.cell_m);
-    o.kv("origin_m", b.origin_m);
-    o.kv("seed", b.seed);
-    o.kv("blend_m", b.blend_m);
-    o.kv("warp_m", b.warp_m);
-    o.kv("warp_scale_m", b.warp_scale_m);
-    o.kv("partition_seed", b.partition_seed);
+    // The keys this seabed does not use are left out (the reader refuses them).
+    const auto unused = unused_seabed_keys(b.file);
+    const auto used = [&](std::string_view key) {
+        return std::none_of(unused.begin(), unused.end(), [&](const unused_seabed_key& u) { return key == u.key; });
+    };
+    if (used("pgm_scale_m")) o.kv("pgm_scale_m", b.pgm_scale_m);
+    if (used("pgm_offset_m")) o.kv("pgm_offset_m", b.pgm_offset_m);
+    if (used("nx")) o.kv("nx", b.nx);
+    if (used("ny")) o.kv("ny", b.ny);
+    if (used("cell_m")) o.kv("cell_m", b.cell_m);
+    if (used("origin_m")) o.kv("origin_m", b.origin_m);
+    if (used("seed")) o.kv("seed", b.seed);
+    if (used("blend_m")) o.kv("blend_m", b.blend_m);
+    if (used("warp_m")) o.kv("warp_m", b.warp_m);
+    if (used("warp_scale_m")) o.kv("warp_scale_m", b.warp_scale_m);
+    if (used("partition_seed")) o.kv("partition_seed", b.partition_seed);
     for (const auto& g : b.regions) {
         o.header("[[seabed.region]]");
         o.kv("sediment", g.sediment);
