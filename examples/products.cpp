@@ -5,7 +5,8 @@
 //   products.npy, products.json   the waterfall as float32 for numpy.load, and its sidecar (dt, c, range, poses)
 //   products_coco.json            COCO boxes (highlight + shadow) with RLE masks; products_highlight_coco.json
 //   products.txt, classes.txt     YOLO boxes (highlight + shadow) and the class names
-//   products_labels_class.png     per-sample class (0 no coverage, 1 water, 2 seabed, 3 highlight, 4 shadow),
+//   products_labels_class.png     per-sample class (0 no coverage, 1 water, 2 seabed, 3 highlight, 4 shadow,
+//                                 5 seabed shadow),
 //   products_labels_instance.png  object id + 1 on highlight and shadow (16 bits), products_labels_legend.json
 //   products_labels_view.png      the class image spread over the grey range, to look at
 //   products_ground_labels_*      the labels on a 5 cm ground-range grid (flat-bottom mapping), same three files
@@ -118,7 +119,7 @@ int main(int argc, char** argv) try {
     io::write_text(dir + "/classes.txt", io::yolo_classes_txt(classes));
     io::write_label_images(stem + "_labels", labels, classes);
     std::vector<std::uint8_t> view = io::class_pixels(labels);
-    for (auto& v : view) v = static_cast<std::uint8_t>(v * 63);
+    for (auto& v : view) v = static_cast<std::uint8_t>(v * 51); // classes 0 to 5 over 0 to 255
     io::write_png_grey8(stem + "_labels_view.png", labels.width(), labels.pings, view);
     // The same labels on a 5 cm ground-range grid (flat-bottom mapping at each ping's altitude).
     const label_image ground_labels = ground_range_labels(labels, alt, {.cell_m = 0.05, .cells = 0, .sound_speed_mps = 1500.0});

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <span>
@@ -53,6 +54,18 @@ sim_t make_simulator(double max_range_m, double per_sample, motion::straight_lin
     fan.depression_deg = 45.0;
     return sim_t(scattering::lambertian<double>({.mu_db = {-27.0, -10.0}}), propagation::straight<double>(), beam::ideal_fan<double>(fan),
                  motion::straight_line<double>(tow), rp, ray_density{.along = 4, .across = 0, .per_sample = per_sample});
+}
+
+// An ideal fan from depression lo_deg to hi_deg, 1 deg along track, over ranges up to max_range_m.
+sim_t fan_simulator(double lo_deg, double hi_deg, double max_range_m) {
+    receiver_params rp;
+    rp.sample_rate_hz = fs_hz;
+    rp.max_range_m = max_range_m;
+    rp.pulse.length_s = 100e-6;
+    return sim_t(scattering::lambertian<double>({.mu_db = {-27.0}}), propagation::straight<double>(),
+                 beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = hi_deg - lo_deg, .depression_deg = 0.5 * (lo_deg + hi_deg)}),
+                 motion::straight_line<double>(motion::straight_line_params<double>{}), rp,
+                 ray_density{.along = 4, .across = 0, .per_sample = 4.0});
 }
 
 pose<double> towfish() { return make_pose<double>(0.0, vec3<double>{0, 0, H}, 0, 0, 0); }
@@ -164,6 +177,67 @@ TEST_CASE("In ground range, the flat-bottom mapping puts the lying cylinder's sh
     CHECK(std::none_of(g.values.begin(), g.values.end(), [](const sample_label& l) { return l.kind == sample_class::water_column; }));
     // Port mirrors: the same cell mapping on the left, seabed only.
     CHECK(g.at(0, g.samples - 1 - std::size_t(x_end / cell) - 3).kind == sample_class::seabed);
+}
+
+TEST_CASE("Behind a ridge the seabed hides itself: seabed shadow from the ridge's last lit range to where its grazing ray lands") {
+    // A ridge along the track, 2 m high, its crest at x = 15 m, flanks 1 m wide, on a flat seabed of region 4;
+    // the towfish 10 m up at x = 0, its fan from 20 to 60 deg depression (the swath ends at 10 / sin 20 = 29.2 m). The front flank faces the sonar: its ranges run from hypot(14, 10) = 17.20 m at
+    // its foot to hypot(15, 8) = 17.00 m at the crest, so the last lit range before the shadow is 17.20 m. The ray
+    // grazing the crest lands at x = 15 x 10 / 8 = 18.75 m, range 21.25 m. The back flank (slope 2) and the seabed
+    // up to there are hidden: labelled seabed shadow, with the region of the lit seabed before them.
+    const std::size_t nx = 161, ny = 161;
+    const double cell = 0.25;
+    scene::height_field_params<double> hp{.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {-5.0, -20.0}, .heights_m = {}, .materials = {},
+                                          .regions = std::vector<std::uint32_t>((nx - 1) * (ny - 1), 4u)};
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix) {
+            const double x = -5.0 + double(ix) * cell;
+            hp.heights_m.push_back(std::max(0.0, 2.0 * (1.0 - std::abs(x - 15.0))));
+        }
+    const scene::scene sc(scene::height_field<double>(std::move(hp)), object_set<double>{});
+    const auto sim = fan_simulator(20.0, 60.0, 40.0);
+    const auto l = label_line(sim, sc, towfish(), side::starboard);
+    const double k_lit = sample_of(std::hypot(14.0, H)), k_land = sample_of(std::hypot(18.75, H));
+    std::size_t first = l.size(), last = 0, shadows = 0;
+    for (std::size_t k = 0; k < l.size(); ++k)
+        if (l[k].kind == sample_class::seabed_shadow) {
+            first = std::min(first, k), last = k, ++shadows;
+            CHECK(l[k].label == 4u);
+            CHECK(l[k].object == no_object);
+        }
+    MESSAGE("seabed shadow " << first << "-" << last << " (geometry " << k_lit << "-" << k_land << ")");
+    CHECK(std::abs(double(first) - k_lit) <= 1.0);
+    CHECK(std::abs(double(last + 1) - k_land) <= 1.0);
+    CHECK(shadows == last - first + 1);
+    // Lit seabed on either side; nothing inside the swath is "no coverage", nothing after it a seabed shadow.
+    CHECK(l[first - 3].kind == sample_class::seabed);
+    CHECK(l[last + 3].kind == sample_class::seabed);
+    std::size_t k_first = 0, k_last = 0;
+    for (std::size_t k = 0; k < l.size(); ++k)
+        if (l[k].kind == sample_class::seabed) k_last = k, k_first = k_first ? k_first : k;
+    for (std::size_t k = k_first; k <= k_last; ++k) CHECK(l[k].kind != sample_class::no_coverage);
+    CHECK(std::abs(double(k_last + 1) - sample_of(H / std::sin(20.0 * std::numbers::pi / 180))) <= 1.0);
+    for (std::size_t k = k_last + 1; k < l.size(); ++k) CHECK(l[k].kind == sample_class::no_coverage);
+    // A flat seabed has none.
+    const scene::scene flat(scene::flat_seabed<double>(0.0, 0, 4), object_set<double>{});
+    const auto f = label_line(sim, flat, towfish(), side::starboard);
+    CHECK(std::none_of(f.begin(), f.end(), [](const sample_label& s) { return s.kind == sample_class::seabed_shadow; }));
+}
+
+TEST_CASE("In ground range the seabed a beam does not reach near nadir is no coverage, not water column") {
+    // A fan from 30 to 60 deg depression, 10 m up: the first return is at 10 / sin 60 = 11.55 m, ground range
+    // 5.77 m. The cells nearer than that are seabed the beam never lit.
+    const auto sim = fan_simulator(30.0, 60.0, 30.0);
+    const scene::scene flat(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>{});
+    const label_image slant = label_render(sim, flat, 0, 1);
+    CHECK(slant.at(0, slant.samples + std::size_t(sample_of(H / std::sin(std::numbers::pi / 3))) - 2).kind == sample_class::water_column);
+    const double cell = 0.05;
+    const label_image g = ground_range_labels(slant, {H}, {.cell_m = cell, .cells = 0, .sound_speed_mps = c_mps});
+    CHECK(std::none_of(g.values.begin(), g.values.end(), [](const sample_label& l) { return l.kind == sample_class::water_column; }));
+    const double near_m = H / std::tan(std::numbers::pi / 3);
+    for (const std::size_t j : {std::size_t(0), std::size_t(near_m / cell) - 3})
+        for (const std::size_t col : {g.samples + j, g.samples - 1 - j}) CHECK(g.at(0, col).kind == sample_class::no_coverage);
+    CHECK(g.at(0, g.samples + std::size_t(near_m / cell) + 3).kind == sample_class::seabed);
 }
 
 TEST_CASE("A sphere in the water column: its highlight before the first bottom return, its shadow between its tangent rays") {

@@ -17,8 +17,9 @@
 ///   by the image's width and height; index is the position of the object's class in `classes` (0-based), and
 ///   `yolo_classes_txt` lists the names in that order. An image with no object has an empty file.
 /// - Label images: an 8-bit PNG of sample_class values (0 no coverage, 1 water column, 2 seabed, 3 highlight,
-///   4 shadow), a 16-bit PNG of instance values (object id + 1 on its highlight and shadow, 0 elsewhere), and a
-///   JSON legend of both: every instance value in the image, a shadow-only object's (which has no box) included.
+///   4 shadow, 5 seabed shadow), a 16-bit PNG of instance values (object id + 1 on its highlight and shadow,
+///   0 elsewhere), and a JSON legend of both: every instance value in the image, a shadow-only object's (which
+///   has no box) included.
 
 #include <algorithm>
 #include <charconv>
@@ -254,7 +255,8 @@ inline void write_label_images(const std::string& stem, const label_image& img, 
     const auto inst = sss::detail::encode_png_grey<std::uint16_t>(img.width(), img.pings, instance_pixels(img));
     sss::detail::json_writer j;
     j.begin_object().key("class_png").begin_object();
-    j.member("0", "no_coverage").member("1", "water_column").member("2", "seabed").member("3", "highlight").member("4", "shadow");
+    j.member("0", "no_coverage").member("1", "water_column").member("2", "seabed").member("3", "highlight").member("4", "shadow")
+        .member("5", "seabed_shadow");
     j.end_object().key("instance_png").begin_object().member("0", "none");
     // Every value of the instance image: an object whose shadow alone is in the image (its highlight beyond the
     // swath, or nearer than the first return in ground range) has pixels too, though it has no box. An object's class

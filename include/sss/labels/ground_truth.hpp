@@ -28,6 +28,9 @@
 ///   k the most;
 /// - `seabed`: the seabed returns energy there (region and material of the largest contribution);
 /// - `water_column`: before the first return of the bare seabed;
+/// - `seabed_shadow`: after it and before its last return, but the bare seabed returns nothing there: seabed
+///   that the seabed itself hides from the towfish (behind a ridge, in a ripple's trough). It carries the region
+///   and material of the nearest lit seabed sample before it, the slope that casts it;
 /// - `no_coverage`: anything else (beyond the last seabed return, or outside the beam).
 /// Labels share the waterfall's geometry (receiver/image.hpp): rows are pings, port mirrored on the left.
 
@@ -56,14 +59,22 @@
 namespace sss {
 
 /// What a sample saw (values as written to label images).
-enum class sample_class : std::uint8_t { no_coverage = 0, water_column = 1, seabed = 2, highlight = 3, shadow = 4 };
+enum class sample_class : std::uint8_t {
+    no_coverage = 0,
+    water_column = 1,
+    seabed = 2,
+    highlight = 3,
+    shadow = 4,       ///< an object's
+    seabed_shadow = 5 ///< the seabed's own (file comment)
+};
 
 /// The label of one sample.
 struct sample_label {
     sample_class kind = sample_class::no_coverage;
     std::uint32_t object = no_object; ///< highlight, shadow: the object's id; else no_object
-    std::uint32_t label = 0;          ///< highlight, shadow: the object's class id; seabed: its region id; else 0
-    std::uint32_t material = 0;       ///< highlight, seabed: the material of the largest echo; else 0
+    std::uint32_t label = 0;          ///< highlight, shadow: the object's class id; seabed, seabed_shadow: region id; else 0
+    std::uint32_t material = 0;       ///< highlight, seabed: the material of the largest echo; seabed_shadow: of the lit
+                                      ///< seabed before it; else 0
 
     friend bool operator==(const sample_label&, const sample_label&) = default;
 };
@@ -116,6 +127,7 @@ template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<
     const hit<T>& h = e.surface;
     if (h.object == no_object) {
         acc.first_seabed_s = std::min(acc.first_seabed_s, std::min(e.t0_s, e.t1_s));
+        acc.last_seabed_s = std::max(acc.last_seabed_s, std::max(e.t0_s, e.t1_s));
         acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
             if (acc.add(acc.seabed, acc.seabed_best, k, share * e.power)) {
                 acc.seabed_region[k] = h.label;
@@ -164,6 +176,7 @@ template <class Sim, class Seabed>
         acc.bare_region = acc.seabed_region;
         acc.bare_material = acc.seabed_material;
         acc.first_bare_s = acc.first_seabed_s;
+        acc.last_bare_s = acc.last_seabed_s;
     } else {
         // The objects as the side's rays see them: with the top of those over the side's area, as in the first pass.
         const auto area = sim.side_area(p, sd);
@@ -178,6 +191,7 @@ template <class Sim, class Seabed>
             if (!(e.power > 0.0)) return;
             const hit<T>& h = e.surface;
             acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
+            acc.last_bare_s = std::max(acc.last_bare_s, std::max(e.t0_s, e.t1_s));
             std::size_t blocker = none;
             if (!objects.empty() && e.first_leg_s > T(0)) {
                 if (e.launch == last_launch && e.first_leg_s == last_leg_s) {
@@ -204,8 +218,10 @@ template <class Sim, class Seabed>
         });
     }
     std::vector<sample_label> out(n);
+    std::size_t lit = n; // the last sample before k that the bare seabed lights (n: none yet)
     for (std::size_t k = 0; k < n; ++k) {
         sample_label& l = out[k];
+        if (k > 0 && acc.bare[k - 1] > 0.0) lit = k - 1;
         double total = acc.seabed[k], best = 0.0, blocked = 0.0, most_blocked = 0.0;
         std::size_t top = 0, shade = 0;
         for (std::size_t s = 0; s < acc.ids.size(); ++s) {
@@ -224,6 +240,8 @@ template <class Sim, class Seabed>
             l = {sample_class::seabed, no_object, acc.bare_region[k], acc.bare_material[k]};
         } else if (double(k + 1) * acc.dt <= acc.first_bare_s) {
             l = {sample_class::water_column, no_object, 0, 0};
+        } else if (double(k) * acc.dt < acc.last_bare_s && lit != n) {
+            l = {sample_class::seabed_shadow, no_object, acc.bare_region[lit], acc.bare_material[lit]};
         }
     }
     return out;
@@ -333,7 +351,8 @@ template <class Sim, class Seabed>
 /// per side, port mirrored on the left as in the slant-range image. A cell takes the sample whose centre is nearest
 /// (k = floor(r)); cells beyond the last sample's centre (r - 1/2 > samples - 1), where the ground-range image
 /// (receiver/ground_range.hpp, interpolating between sample centres) has no value, are no_coverage, so that labels
-/// and image cover the same cells.
+/// and image cover the same cells. Every cell is seabed by construction, so a cell whose sample is water column
+/// (seabed between nadir and the first return: a beam that does not reach steep angles) is no_coverage too.
 struct ground_range_params {
     double cell_m = 0.05;            ///< ground-range cell (m), > 0
     std::size_t cells = 0;           ///< cells per side; 0: enough for the slant range at zero altitude
@@ -351,6 +370,7 @@ struct ground_range_params {
     out.dt_s = slant.dt_s;
     out.samples = g.cells != 0 ? g.cells : static_cast<std::size_t>(std::ceil(double(slant.samples) * dr / g.cell_m));
     out.values.resize(out.pings * out.width());
+    const auto on_ground = [](const sample_label& l) { return l.kind == sample_class::water_column ? sample_label{} : l; };
     for (std::size_t i = 0; i < out.pings; ++i) {
         const double h = altitude_m[i];
         for (std::size_t j = 0; j < out.samples; ++j) {
@@ -359,8 +379,8 @@ struct ground_range_params {
             if (!(r - 0.5 <= double(slant.samples) - 1.0)) continue; // as to_ground_range: past the last centre
             const double k = std::floor(r);
             const auto s = static_cast<std::size_t>(k);
-            out.values[i * out.width() + out.samples - 1 - j] = slant.at(i, slant.samples - 1 - s);
-            out.values[i * out.width() + out.samples + j] = slant.at(i, slant.samples + s);
+            out.values[i * out.width() + out.samples - 1 - j] = on_ground(slant.at(i, slant.samples - 1 - s));
+            out.values[i * out.width() + out.samples + j] = on_ground(slant.at(i, slant.samples + s));
         }
     }
     return out;
