@@ -25,8 +25,8 @@ endfunction()
 # (-fno-sanitize-recover=all), so a test that trips a sanitizer fails rather than printing and passing.
 # Pair it with a light optimisation, e.g. -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-Og: with both
 # sanitizers -Og compiles in about 60 % of -O1's time and the tests run about 15 % slower, a shorter build and run.
-# SSS_SANITIZE_SKIP names UBSan checks to leave out (-fno-sanitize=..., comma-separated). CI leaves out alignment,
-# null and vptr: about a quarter of the sanitizer build's compile time (10 to 45 % a file; vptr instruments every
+# SSS_SANITIZE_SKIP names UBSan checks to leave out (-fno-sanitize=..., comma-separated). CI's sanitizer build
+# (Meson's, README) leaves out alignment, null and vptr: about a quarter of the sanitizer build's compile time (10 to 45 % a file; vptr instruments every
 # member access of the standard library's and doctest's polymorphic classes), for little here: sss declares no
 # virtual function, reads file bytes as unsigned char (a mapped height field is mapped from offset 0, aligned), and a
 # null pointer dereferenced is a fault AddressSanitizer reports (a reference bound to null, or a member function

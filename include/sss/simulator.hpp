@@ -220,7 +220,7 @@ struct ray_density {
 /// ray's half of a tube whose other end is missing or on another surface) spread evenly over two-way times
 /// [t0_s, t1_s] (t0_s == t1_s for a point).
 template <Real T> struct tube_echo {
-    double t0_s{};       ///< two-way time at one end (s)
+    double t0_s{};       ///< two-way time at one end (s): the first, whose ray `surface`, `launch`, `first_leg_s` describe
     double t1_s{};       ///< two-way time at the other end (s)
     double power{};      ///< echo power (relative to the source level reference)
     hit<T> surface{};    ///< what the (first) end of the tube met: material, object, label

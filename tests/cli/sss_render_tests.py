@@ -117,6 +117,9 @@ elif case == "outputs":
         r = run([loaded, "-o", "out"], cwd=d)
         check(r.returncode == 0 and files_in(os.path.join(d, "out")) == ["bed.png", "bed_ground.png"],
               f"a loaded .asc seabed renders a quantised PNG and a ground-range PNG ({files_in(os.path.join(d, 'out'))}, {r.stderr})")
+        r = run([loaded, "-o", "seeded", "--seed", "3"], cwd=d)
+        check(r.returncode == 1 and "--seed" in r.stderr and "seabed.file" in r.stderr and not os.path.exists(os.path.join(d, "seeded")),
+              f"--seed with a loaded seabed is refused, not ignored ({r.returncode}, {r.stderr})")
         r = run([os.path.join(cli, "scenes", "primitives.toml"), "-o", os.path.join(d, "p")])
         boxes = open(os.path.join(d, "p", "prim.txt")).read().splitlines() if r.returncode == 0 else []
         check(len(boxes) == 2, f"the sphere and the cylinder each get a YOLO box ({boxes}, {r.stderr})")

@@ -441,6 +441,8 @@ TEST_CASE("a loaded seabed refuses the keys it would ignore, and its resolved sc
     CHECK(error_of("[seabed]\nfile = \"b.pgm\"\nnx = 64\n").starts_with("s.toml:3:6: seabed.nx: a loaded seabed's size is its file's"));
     CHECK(error_of("[seabed]\nfile = \"b.asc\"\nblend_m = 1\n").starts_with("s.toml:3:11: seabed.blend_m: sets the generated seabed"));
     CHECK(error_of("[seabed]\npgm_offset_m = 1\n").starts_with("s.toml:2:16: seabed.pgm_offset_m: applies only to a .pgm seabed.file"));
+    CHECK(error_of("[seabed]\nfile = \"b.asc\"\n[[seabed.site]]\nx_m = 1\n").find("seabed.site: a loaded seabed takes no [[seabed.site]] tables") !=
+          std::string::npos);
     // What each one uses is taken.
     CHECK(error_of("[seabed]\nfile = \"b.pgm\"\ncell_m = 0.5\norigin_m = [1, 2]\npgm_scale_m = 0.1\npgm_offset_m = -3\n") == "no error");
     CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\n") == "no error");

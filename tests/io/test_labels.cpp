@@ -24,6 +24,9 @@
 #include "sss/io/labels.hpp"
 #include "sss/propagation/layered.hpp"
 #include "sss/receiver/ground_range.hpp"
+#include "sss/scattering/jackson.hpp"
+#include "sss/scattering/sediments.hpp"
+#include "sss/scattering/specular_bounce.hpp"
 #include "sss/scene/flat_seabed.hpp"
 #include "sss/scene/height_field.hpp"
 #include "sss/scene/scene.hpp"
@@ -222,6 +225,43 @@ TEST_CASE("Behind a ridge the seabed hides itself: seabed shadow from the ridge'
     const scene::scene flat(scene::flat_seabed<double>(0.0, 0, 4), object_set<double>{});
     const auto f = label_line(sim, flat, towfish(), side::starboard);
     CHECK(std::none_of(f.begin(), f.end(), [](const sample_label& s) { return s.kind == sample_class::seabed_shadow; }));
+}
+
+TEST_CASE("A bounced echo from beyond the swath is seabed, and the gap before it no coverage, not a seabed shadow") {
+    // A fan from 20 to 60 deg depression, 10 m up: the direct swath ends at 10 / sin 20 = 29.2 m. A bank rises at
+    // 3 m/m from x = 34 m to 8 m, out of the fan's direct reach; rays launched at 20 to 26 deg bounce off the flat
+    // seabed (x = 27.5 to 20.5 m) up onto its face and come back the same way, at ranges of about 37 to 41 m.
+    using jackson_bounce = scattering::specular_bounce<scattering::jackson<double>>;
+    using bounce_sim = simulator<jackson_bounce, propagation::straight<double>, beam::ideal_fan<double>, motion::straight_line<double>>;
+    const scattering::jackson<double> sand({.frequency_hz = 100000.0, .sound_speed_mps = c_mps,
+                                            .materials = {scattering::sediment_preset<double>(scattering::sediment::medium_sand)}});
+    receiver_params rp;
+    rp.sample_rate_hz = fs_hz;
+    rp.max_range_m = 50.0;
+    rp.pulse.length_s = 100e-6;
+    const bounce_sim sim(jackson_bounce(sand), propagation::straight<double>(),
+                         beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = 40.0, .depression_deg = 40.0}),
+                         motion::straight_line<double>(motion::straight_line_params<double>{}), rp,
+                         ray_density{.along = 4, .across = 0, .per_sample = 4.0});
+    const std::size_t nx = 301, ny = 161;
+    const double cell = 0.25;
+    scene::height_field_params<double> hp{.nx = nx, .ny = ny, .cell_m = cell, .origin_m = {-5.0, -20.0}, .heights_m = {}, .materials = {},
+                                          .regions = {}};
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix) hp.heights_m.push_back(std::clamp(3.0 * (-5.0 + double(ix) * cell - 34.0), 0.0, 8.0));
+    const scene::scene sc(scene::height_field<double>(std::move(hp)), object_set<double>{});
+    const auto l = label_line(sim, sc, towfish(), side::starboard);
+    const std::size_t k_swath = std::size_t(sample_of(H / std::sin(20.0 * std::numbers::pi / 180)));
+    std::size_t late_seabed = 0, shadows = 0;
+    for (std::size_t k = k_swath + 2; k < l.size(); ++k) {
+        late_seabed += l[k].kind == sample_class::seabed;
+        shadows += l[k].kind == sample_class::seabed_shadow;
+    }
+    MESSAGE("beyond the direct swath (sample " << k_swath << "): " << late_seabed << " samples of bounced seabed echo, " << shadows
+                                                << " of seabed shadow");
+    CHECK(late_seabed > 0u); // the bounce is there
+    CHECK(shadows == 0u);
+    for (std::size_t k = k_swath + 2; k < std::size_t(sample_of(34.0)); ++k) CHECK(l[k].kind == sample_class::no_coverage);
 }
 
 TEST_CASE("In ground range the seabed a beam does not reach near nadir is no coverage, not water column") {

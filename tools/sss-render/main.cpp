@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", out_dir, "directory the outputs go to (created if missing)");
     app.add_option("--pings", pings_arg, "pings A:B to render (default 0:render.pings)");
     app.add_option("--threads", threads_arg, "worker threads (default render.threads; 0 every core)");
-    app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples): a whole number from 0 to 2^63 - 1");
+    app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples of a generated seabed): a whole number from 0 to 2^63 - 1");
     app.add_flag("--dry-run", dry_run, "validate, print the resolved scene as TOML and the coverage problems; render nothing");
     try {
         app.parse(argc, argv);
@@ -105,7 +105,12 @@ int main(int argc, char** argv) {
 
     try {
         sf::description d = sf::parse_file(scene_path);
-        if (app.count("--seed")) d.bed.seed = seed_of(seed_arg);
+        if (app.count("--seed")) {
+            if (!d.bed.file.empty()) // as seabed.seed beside seabed.file: refused rather than ignored
+                throw CLI::ValidationError("--seed", "the scene loads its seabed from seabed.file (" + d.bed.file +
+                                                         "): there is no generated seabed to seed");
+            d.bed.seed = seed_of(seed_arg);
+        }
         if (app.count("--threads")) d.run.threads = threads_of(threads_arg);
         const auto [first, last] = pings_arg.empty() ? std::pair<std::size_t, std::size_t>{0, std::size_t(d.run.pings)}
                                                      : ping_range(pings_arg, std::size_t(d.run.pings));

@@ -28,10 +28,11 @@
 ///   k the most;
 /// - `seabed`: the seabed returns energy there (region and material of the largest contribution);
 /// - `water_column`: before the first return of the bare seabed;
-/// - `seabed_shadow`: after it and before its last return, but the bare seabed returns nothing there: seabed
-///   that the seabed itself hides from the towfish (behind a ridge, in a ripple's trough). It carries the region
-///   and material of the nearest lit seabed sample before it, the slope that casts it;
-/// - `no_coverage`: anything else (beyond the last seabed return, or outside the beam).
+/// - `seabed_shadow`: after it and before its last direct return, but the bare seabed returns nothing there:
+///   seabed that the seabed itself hides from the towfish (behind a ridge, in a ripple's trough). It carries the
+///   region and material of the nearest lit seabed sample before it, the slope that casts it;
+/// - `no_coverage`: anything else (beyond the last direct seabed return, or outside the beam; a bounced echo that
+///   arrives later makes its own samples `seabed`, not the gap before them a shadow).
 /// Labels share the waterfall's geometry (receiver/image.hpp): rows are pings, port mirrored on the left.
 
 #include <algorithm>
@@ -120,6 +121,12 @@ template <Real T> struct objects_alone {
     }
 };
 
+/// True for a piece of a direct path's echo: its two-way time at its first end is twice that end's one-way time (the
+/// simulator computes both from one traced time); a bounced path's is longer by its second leg.
+template <Real T> [[nodiscard]] bool direct_echo(const tube_echo<T>& e) noexcept {
+    return e.t0_s <= 2.0 * double(e.first_leg_s) * (1.0 + 1e-9);
+}
+
 /// The first pass (file comment): one piece of the scene's echo, kept apart by the hit it came from.
 template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<T>& e) {
     if (e.surface.object != no_object) acc.met_object = true; // even without echo power: a dark object casts shadows
@@ -127,7 +134,7 @@ template <Real T> void label_scene_echo(label_accumulator& acc, const tube_echo<
     const hit<T>& h = e.surface;
     if (h.object == no_object) {
         acc.first_seabed_s = std::min(acc.first_seabed_s, std::min(e.t0_s, e.t1_s));
-        acc.last_seabed_s = std::max(acc.last_seabed_s, std::max(e.t0_s, e.t1_s));
+        if (direct_echo(e)) acc.last_seabed_s = std::max(acc.last_seabed_s, std::max(e.t0_s, e.t1_s));
         acc.spread(e.t0_s, e.t1_s, [&](std::size_t k, double share) {
             if (acc.add(acc.seabed, acc.seabed_best, k, share * e.power)) {
                 acc.seabed_region[k] = h.label;
@@ -191,7 +198,7 @@ template <class Sim, class Seabed>
             if (!(e.power > 0.0)) return;
             const hit<T>& h = e.surface;
             acc.first_bare_s = std::min(acc.first_bare_s, std::min(e.t0_s, e.t1_s));
-            acc.last_bare_s = std::max(acc.last_bare_s, std::max(e.t0_s, e.t1_s));
+            if (direct_echo(e)) acc.last_bare_s = std::max(acc.last_bare_s, std::max(e.t0_s, e.t1_s));
             std::size_t blocker = none;
             if (!objects.empty() && e.first_leg_s > T(0)) {
                 if (e.launch == last_launch && e.first_leg_s == last_leg_s) {

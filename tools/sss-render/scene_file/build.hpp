@@ -81,7 +81,7 @@ template <Real T> void apply_stamps(const description& d, sss::seabed::raster<T>
 }
 
 /// The seabed in `seabed.file`, by its extension: ESRI ASCII (.asc), raw float32 with its sidecar (.raw), or
-/// 16-bit PGM (.pgm) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
+/// binary PGM (.pgm, 8- or 16-bit samples) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
 template <Real T = float> [[nodiscard]] sss::scene::height_field<T> load_seabed(const description& d) {
     const auto& b = d.bed;
     const auto ext = b.file.substr(b.file.size() - 4);

@@ -570,6 +570,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             rt.finish();
             b.regions.push_back(g);
         }
+        if (!b.file.empty() && s.table().get("site")) s.fail("site", "a loaded seabed takes no [[seabed.site]] tables");
         for (auto& st : s.tables("site")) {
             site p;
             st.number("x_m", p.x_m);

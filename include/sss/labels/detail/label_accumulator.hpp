@@ -25,9 +25,9 @@ struct label_accumulator {
     std::vector<std::vector<double>> echo, blocked, best_echo;
     std::vector<std::vector<std::uint32_t>> echo_material;
     double first_bare_s = std::numeric_limits<double>::infinity();   ///< the bare seabed's first echo (s)
-    double last_bare_s = -std::numeric_limits<double>::infinity();   ///< the bare seabed's last echo (s)
+    double last_bare_s = -std::numeric_limits<double>::infinity();   ///< the bare seabed's last direct echo (s)
     double first_seabed_s = std::numeric_limits<double>::infinity(); ///< the scene's first seabed echo (s)
-    double last_seabed_s = -std::numeric_limits<double>::infinity(); ///< the scene's last seabed echo (s)
+    double last_seabed_s = -std::numeric_limits<double>::infinity(); ///< the scene's last direct seabed echo (s)
     bool met_object = false; ///< some ray of the scene's pass met an object (with or without echo power)
 
     explicit label_accumulator(std::size_t samples, double dt_s)
