@@ -84,10 +84,10 @@ template <Real T> void apply_stamps(const description& d, sss::seabed::raster<T>
 /// binary PGM (.pgm, 8- or 16-bit samples) placed by cell_m and origin_m with heights pgm_offset_m + pgm_scale_m x sample.
 template <Real T = float> [[nodiscard]] sss::scene::height_field<T> load_seabed(const description& d) {
     const auto& b = d.bed;
-    const auto ext = b.file.substr(b.file.size() - 4);
     try {
-        if (ext == ".raw") return sss::io::read_raw_f32<T>(b.file);
-        if (ext == ".pgm")
+        const seabed_format format = seabed_format_of(b.file);
+        if (format == seabed_format::raw_f32) return sss::io::read_raw_f32<T>(b.file);
+        if (format == seabed_format::pgm)
             return sss::io::read_pgm16<T>(b.file, T(b.cell_m), {T(b.origin_m[0]), T(b.origin_m[1])},
                                           {.scale_m = T(b.pgm_scale_m), .offset_m = T(b.pgm_offset_m)});
         return sss::io::read_esri_ascii<T>(b.file);

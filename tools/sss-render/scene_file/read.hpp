@@ -516,8 +516,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         auto s = top.sub("seabed");
         auto& b = d.bed;
         s.string("file", b.file);
-        const auto ends = [&](std::string_view x) { return b.file.size() >= x.size() && b.file.compare(b.file.size() - x.size(), x.size(), x) == 0; };
-        if (!b.file.empty() && !ends(".asc") && !ends(".raw") && !ends(".pgm"))
+        if (seabed_format_of(b.file) == seabed_format::unknown)
             s.fail("file", "'" + b.file + "' is not a height file sss reads (.asc, .raw with its .raw.txt sidecar, .pgm)");
         // A key the seabed would not use is an error rather than ignored (as [[seabed.region]] with a file is).
         for (const auto& [key, why] : unused_seabed_keys(b.file))

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sss::scene_file {
@@ -70,6 +71,19 @@ struct seabed {
     std::vector<stamp> stamps;   ///< features stamped on the generated heights, in order
 };
 
+/// The kind of seabed `seabed.file` names, by its extension; `generated` when it is empty.
+enum class seabed_format { generated, esri_ascii, raw_f32, pgm, unknown };
+
+/// The format of the seabed in `file` ("" generates one): ESRI ASCII (.asc), raw float32 with its .raw.txt sidecar
+/// (.raw), binary PGM (.pgm), or a file sss does not read.
+inline seabed_format seabed_format_of(std::string_view file) {
+    if (file.empty()) return seabed_format::generated;
+    if (file.ends_with(".asc")) return seabed_format::esri_ascii;
+    if (file.ends_with(".raw")) return seabed_format::raw_f32;
+    if (file.ends_with(".pgm")) return seabed_format::pgm;
+    return seabed_format::unknown;
+}
+
 /// A [seabed] key that the seabed from `file` does not use, with why.
 struct unused_seabed_key {
     const char* key;
@@ -79,20 +93,17 @@ struct unused_seabed_key {
 /// The [seabed] keys that a seabed from `file` ("" generates one) does not use: a loaded seabed takes no
 /// generation keys and its size is the file's; a .asc or .raw also brings its cell size and place (header or
 /// sidecar), a .pgm does not; only a .pgm has samples to scale. The reader refuses them, the writer leaves them out.
-inline std::vector<unused_seabed_key> unused_seabed_keys(const std::string& file) {
-    const auto ends = [&](const char* x) {
-        const std::string tail(x);
-        return file.size() >= tail.size() && file.compare(file.size() - tail.size(), tail.size(), tail) == 0;
-    };
+inline std::vector<unused_seabed_key> unused_seabed_keys(std::string_view file) {
+    const seabed_format format = seabed_format_of(file);
     std::vector<unused_seabed_key> out;
-    if (!ends(".pgm"))
+    if (format != seabed_format::pgm)
         for (const char* k : {"pgm_scale_m", "pgm_offset_m"}) out.push_back({k, "applies only to a .pgm seabed.file (its samples' heights)"});
-    if (file.empty()) return out;
+    if (format == seabed_format::generated) return out;
     for (const char* k : {"nx", "ny"}) out.push_back({k, "a loaded seabed's size is its file's"});
-    if (!ends(".pgm"))
+    if (format != seabed_format::pgm)
         for (const char* k : {"cell_m", "origin_m"})
-            out.push_back({k, ends(".raw") ? "a loaded .raw seabed is placed by its .raw.txt sidecar"
-                                           : "a loaded .asc seabed is placed by its header (cellsize, xllcorner, yllcorner)"});
+            out.push_back({k, format == seabed_format::raw_f32 ? "a loaded .raw seabed is placed by its .raw.txt sidecar"
+                                                                : "a loaded .asc seabed is placed by its header (cellsize, xllcorner, yllcorner)"});
     for (const char* k : {"seed", "blend_m", "warp_m", "warp_scale_m", "partition_seed"})
         out.push_back({k, "sets the generated seabed, and seabed.file loads one"});
     return out;
