@@ -66,8 +66,12 @@ elif case == "roundtrip":
             open(resolved, "w").write(first.stdout)
             second = run([resolved, "--dry-run"], cwd=os.path.dirname(scene))
             check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
-            for key in ["threads =", "blend_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db =", "precision ="]:
+            for key in ["threads =", "cell_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db =", "precision ="]:
                 check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
+            # The regions' synthesis keys where there are regions, and only there (a flat seabed refuses them).
+            regions = "[[seabed.region]]" in first.stdout
+            check(("blend_m =" in first.stdout) == regions and ("partition_seed =" in first.stdout) == regions,
+                  f"{scene}: the resolved scene has blend_m and partition_seed exactly where it has regions")
             want = 'precision = "double"' if scene.endswith("georeferenced.toml") else 'precision = "float"'
             check(want in first.stdout, f"{scene}: the resolved scene keeps {want}")
             check(files_in(d) == ["resolved.toml"], "--dry-run writes nothing")
@@ -120,6 +124,11 @@ elif case == "outputs":
         r = run([loaded, "-o", "seeded", "--seed", "3"], cwd=d)
         check(r.returncode == 1 and "--seed" in r.stderr and "seabed.file" in r.stderr and not os.path.exists(os.path.join(d, "seeded")),
               f"--seed with a loaded seabed is refused, not ignored ({r.returncode}, {r.stderr})")
+        flat = os.path.join(d, "flat.toml")
+        open(flat, "w").write('[render]\npings = 2\n[sonar]\nmax_range_m = 20\n')
+        r = run([flat, "-o", "seeded_flat", "--seed", "3"], cwd=d)
+        check(r.returncode == 1 and "--seed" in r.stderr and "[[seabed.region]]" in r.stderr and not os.path.exists(os.path.join(d, "seeded_flat")),
+              f"--seed with a flat generated seabed is refused, not ignored ({r.returncode}, {r.stderr})")
         r = run([os.path.join(cli, "scenes", "primitives.toml"), "-o", os.path.join(d, "p")])
         boxes = open(os.path.join(d, "p", "prim.txt")).read().splitlines() if r.returncode == 0 else []
         check(len(boxes) == 2, f"the sphere and the cylinder each get a YOLO box ({boxes}, {r.stderr})")

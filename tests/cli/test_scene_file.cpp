@@ -433,9 +433,11 @@ TEST_CASE("a Lambert parameter above -4.97 dB (mu above 1/pi) is refused where L
     CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = 0\n[sonar]\nscattering = \"jackson\"\ntarget_mu_db = 0\n") == "no error");
 }
 
-TEST_CASE("a loaded seabed refuses the keys it would ignore, and its resolved scene leaves them out and reads back") {
+TEST_CASE("a loaded seabed, or a flat generated one, refuses the keys it would ignore, and its resolved scene leaves them "
+          "out and reads back") {
     // A .asc or .raw brings its size, cell and place; a .pgm its size only; a generated seabed has no samples
-    // to scale. Each refused key is named with its line and column.
+    // to scale, and without regions nothing to seed, partition or blend. Each refused key is named with its line and
+    // column.
     CHECK(error_of("[seabed]\nfile = \"b.asc\"\ncell_m = 0.5\n").starts_with("s.toml:3:10: seabed.cell_m: a loaded .asc seabed is placed by its header"));
     CHECK(error_of("[seabed]\nfile = \"b.raw\"\norigin_m = [1, 2]\n").starts_with("s.toml:3:12: seabed.origin_m: a loaded .raw seabed is placed by its .raw.txt sidecar"));
     CHECK(error_of("[seabed]\nfile = \"b.pgm\"\nnx = 64\n").starts_with("s.toml:3:6: seabed.nx: a loaded seabed's size is its file's"));
@@ -445,10 +447,16 @@ TEST_CASE("a loaded seabed refuses the keys it would ignore, and its resolved sc
           std::string::npos);
     // What each one uses is taken.
     CHECK(error_of("[seabed]\nfile = \"b.pgm\"\ncell_m = 0.5\norigin_m = [1, 2]\npgm_scale_m = 0.1\npgm_offset_m = -3\n") == "no error");
-    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\n") == "no error");
-    for (const char* file : {"b.asc", "b.raw", "b.pgm", ""}) {
+    const std::string region = "[[seabed.region]]\nsediment = \"medium_sand\"\n";
+    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\nwarp_m = 2\nwarp_scale_m = 5\npartition_seed = 4\n" + region) ==
+          "no error");
+    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\n").starts_with(
+        "s.toml:3:8: seabed.seed: applies only to a seabed generated from [[seabed.region]] tables (without them it is flat"));
+    CHECK(error_of("[seabed]\npartition_seed = 3\nregion = []\n").starts_with("s.toml:2:18: seabed.partition_seed: applies only"));
+    for (const auto& [file, regions] : {std::pair{"b.asc", false}, {"b.raw", false}, {"b.pgm", false}, {"", false}, {"", true}}) {
         CAPTURE(file);
-        auto d = sss::scene_file::parse("[render]\npings = 3\n", "s.toml");
+        CAPTURE(regions);
+        auto d = sss::scene_file::parse("[render]\npings = 3\n" + (regions ? "[seabed]\n" + region : std::string()), "s.toml");
         d.bed.file = file;
         const std::string text = sss::scene_file::to_toml(d);
         const auto again = sss::scene_file::parse(text, "resolved.toml");
@@ -463,7 +471,8 @@ TEST_CASE("a loaded seabed refuses the keys it would ignore, and its resolved sc
         CHECK(has("cell_m") == (pgm || !loaded));
         CHECK(has("origin_m") == (pgm || !loaded));
         CHECK(has("nx") == !loaded);
-        CHECK(has("seed") == !loaded);
-        CHECK(has("warp_m") == !loaded);
+        CHECK(has("seed") == regions);
+        CHECK(has("warp_m") == regions);
+        CHECK(has("partition_seed") == regions);
     }
 }

@@ -109,6 +109,9 @@ int main(int argc, char** argv) {
             if (!d.bed.file.empty()) // as seabed.seed beside seabed.file: refused rather than ignored
                 throw CLI::ValidationError("--seed", "the scene loads its seabed from seabed.file (" + d.bed.file +
                                                          "): there is no generated seabed to seed");
+            if (d.bed.regions.empty()) // as seabed.seed without regions
+                throw CLI::ValidationError("--seed", "the scene's seabed has no [[seabed.region]] tables: it is flat at z = 0, "
+                                                     "with no roughness or ripples to seed");
             d.bed.seed = seed_of(seed_arg);
         }
         if (app.count("--threads")) d.run.threads = threads_of(threads_arg);

@@ -90,22 +90,29 @@ struct unused_seabed_key {
     const char* why;
 };
 
-/// The [seabed] keys that a seabed from `file` ("" generates one) does not use: a loaded seabed takes no
-/// generation keys and its size is the file's; a .asc or .raw also brings its cell size and place (header or
-/// sidecar), a .pgm does not; only a .pgm has samples to scale. The reader refuses them, the writer leaves them out.
-inline std::vector<unused_seabed_key> unused_seabed_keys(std::string_view file) {
+/// The [seabed] keys that a seabed from `file` ("" generates one, from [[seabed.region]] tables when `regions`, else
+/// flat) does not use: a loaded seabed takes no generation keys and its size is the file's; a .asc or .raw also
+/// brings its cell size and place (header or sidecar), a .pgm does not; only a .pgm has samples to scale; a generated
+/// seabed without regions is flat, with nothing to seed, partition or blend. The reader refuses them, the writer
+/// leaves them out.
+inline std::vector<unused_seabed_key> unused_seabed_keys(std::string_view file, bool regions) {
     const seabed_format format = seabed_format_of(file);
     std::vector<unused_seabed_key> out;
     if (format != seabed_format::pgm)
         for (const char* k : {"pgm_scale_m", "pgm_offset_m"}) out.push_back({k, "applies only to a .pgm seabed.file (its samples' heights)"});
-    if (format == seabed_format::generated) return out;
+    constexpr std::array generation{"seed", "blend_m", "warp_m", "warp_scale_m", "partition_seed"};
+    if (format == seabed_format::generated) {
+        if (!regions)
+            for (const char* k : generation)
+                out.push_back({k, "applies only to a seabed generated from [[seabed.region]] tables (without them it is flat at z = 0)"});
+        return out;
+    }
     for (const char* k : {"nx", "ny"}) out.push_back({k, "a loaded seabed's size is its file's"});
     if (format != seabed_format::pgm)
         for (const char* k : {"cell_m", "origin_m"})
             out.push_back({k, format == seabed_format::raw_f32 ? "a loaded .raw seabed is placed by its .raw.txt sidecar"
                                                                 : "a loaded .asc seabed is placed by its header (cellsize, xllcorner, yllcorner)"});
-    for (const char* k : {"seed", "blend_m", "warp_m", "warp_scale_m", "partition_seed"})
-        out.push_back({k, "sets the generated seabed, and seabed.file loads one"});
+    for (const char* k : generation) out.push_back({k, "sets the generated seabed, and seabed.file loads one"});
     return out;
 }
 
