@@ -451,7 +451,7 @@ TEST_CASE("a loaded seabed, or a flat generated one, refuses the keys it would i
     CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\nwarp_m = 2\nwarp_scale_m = 5\npartition_seed = 4\n" + region) ==
           "no error");
     CHECK(error_of("[seabed]\nnx = 64\nseed = 3\n").starts_with(
-        "s.toml:3:8: seabed.seed: applies only to a seabed generated from [[seabed.region]] tables (without them it is flat"));
+        "s.toml:3:8: seabed.seed: applies only to a seabed generated from [[seabed.region]] tables (without them there is no roughness"));
     CHECK(error_of("[seabed]\npartition_seed = 3\nregion = []\n").starts_with("s.toml:2:18: seabed.partition_seed: applies only"));
     for (const auto& [file, regions] : {std::pair{"b.asc", false}, {"b.raw", false}, {"b.pgm", false}, {"", false}, {"", true}}) {
         CAPTURE(file);

@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", out_dir, "directory the outputs go to (created if missing)");
     app.add_option("--pings", pings_arg, "pings A:B to render (default 0:render.pings)");
     app.add_option("--threads", threads_arg, "worker threads (default render.threads; 0 every core)");
-    app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples of a generated seabed): a whole number from 0 to 2^63 - 1");
+    app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples of a seabed generated from [[seabed.region]] tables): a whole number from 0 to 2^63 - 1");
     app.add_flag("--dry-run", dry_run, "validate, print the resolved scene as TOML and the coverage problems; render nothing");
     try {
         app.parse(argc, argv);
@@ -110,8 +110,8 @@ int main(int argc, char** argv) {
                 throw CLI::ValidationError("--seed", "the scene loads its seabed from seabed.file (" + d.bed.file +
                                                          "): there is no generated seabed to seed");
             if (d.bed.regions.empty()) // as seabed.seed without regions
-                throw CLI::ValidationError("--seed", "the scene's seabed has no [[seabed.region]] tables: it is flat at z = 0, "
-                                                     "with no roughness or ripples to seed");
+                throw CLI::ValidationError("--seed", "the scene's seabed has no [[seabed.region]] tables: there is no "
+                                                     "roughness or ripple to seed");
             d.bed.seed = seed_of(seed_arg);
         }
         if (app.count("--threads")) d.run.threads = threads_of(threads_arg);

@@ -104,7 +104,7 @@ inline std::vector<unused_seabed_key> unused_seabed_keys(std::string_view file, 
     if (format == seabed_format::generated) {
         if (!regions)
             for (const char* k : generation)
-                out.push_back({k, "applies only to a seabed generated from [[seabed.region]] tables (without them it is flat at z = 0)"});
+                out.push_back({k, "applies only to a seabed generated from [[seabed.region]] tables (without them there is no roughness, ripple or region boundary to synthesise)"});
         return out;
     }
     for (const char* k : {"nx", "ny"}) out.push_back({k, "a loaded seabed's size is its file's"});
