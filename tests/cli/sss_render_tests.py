@@ -68,10 +68,14 @@ elif case == "roundtrip":
             check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
             for key in ["threads =", "cell_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db =", "precision ="]:
                 check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
-            # The regions' synthesis keys where there are regions, and only there (a flat seabed refuses them).
-            regions = "[[seabed.region]]" in first.stdout
-            check(("blend_m =" in first.stdout) == regions and ("partition_seed =" in first.stdout) == regions,
-                  f"{scene}: the resolved scene has blend_m and partition_seed exactly where it has regions")
+            # The regions' boundary keys where regions meet, and only there (a flat seabed, or one of a single region,
+            # refuses them); the seed wherever there are regions.
+            regions = first.stdout.count("[[seabed.region]]")
+            seabed = first.stdout[first.stdout.find("[seabed]\n"):]
+            seabed = seabed[:seabed.find("\n[", 1) + 1]
+            check(("\nblend_m =" in seabed) == (regions > 1) and ("\npartition_seed =" in seabed) == (regions > 1)
+                  and ("\nseed =" in seabed) == (regions > 0),
+                  f"{scene}: the resolved scene has seed where it has regions, blend_m and partition_seed where they meet")
             want = 'precision = "double"' if scene.endswith("georeferenced.toml") else 'precision = "float"'
             check(want in first.stdout, f"{scene}: the resolved scene keeps {want}")
             check(files_in(d) == ["resolved.toml"], "--dry-run writes nothing")

@@ -436,8 +436,8 @@ TEST_CASE("a Lambert parameter above -4.97 dB (mu above 1/pi) is refused where L
 TEST_CASE("a loaded seabed, or a flat generated one, refuses the keys it would ignore, and its resolved scene leaves them "
           "out and reads back") {
     // A .asc or .raw brings its size, cell and place; a .pgm its size only; a generated seabed has no samples
-    // to scale, and without regions nothing to seed, partition or blend. Each refused key is named with its line and
-    // column.
+    // to scale, without regions nothing to seed, partition or blend, and with one region no boundary. Each refused key
+    // is named with its line and column.
     CHECK(error_of("[seabed]\nfile = \"b.asc\"\ncell_m = 0.5\n").starts_with("s.toml:3:10: seabed.cell_m: a loaded .asc seabed is placed by its header"));
     CHECK(error_of("[seabed]\nfile = \"b.raw\"\norigin_m = [1, 2]\n").starts_with("s.toml:3:12: seabed.origin_m: a loaded .raw seabed is placed by its .raw.txt sidecar"));
     CHECK(error_of("[seabed]\nfile = \"b.pgm\"\nnx = 64\n").starts_with("s.toml:3:6: seabed.nx: a loaded seabed's size is its file's"));
@@ -448,15 +448,23 @@ TEST_CASE("a loaded seabed, or a flat generated one, refuses the keys it would i
     // What each one uses is taken.
     CHECK(error_of("[seabed]\nfile = \"b.pgm\"\ncell_m = 0.5\norigin_m = [1, 2]\npgm_scale_m = 0.1\npgm_offset_m = -3\n") == "no error");
     const std::string region = "[[seabed.region]]\nsediment = \"medium_sand\"\n";
-    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\nwarp_m = 2\nwarp_scale_m = 5\npartition_seed = 4\n" + region) ==
+    const std::string two_regions = region + "[[seabed.region]]\nsediment = \"coarse_sand\"\n[[seabed.site]]\nx_m = 1\ny_m = 1\n"
+                                             "region = 0\n[[seabed.site]]\nx_m = 20\ny_m = 20\nregion = 1\n";
+    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\nblend_m = 1\nwarp_m = 2\nwarp_scale_m = 5\npartition_seed = 4\n" + two_regions) ==
           "no error");
+    CHECK(error_of("[seabed]\nnx = 64\nseed = 3\n" + region) == "no error");
     CHECK(error_of("[seabed]\nnx = 64\nseed = 3\n").starts_with(
         "s.toml:3:8: seabed.seed: applies only to a seabed generated from [[seabed.region]] tables (without them there is no roughness"));
     CHECK(error_of("[seabed]\npartition_seed = 3\nregion = []\n").starts_with("s.toml:2:18: seabed.partition_seed: applies only"));
-    for (const auto& [file, regions] : {std::pair{"b.asc", false}, {"b.raw", false}, {"b.pgm", false}, {"", false}, {"", true}}) {
+    CHECK(error_of("[seabed]\nwarp_m = 2\n" + region).starts_with(
+        "s.toml:2:10: seabed.warp_m: applies only where [[seabed.region]] tables meet (with one region there is no boundary"));
+    for (const auto& [file, regions] : {std::pair{"b.asc", 0}, {"b.raw", 0}, {"b.pgm", 0}, {"", 0}, {"", 1}, {"", 2}}) {
         CAPTURE(file);
         CAPTURE(regions);
-        auto d = sss::scene_file::parse("[render]\npings = 3\n" + (regions ? "[seabed]\n" + region : std::string()), "s.toml");
+        auto d = sss::scene_file::parse("[render]\npings = 3\n" + (regions == 1   ? "[seabed]\n" + region
+                                                                   : regions == 2 ? "[seabed]\n" + two_regions
+                                                                                  : std::string()),
+                                        "s.toml");
         d.bed.file = file;
         const std::string text = sss::scene_file::to_toml(d);
         const auto again = sss::scene_file::parse(text, "resolved.toml");
@@ -471,8 +479,8 @@ TEST_CASE("a loaded seabed, or a flat generated one, refuses the keys it would i
         CHECK(has("cell_m") == (pgm || !loaded));
         CHECK(has("origin_m") == (pgm || !loaded));
         CHECK(has("nx") == !loaded);
-        CHECK(has("seed") == regions);
-        CHECK(has("warp_m") == regions);
-        CHECK(has("partition_seed") == regions);
+        CHECK(has("seed") == (regions > 0));
+        CHECK(has("warp_m") == (regions > 1));
+        CHECK(has("partition_seed") == (regions > 1));
     }
 }

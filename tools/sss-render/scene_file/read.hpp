@@ -519,9 +519,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (seabed_format_of(b.file) == seabed_format::unknown)
             s.fail("file", "'" + b.file + "' is not a height file sss reads (.asc, .raw with its .raw.txt sidecar, .pgm)");
         // A key the seabed would not use is an error rather than ignored (as [[seabed.region]] with a file is). The
-        // regions are read below; here it matters only whether there are any.
+        // regions are read below; here it matters only how many there are (a value that is not an array of tables is
+        // refused there).
         const toml::node* region_node = s.table().get("region");
-        const bool regions = region_node && !(region_node->is_array() && region_node->as_array()->empty());
+        const std::size_t regions = !region_node ? 0 : region_node->is_array() ? region_node->as_array()->size() : 1;
         for (const auto& [key, why] : unused_seabed_keys(b.file, regions))
             if (s.table().get(key)) s.fail(key, why);
         s.number("pgm_scale_m", b.pgm_scale_m);

@@ -5,6 +5,7 @@
 /// headings clockwise from north, as everywhere at sss's public boundaries.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -90,21 +91,24 @@ struct unused_seabed_key {
     const char* why;
 };
 
-/// The [seabed] keys that a seabed from `file` ("" generates one, from [[seabed.region]] tables when `regions`, else
-/// flat) does not use: a loaded seabed takes no generation keys and its size is the file's; a .asc or .raw also
+/// The [seabed] keys that a seabed from `file` ("" generates one from its `regions` [[seabed.region]] tables, flat
+/// without any) does not use: a loaded seabed takes no generation keys and its size is the file's; a .asc or .raw also
 /// brings its cell size and place (header or sidecar), a .pgm does not; only a .pgm has samples to scale; a generated
-/// seabed without regions is flat, with nothing to seed, partition or blend. The reader refuses them, the writer
-/// leaves them out.
-inline std::vector<unused_seabed_key> unused_seabed_keys(std::string_view file, bool regions) {
+/// seabed without regions is flat, with nothing to seed, partition or blend, and one with a single region has no
+/// boundary to place or blend. The reader refuses them, the writer leaves them out.
+inline std::vector<unused_seabed_key> unused_seabed_keys(std::string_view file, std::size_t regions) {
     const seabed_format format = seabed_format_of(file);
     std::vector<unused_seabed_key> out;
     if (format != seabed_format::pgm)
         for (const char* k : {"pgm_scale_m", "pgm_offset_m"}) out.push_back({k, "applies only to a .pgm seabed.file (its samples' heights)"});
     constexpr std::array generation{"seed", "blend_m", "warp_m", "warp_scale_m", "partition_seed"};
     if (format == seabed_format::generated) {
-        if (!regions)
+        if (regions == 0)
             for (const char* k : generation)
                 out.push_back({k, "applies only to a seabed generated from [[seabed.region]] tables (without them there is no roughness, ripple or region boundary to synthesise)"});
+        else if (regions == 1)
+            for (const char* k : {"blend_m", "warp_m", "warp_scale_m", "partition_seed"})
+                out.push_back({k, "applies only where [[seabed.region]] tables meet (with one region there is no boundary to place or blend)"});
         return out;
     }
     for (const char* k : {"nx", "ny"}) out.push_back({k, "a loaded seabed's size is its file's"});

@@ -77,7 +77,7 @@ struct toml_out {
     o.header("[seabed]");
     o.kv("file", b.file);
     // The keys this seabed does not use are left out (the reader refuses them).
-    const auto unused = unused_seabed_keys(b.file, !b.regions.empty());
+    const auto unused = unused_seabed_keys(b.file, b.regions.size());
     const auto used = [&](std::string_view key) {
         return std::none_of(unused.begin(), unused.end(), [&](const unused_seabed_key& u) { return key == u.key; });
     };
