@@ -214,6 +214,15 @@ struct ray_density {
     /// rather than samples would keep those columns even, and the error: the first samples are a sum of few columns
     /// whose beam weights grow fast across the beam. 0: evenly spaced columns, whatever the beam's width.
     double along_onset = 1.0;
+    /// Largest step (deg) between adjacent launch angles of a column across track. Rays are spaced evenly in
+    /// nominal return time, so where the returns crowd together in range (close to the towfish's altitude, and
+    /// everywhere when it is low) one tube can span many degrees, and its trapezoid misses how the beam, the
+    /// scattering and the footprint change across it. Steps wider than this are divided evenly in angle. A 20 to 60
+    /// deg fan 1 mm above a level seabed returns within three samples: without the cap its energy is 17.5 % high
+    /// and its first samples 2.2 dB off the quadrature of the sonar equation; with 1 deg, within 0.01 %. At 0.5 m
+    /// up the worst sample goes from 0.57 to 0.10 dB. A column 10 m up with 100 m of range gains about 0.5 % more
+    /// rays, one at 0.5 m about 3 %. 0: no cap.
+    double max_launch_step_deg = 1.0;
 };
 
 /// One piece of echo energy handed to a visitor of `simulator::trace`: the power of a ray tube (or of one
@@ -256,6 +265,7 @@ public:
         sss::require(density_.along_split <= 6561, "ray_density.along_split", "must be <= 6561 (3^8)");
         sss::require_non_negative(density_.along_split_echo, "ray_density.along_split_echo");
         sss::require_non_negative(density_.along_onset, "ray_density.along_onset");
+        sss::require_non_negative(density_.max_launch_step_deg, "ray_density.max_launch_step_deg");
         c_ref_ = double(propagation_.reference_speed_mps());
         samples_ = receiver_.samples(c_ref_);
         sss::require(samples_ >= 1 && samples_ <= (std::size_t(1) << 26), "receiver.max_range_m",
@@ -507,6 +517,7 @@ private:
         f.clearance = p.position.z - top_m;
         if (density_.across != 0) f.cd.rays = density_.across;
         else f.cd.rays_per_m = density_.per_sample * 2.0 / (c_ref_ * dt_);
+        f.cd.max_step_rad = deg_to_rad(density_.max_launch_step_deg);
         const double a0 = ext.along_min_rad, a1 = ext.along_max_rad;
         const buffer_lease lease(*buffers_);
         trace_buffers& b = *lease.buffers;

@@ -93,6 +93,10 @@ TEST_CASE("propagation, scattering, motion and ray density parameters are reject
           "ray_density.along_split_echo");
     CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_onset = -1.0}); }) == "ray_density.along_onset");
     CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.along_onset = nan_v}); }) == "ray_density.along_onset");
+    CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.max_launch_step_deg = -1.0}); }) ==
+          "ray_density.max_launch_step_deg");
+    CHECK(named([] { sss::simulator<> sim({}, {}, {}, {}, {}, {.max_launch_step_deg = nan_v}); }) ==
+          "ray_density.max_launch_step_deg");
     CHECK(named([] { sss::scene::flat_seabed<double>{nan_v}; }) == "flat_seabed.height_m");
 }
 

@@ -159,6 +159,7 @@ std::vector<mutation> mutations() {
         {"ray_density.along_split", [](config& c, draw& d) { c.density.along_split = d.one_of<std::size_t>({6562, 100000}); }},
         {"ray_density.along_split_echo", [](config& c, draw& d) { c.density.along_split_echo = d.one_of({-0.5, nan_v, -inf_v}); }},
         {"ray_density.along_onset", [](config& c, draw& d) { c.density.along_onset = d.one_of({-1.0, nan_v, inf_v}); }},
+        {"ray_density.max_launch_step_deg", [](config& c, draw& d) { c.density.max_launch_step_deg = d.one_of({-0.5, nan_v, inf_v}); }},
         {"ray_density.per_sample", [](config& c, draw& d) {
              c.density.across = 0;
              c.density.per_sample = d.one_of({0.0, -1.0, nan_v});

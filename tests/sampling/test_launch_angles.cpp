@@ -3,6 +3,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -86,4 +87,42 @@ TEST_CASE("nothing is launched where nothing can be reached, and a towfish not a
     REQUIRE(e.size() == 52);
     CHECK(e.front() == doctest::Approx(30 * deg));
     CHECK(e.back() == doctest::Approx(10 * deg));
+}
+
+TEST_CASE("close to the seabed no step between launch angles exceeds the cap, and every angle spaced in range is kept") {
+    // 1 mm above a level seabed, a 20 to 60 degree fan returns within 2 mm of range: spaced evenly in range, its
+    // rays are the fan's two edges.
+    const auto R = sss::body_to_world_rotation(0.0, 0.0, 0.0);
+    sss::column_density d;
+    d.rays_per_m = 27.3; // one ray per 0.0366 m: 2048 samples over 75 m
+    std::vector<double> plain, capped;
+    sss::depression_angles(plain, sss::side::starboard, 0.0, 20 * deg, 60 * deg, R, 0.001, 0.001, 75.0, d);
+    REQUIRE(plain.size() >= 2);
+    double widest = 0.0;
+    for (std::size_t i = 1; i < plain.size(); ++i) widest = std::max(widest, plain[i - 1] - plain[i]);
+    CHECK(widest > 30 * deg);
+    d.max_step_rad = 1 * deg;
+    sss::depression_angles(capped, sss::side::starboard, 0.0, 20 * deg, 60 * deg, R, 0.001, 0.001, 75.0, d);
+    CHECK(capped.size() >= plain.size() + 38); // the fan's 40 degrees in steps of at most 1
+    CHECK(capped.size() <= plain.size() + 40);
+    for (std::size_t i = 1; i < capped.size(); ++i) {
+        CHECK(capped[i] < capped[i - 1]);
+        CHECK(capped[i - 1] - capped[i] <= 1 * deg * (1 + 1e-12));
+    }
+    std::size_t kept = 0;
+    for (double e : plain) kept += std::count(capped.begin(), capped.end(), e) == 1 ? 1 : 0;
+    CHECK(kept == plain.size());
+    // A cap wider than every step changes nothing, bit for bit.
+    std::vector<double> wide;
+    d.max_step_rad = 50 * deg;
+    sss::depression_angles(wide, sss::side::starboard, 0.0, 20 * deg, 60 * deg, R, 10.0, 10.0, 75.0, d);
+    d.max_step_rad = 0.0;
+    sss::depression_angles(plain, sss::side::starboard, 0.0, 20 * deg, 60 * deg, R, 10.0, 10.0, 75.0, d);
+    CHECK(wide == plain);
+    // A cap finer than the column's ray budget allows is widened to fit it.
+    d.max_step_rad = 1e-9;
+    d.max_rays = 4096;
+    sss::depression_angles(capped, sss::side::starboard, 0.0, 20 * deg, 60 * deg, R, 0.001, 0.001, 75.0, d);
+    CHECK(capped.size() <= 4096);
+    CHECK(capped.size() > 2048); // widened by factors of 2 from 1e-9: more than half the budget used
 }

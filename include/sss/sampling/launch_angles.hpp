@@ -10,6 +10,9 @@
 /// monotone between the extrema of g, and on each monotone piece e(r) has the closed form
 /// e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C), phi = atan2(C, B).
 /// Where no such spacing exists (towfish not above the scene, a column pointing up) the angles are uniform.
+/// Either way no step between adjacent angles is wider than column_density::max_step_rad: where the returns crowd
+/// together in range (near the towfish's altitude, or under a towfish close to the seabed) a step even in range
+/// can span many degrees.
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +30,37 @@ struct column_density {
     double rays_per_m = 0.0;      ///< rays per metre of nominal slant range (used when `rays` is 0)
     std::size_t rays = 0;         ///< rays over the reachable part of the column (0: use rays_per_m)
     std::size_t max_rays = 1u << 16; ///< cap per column
+    /// Largest step (rad) between adjacent launch angles of a run. Near the towfish's altitude the returns' spacing
+    /// in range leaves few rays over a wide span of angles (at 1 mm altitude a 20 to 60 degree fan returns within
+    /// three samples), and a tube's trapezoid over such a span misses how the beam, the scattering and the
+    /// footprint change across it; 0: no cap.
+    double max_step_rad = 0.0;
 };
+
+/// Divides every step of the monotone angles `es` (rad) wider than max_step_rad evenly in angle, keeping every angle
+/// it had; a cap that would take the run past max_rays angles is widened (doubled) until it does not. 0: no cap.
+inline void cap_steps(std::vector<double>& es, double max_step_rad, std::size_t max_rays) {
+    if (!(max_step_rad > 0.0) || es.size() < 2) return;
+    const auto parts = [&](std::size_t i, double step) { return std::max(std::ceil(std::abs(es[i] - es[i - 1]) / step), 1.0); };
+    double step = max_step_rad;
+    double total = 0.0;
+    for (;;) {
+        total = 1.0;
+        for (std::size_t i = 1; i < es.size(); ++i) total += parts(i, step);
+        if (total <= double(std::max(max_rays, es.size()))) break;
+        step *= 2.0;
+    }
+    if (total == double(es.size())) return; // no step wider than the cap
+    std::vector<double> capped(static_cast<std::size_t>(total));
+    std::size_t j = 0;
+    capped[j++] = es.front();
+    for (std::size_t i = 1; i < es.size(); ++i) {
+        const double n = parts(i, step);
+        for (double k = 1.0; k < n; k += 1.0) capped[j++] = es[i - 1] + (es[i] - es[i - 1]) * (k / n);
+        capped[j++] = es[i];
+    }
+    es.swap(capped);
+}
 
 /// Depression angles (rad) for the column at `along_rad` on side `s`, in descending order (near range first).
 /// Quiet NaN entries separate runs that are not adjacent (no energy is shared across them).
@@ -51,6 +84,8 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
     constexpr std::size_t refine_levels = 6;
 
     auto uniform = [&](double lo, double hi, std::size_t n) {
+        if (density.max_step_rad > 0.0)
+            n = std::max(n, static_cast<std::size_t>(std::min(std::ceil((hi - lo) / density.max_step_rad), 1e9)) + 1);
         n = std::clamp<std::size_t>(n, 2, std::max<std::size_t>(density.max_rays, 2));
         for (std::size_t i = 0; i < n; ++i)
             out.push_back(static_cast<T>(hi - (hi - lo) * double(i) / double(n - 1)));
@@ -116,6 +151,7 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
         }
         es.front() = p.e_near; // exactly on the beam or piece edge
         if (p.far_is_edge) es.back() = p.e_far;
+        cap_steps(es, density.max_step_rad, density.max_rays);
         if (!p.increasing_g) std::reverse(es.begin(), es.end()); // descending in e
         // Pieces meeting at a shared, sampled edge form one run; otherwise separate the runs.
         if (!out.empty()) {

@@ -252,6 +252,7 @@ struct render {
     double along_split_echo = 0.1;           ///< columns divide where their echo departs from their neighbours' by
                                              ///< more than this fraction of the three columns' echo
     double along_onset = 1.0;                ///< how far (range samples) the first return may move across a column
+    double max_launch_step_deg = 1.0;        ///< largest step between a column's launch angles across track (0: none)
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 

@@ -71,6 +71,7 @@ struct toml_out {
     o.kv("along_split_nadir", d.run.along_split_nadir);
     o.kv("along_split_echo", d.run.along_split_echo);
     o.kv("along_onset", d.run.along_onset);
+    o.kv("max_launch_step_deg", d.run.max_launch_step_deg);
     o.kv("precision", d.run.precision);
 
     const auto& b = d.bed;
