@@ -227,6 +227,12 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto echo_again = sss::scene_file::parse(sss::scene_file::to_toml(echo_changed), "resolved.toml");
     CHECK(echo_again.run.along_split_echo == 0.25);
     CHECK(sss::scene_file::rays_of(echo_again).along_split_echo == 0.25);
+    CHECK(sss::scene_file::rays_of(again).max_launch_step_deg == 1.0);
+    auto step_changed = d;
+    step_changed.run.max_launch_step_deg = 0.5;
+    const auto step_again = sss::scene_file::parse(sss::scene_file::to_toml(step_changed), "resolved.toml");
+    CHECK(step_again.run.max_launch_step_deg == 0.5);
+    CHECK(sss::scene_file::rays_of(step_again).max_launch_step_deg == 0.5);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));
     const auto geo_again = sss::scene_file::parse(sss::scene_file::to_toml(geo), "resolved.toml");
     CHECK(sss::scene_file::to_toml(geo_again) == sss::scene_file::to_toml(geo));

@@ -126,3 +126,30 @@ TEST_CASE("close to the seabed no step between launch angles exceeds the cap, an
     CHECK(capped.size() <= 4096);
     CHECK(capped.size() > 2048); // widened by factors of 2 from 1e-9: more than half the budget used
 }
+
+TEST_CASE("the step cap holds across nadir under a rolled towfish, and for the even angles of a towfish not above the scene") {
+    // 5 cm up, rolled 10 degrees: the column passes the vertical, its two pieces either side of the range minimum join
+    // into one run, and each piece's steps are capped.
+    const auto R = sss::body_to_world_rotation(10 * deg, 0.0, 0.0);
+    sss::column_density d;
+    d.rays_per_m = 27.3;
+    d.max_step_rad = 1 * deg;
+    for (sss::side s : {sss::side::port, sss::side::starboard}) {
+        std::vector<double> e;
+        sss::depression_angles(e, s, 0.0, 0.0, 90 * deg, R, 0.05, 0.05, 75.0, d);
+        REQUIRE(e.size() > 100);
+        CHECK(std::count_if(e.begin(), e.end(), [](double x) { return std::isnan(x); }) == 0);
+        for (std::size_t i = 1; i < e.size(); ++i) {
+            CHECK(e[i] < e[i - 1]);
+            CHECK(e[i - 1] - e[i] <= 1 * deg * (1 + 1e-12));
+        }
+    }
+    // Not above the scene: 11 even angles asked over 20 degrees, 21 given.
+    std::vector<double> e;
+    sss::column_density few;
+    few.rays = 9;
+    few.max_step_rad = 1 * deg;
+    sss::depression_angles(e, sss::side::starboard, 0.0, 10 * deg, 30 * deg, R, 10.0, -1.0, 50.0, few);
+    REQUIRE(e.size() == 21);
+    for (std::size_t i = 1; i < e.size(); ++i) CHECK(e[i - 1] - e[i] <= 1 * deg * (1 + 1e-12));
+}

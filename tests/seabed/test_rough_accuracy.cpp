@@ -290,8 +290,9 @@ TEST_CASE("under an array's along-track pattern, sharing the along-track divisio
         CHECK(shared.error.rms_db <= even.error.rms_db + 0.01);
         // The 99th percentile is about the fifth worst of some 490 samples. At 9 the two differ only at four samples
         // 37 to 40 dB down in a ripple's shadow (shared up to 0.73 dB off there, even 0.23 dB), which decide
-        // shared's percentile: 0.70 against even's 0.62 dB. (Before ray_density::max_launch_step_deg divided the
-        // steep steps next to the first return, both had 0.71 dB there and the percentile was that sample's.)
+        // shared's percentile: 0.70 against even's 0.62 dB. (With max_launch_step_deg = 0, both are 0.71 dB off at
+        // a sample next to the first return, whose steep launch steps the cap divides, and that sample is both
+        // percentiles.)
         CHECK(shared.error.p99_db <= even.error.p99_db + 0.1);
         CHECK(shared.error.shadow_misses <= even.error.shadow_misses);
         // At 9, 1.05 with the facets' edges halved and 1.10 bracketed: the edges the bracket marks for the

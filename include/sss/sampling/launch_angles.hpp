@@ -10,9 +10,9 @@
 /// monotone between the extrema of g, and on each monotone piece e(r) has the closed form
 /// e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C), phi = atan2(C, B).
 /// Where no such spacing exists (towfish not above the scene, a column pointing up) the angles are uniform.
-/// Either way no step between adjacent angles is wider than column_density::max_step_rad: where the returns crowd
-/// together in range (near the towfish's altitude, or under a towfish close to the seabed) a step even in range
-/// can span many degrees.
+/// Either way no step between adjacent angles is wider than column_density::max_step_rad, where the column's ray
+/// budget (max_rays) allows: where the returns crowd together in range (near the towfish's altitude, or under a
+/// towfish close to the seabed) a step even in range can span many degrees.
 
 #include <algorithm>
 #include <cmath>
@@ -30,27 +30,35 @@ struct column_density {
     double rays_per_m = 0.0;      ///< rays per metre of nominal slant range (used when `rays` is 0)
     std::size_t rays = 0;         ///< rays over the reachable part of the column (0: use rays_per_m)
     std::size_t max_rays = 1u << 16; ///< cap per column
-    /// Largest step (rad) between adjacent launch angles of a run. Near the towfish's altitude the returns' spacing
-    /// in range leaves few rays over a wide span of angles (at 1 mm altitude a 20 to 60 degree fan returns within
-    /// three samples), and a tube's trapezoid over such a span misses how the beam, the scattering and the
-    /// footprint change across it; 0: no cap.
+    /// Largest step (rad) between adjacent launch angles (within max_rays: a cap the budget cannot meet is widened).
+    /// Near the towfish's altitude the returns' spacing in range leaves few rays over a wide span of angles (at 1 mm
+    /// altitude a 20 to 60 degree fan returns within three samples), and a tube's trapezoid over such a span misses
+    /// how the beam, the scattering and the footprint change across it; 0: no cap.
     double max_step_rad = 0.0;
 };
 
-/// Divides every step of the monotone angles `es` (rad) wider than max_step_rad evenly in angle, keeping every angle
-/// it had; a cap that would take the run past max_rays angles is widened (doubled) until it does not. 0: no cap.
-inline void cap_steps(std::vector<double>& es, double max_step_rad, std::size_t max_rays) {
-    if (!(max_step_rad > 0.0) || es.size() < 2) return;
-    const auto parts = [&](std::size_t i, double step) { return std::max(std::ceil(std::abs(es[i] - es[i - 1]) / step), 1.0); };
-    double step = max_step_rad;
+namespace detail {
+
+/// Divides every step of the monotone, finite angles `es` (rad) wider than max_step_rad evenly in angle, keeping every
+/// angle it had; where that would take the run past max(budget, es.size()) angles the cap is widened, by factors of
+/// two from the smallest step that could fit, until it does not. 0 (or not finite): no cap.
+inline void cap_steps(std::vector<double>& es, double max_step_rad, std::size_t budget) {
+    if (!(max_step_rad > 0.0) || !std::isfinite(max_step_rad) || es.size() < 2) return;
+    const double span = std::abs(es.back() - es.front()); // monotone: the sum of the steps
+    if (!std::isfinite(span)) return;
+    const double room = double(std::max(budget, es.size()));
+    const auto parts = [&](std::size_t i, double step) {
+        return std::max(std::ceil(std::abs(es[i] - es[i - 1]) / step), 1.0);
+    };
+    // A run of span S in steps of at most `step` needs at least S / step + 1 angles: no smaller cap can fit.
+    double step = room > 1.0 ? std::max(max_step_rad, span / (room - 1.0)) : span;
     double total = 0.0;
-    for (;;) {
+    for (int widen = 0; widen < 64; ++widen, step *= 2.0) {
         total = 1.0;
         for (std::size_t i = 1; i < es.size(); ++i) total += parts(i, step);
-        if (total <= double(std::max(max_rays, es.size()))) break;
-        step *= 2.0;
+        if (total <= room) break;
     }
-    if (total == double(es.size())) return; // no step wider than the cap
+    if (!(total <= room) || total == double(es.size())) return; // nothing fits, or no step wider than the cap
     std::vector<double> capped(static_cast<std::size_t>(total));
     std::size_t j = 0;
     capped[j++] = es.front();
@@ -61,6 +69,8 @@ inline void cap_steps(std::vector<double>& es, double max_step_rad, std::size_t 
     }
     es.swap(capped);
 }
+
+} // namespace detail
 
 /// Depression angles (rad) for the column at `along_rad` on side `s`, in descending order (near range first).
 /// Quiet NaN entries separate runs that are not adjacent (no energy is shared across them).
@@ -84,7 +94,7 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
     constexpr std::size_t refine_levels = 6;
 
     auto uniform = [&](double lo, double hi, std::size_t n) {
-        if (density.max_step_rad > 0.0)
+        if (density.max_step_rad > 0.0) // as many as the cap needs, up to the budget (clamped below)
             n = std::max(n, static_cast<std::size_t>(std::min(std::ceil((hi - lo) / density.max_step_rad), 1e9)) + 1);
         n = std::clamp<std::size_t>(n, 2, std::max<std::size_t>(density.max_rays, 2));
         for (std::size_t i = 0; i < n; ++i)
@@ -151,7 +161,8 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
         }
         es.front() = p.e_near; // exactly on the beam or piece edge
         if (p.far_is_edge) es.back() = p.e_far;
-        cap_steps(es, density.max_step_rad, density.max_rays);
+        // Within what is left of the column's budget.
+        detail::cap_steps(es, density.max_step_rad, density.max_rays > out.size() ? density.max_rays - out.size() : 0);
         if (!p.increasing_g) std::reverse(es.begin(), es.end()); // descending in e
         // Pieces meeting at a shared, sampled edge form one run; otherwise separate the runs.
         if (!out.empty()) {
