@@ -221,16 +221,18 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto nadir_again = switched_off(&sss::scene_file::render::along_split_nadir);
     CHECK_FALSE(nadir_again.run.along_split_nadir);
     CHECK_FALSE(sss::scene_file::rays_of(nadir_again).along_split_nadir);
+    // A number of [render] set to `value`, written and read back: it reaches the scene and its ray_density.
+    auto set_to = [&](double sss::scene_file::render::*key, double value) {
+        auto changed = d;
+        changed.run.*key = value;
+        return sss::scene_file::parse(sss::scene_file::to_toml(changed), "resolved.toml");
+    };
     CHECK(sss::scene_file::rays_of(again).along_split_echo == 0.1);
-    auto echo_changed = d;
-    echo_changed.run.along_split_echo = 0.25;
-    const auto echo_again = sss::scene_file::parse(sss::scene_file::to_toml(echo_changed), "resolved.toml");
+    const auto echo_again = set_to(&sss::scene_file::render::along_split_echo, 0.25);
     CHECK(echo_again.run.along_split_echo == 0.25);
     CHECK(sss::scene_file::rays_of(echo_again).along_split_echo == 0.25);
     CHECK(sss::scene_file::rays_of(again).max_launch_step_deg == 1.0);
-    auto step_changed = d;
-    step_changed.run.max_launch_step_deg = 0.5;
-    const auto step_again = sss::scene_file::parse(sss::scene_file::to_toml(step_changed), "resolved.toml");
+    const auto step_again = set_to(&sss::scene_file::render::max_launch_step_deg, 0.5);
     CHECK(step_again.run.max_launch_step_deg == 0.5);
     CHECK(sss::scene_file::rays_of(step_again).max_launch_step_deg == 0.5);
     const auto geo = sss::scene_file::parse_file(scene_path("georeferenced.toml"));

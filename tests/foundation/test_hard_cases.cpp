@@ -161,7 +161,7 @@ TEST_CASE_TEMPLATE("a towfish a millimetre above a level seabed: the fan's echo,
 }
 
 TEST_CASE_TEMPLATE("a coarse receiver (134 samples over 100 m) matches the oracle: its near-range steps are capped in angle", T, float, double) {
-    // One ray per sample is a step of 1.5 m in range: near the fan's steep edge, 10 m up, that is 10 degrees of
+    // One ray per sample is a step of 1.5 m in range: at the fan's steep edge (55 degrees), 10 m up, that is 8 degrees of
     // launch angle, over which the beam's edge and Lambert's law are no longer linear (0.44 dB at worst uncapped).
     sss::receiver_params rx;
     rx.max_range_m = 100.0;
