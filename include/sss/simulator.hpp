@@ -219,13 +219,14 @@ struct ray_density {
     /// Largest step (deg) between adjacent launch angles of a column across track. Rays are spaced evenly in
     /// nominal return time, so where the returns crowd together in range (close to the towfish's altitude, and
     /// everywhere when it is low) one tube can span many degrees, and its trapezoid misses how the beam, the
-    /// scattering and the footprint change across it. Steps wider than this are divided evenly in angle. A 20 to 60
-    /// deg fan 1 mm above a level seabed returns within three samples: without the cap its energy is 17.5 % high
-    /// and its first samples 2.2 dB off the quadrature of the sonar equation; with 1 deg, within 0.01 %. At 0.5 m
-    /// up the worst sample goes from 0.57 to 0.10 dB; 10 m up under a coarse receiver (134 samples over 100 m, a
-    /// 5 to 55 deg fan) from 0.44 to 0.02 dB. A column 10 m up with 100 m of range gains about 0.5 % more rays, one
-    /// at 0.5 m 2 to 3 %; the survey of bench/bench_survey.cpp, whose array's steepest rays have steps below a
-    /// degree, renders the same bit for bit. 0: no cap.
+    /// scattering and the footprint change across it. Steps wider than this are divided evenly in angle (and steps
+    /// in range wider than a twentieth of the range geometrically: column_density::max_range_step). Against the
+    /// quadrature of the sonar equation over a level seabed, with neither rule, with the range's alone, and with
+    /// both: a 20 to 60 deg fan 1 mm up, which returns within three samples, 17.5 % high in energy (2.2 dB in its
+    /// samples), 0.03 %, 0.001 %; 0.5 m up, the worst sample 0.57, 0.13, 0.10 dB; 10 m up under a coarse receiver
+    /// (134 samples over 100 m, a 5 to 55 deg fan), 0.44, 0.10, 0.02 dB. A column 10 m up with 100 m of range gains
+    /// about 0.5 % more rays, one at 0.5 m 2 to 3 %; the survey of bench/bench_survey.cpp, whose array's steepest
+    /// rays have steps below a degree, renders the same bit for bit. 0: no cap.
     double max_launch_step_deg = 1.0;
 };
 

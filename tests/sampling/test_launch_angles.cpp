@@ -95,6 +95,7 @@ TEST_CASE("close to the seabed no step between launch angles exceeds the cap, an
     const auto R = sss::body_to_world_rotation(0.0, 0.0, 0.0);
     sss::column_density d;
     d.rays_per_m = 27.3; // one ray per 0.0366 m: 2048 samples over 75 m
+    d.max_range_step = 0.0; // the angle's cap alone
     std::vector<double> plain, capped;
     sss::depression_angles(plain, sss::side::starboard, 0.0, 20 * deg, 60 * deg, R, 0.001, 0.001, 75.0, d);
     REQUIRE(plain.size() >= 2);
@@ -152,4 +153,32 @@ TEST_CASE("the step cap holds across nadir under a rolled towfish, and for the e
     sss::depression_angles(e, sss::side::starboard, 0.0, 10 * deg, 30 * deg, R, 10.0, -1.0, 50.0, few);
     REQUIRE(e.size() == 21);
     for (std::size_t i = 1; i < e.size(); ++i) CHECK(e[i - 1] - e[i] <= 1 * deg * (1 + 1e-12));
+}
+
+TEST_CASE("close to the seabed no step in nominal range exceeds a twentieth of the range, and the even ranges are kept") {
+    // 1 cm up, 0.0366 m steps: near nadir one step is several times the range.
+    const auto R = sss::body_to_world_rotation(0.0, 0.0, 0.0);
+    sss::column_density d;
+    d.rays_per_m = 27.3;
+    std::vector<double> e, plain;
+    sss::depression_angles(e, sss::side::starboard, 0.0, 0.0, 90 * deg, R, 0.01, 0.01, 75.0, d);
+    d.max_range_step = 0.0;
+    sss::depression_angles(plain, sss::side::starboard, 0.0, 0.0, 90 * deg, R, 0.01, 0.01, 75.0, d);
+    REQUIRE(e.size() > plain.size());
+    CHECK(e.size() < plain.size() + 200);
+    for (std::size_t i = 1; i < e.size(); ++i) {
+        REQUIRE(e[i] < e[i - 1]);
+        const double r0 = nominal_range(R, sss::side::starboard, 0.0, e[i - 1], 0.01);
+        const double r1 = nominal_range(R, sss::side::starboard, 0.0, e[i], 0.01);
+        CHECK(r1 - r0 <= 0.05 * r0 * (1 + 1e-6));
+    }
+    std::size_t kept = 0;
+    for (double a : plain) kept += std::count(e.begin(), e.end(), a) == 1 ? 1 : 0;
+    CHECK(kept == plain.size());
+    // 10 m up nothing changes.
+    std::vector<double> high, high_plain;
+    sss::depression_angles(high_plain, sss::side::starboard, 0.0, 0.0, 90 * deg, R, 10.0, 10.0, 75.0, d);
+    d.max_range_step = 0.05;
+    sss::depression_angles(high, sss::side::starboard, 0.0, 0.0, 90 * deg, R, 10.0, 10.0, 75.0, d);
+    CHECK(high == high_plain);
 }

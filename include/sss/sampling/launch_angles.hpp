@@ -9,6 +9,8 @@
 /// in the column is g(e) = A + B cos e + C sin e, and its nominal slant range is H / g(e); the range is
 /// monotone between the extrema of g, and on each monotone piece e(r) has the closed form
 /// e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C), phi = atan2(C, B).
+/// Where a step is more than column_density::max_range_step of the range it starts from (a towfish within a few
+/// dozen steps of the seabed), it is divided geometrically.
 /// Where no such spacing exists (towfish not above the scene, a column pointing up) the angles are uniform.
 /// Either way no step between adjacent angles is wider than column_density::max_step_rad, where the column's ray
 /// budget (max_rays) allows: where the returns crowd together in range (near the towfish's altitude, or under a
@@ -35,6 +37,12 @@ struct column_density {
     /// altitude a 20 to 60 degree fan returns within three samples), and a tube's trapezoid over such a span misses
     /// how the beam, the scattering and the footprint change across it; 0: no cap.
     double max_step_rad = 0.0;
+    /// Largest step in nominal slant range between adjacent rays, as a fraction of the range (0: none). Close to the
+    /// towfish's altitude one range step can be a large part of the range itself, and the echo per unit time falls
+    /// several fold across the tube: a towfish 1.1 mm up with 0.037 m steps put 14 % too much in the fourth sample
+    /// of the echo (0.58 dB, the worst within 80 dB of the peak), and 0.02 dB at 1/20. Such steps are divided
+    /// geometrically. Only ranges within 20 steps of the towfish are touched (with 0.037 m steps, below 0.74 m).
+    double max_range_step = 0.05;
 };
 
 namespace detail {
@@ -68,6 +76,30 @@ inline void cap_steps(std::vector<double>& es, double max_step_rad, std::size_t 
         capped[j++] = es[i];
     }
     es.swap(capped);
+}
+
+/// Divides every step of the increasing, positive ranges `rs` (m) wider than `ratio` times the range it starts from
+/// geometrically (each part at most that ratio of its start), keeping every range it had, where max(budget,
+/// rs.size()) ranges allow; 0 (or not finite): nothing.
+inline void cap_range_steps(std::vector<double>& rs, double ratio, std::size_t budget) {
+    if (!(ratio > 0.0) || !std::isfinite(ratio) || rs.size() < 2 || !(rs.front() > 0.0)) return;
+    const double growth = std::log1p(ratio);
+    const auto parts = [&](std::size_t i) {
+        const double a = rs[i - 1], b = rs[i];
+        return b - a > ratio * a ? std::ceil(std::log(b / a) / growth) : 1.0;
+    };
+    double total = 1.0;
+    for (std::size_t i = 1; i < rs.size(); ++i) total += parts(i);
+    if (!(total <= double(std::max(budget, rs.size()))) || total == double(rs.size())) return;
+    std::vector<double> divided(static_cast<std::size_t>(total));
+    std::size_t j = 0;
+    divided[j++] = rs.front();
+    for (std::size_t i = 1; i < rs.size(); ++i) {
+        const double n = parts(i), q = rs[i] / rs[i - 1];
+        for (double k = 1.0; k < n; k += 1.0) divided[j++] = rs[i - 1] * std::pow(q, k / n);
+        divided[j++] = rs[i];
+    }
+    rs.swap(divided);
 }
 
 } // namespace detail
@@ -154,6 +186,7 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
         if (std::abs(p.e_near - p.centre) < 1e-9)
             for (std::size_t l = refine_levels; l >= 1; --l) ranges.push_back(p.r_near + step * std::pow(0.25, double(l)));
         for (std::size_t i = 1; i < n; ++i) ranges.push_back(p.r_near + step * double(i));
+        detail::cap_range_steps(ranges, density.max_range_step, density.max_rays > out.size() ? density.max_rays - out.size() : 0);
         std::vector<double> es(ranges.size());
         for (std::size_t i = 0; i < ranges.size(); ++i) {
             const double c = std::clamp((H / ranges[i] - A) / rho, -1.0, 1.0);
