@@ -84,7 +84,9 @@ namespace sss {
 struct ray_density {
     std::size_t along = 8;         ///< along-track columns per side, at least (a beam may ask for more: Beam concept)
     /// Rays per column; 0: `per_sample` rays per time sample of the column's span. Either way a column has at least
-    /// as many as `max_launch_step_deg` needs (a 40 deg fan: 41).
+    /// as many as `max_launch_step_deg` needs (a 40 deg fan: 41), and more where a step in range is over a twentieth
+    /// of the range (sampling/launch_angles.hpp, column_density::max_range_step): near the towfish, or anywhere
+    /// within 20 steps of it when a column has few rays.
     std::size_t across = 0;
     double per_sample = 1.0;       ///< rays per time sample when `across` is 0
     /// Refine across track where adjacent rays are not neighbours on one surface (an occlusion, an object's edge,
@@ -224,9 +226,10 @@ struct ray_density {
     /// quadrature of the sonar equation over a level seabed, with neither rule, with the range's alone, and with
     /// both: a 20 to 60 deg fan 1 mm up, which returns within three samples, 17.5 % high in energy (2.2 dB in its
     /// samples), 0.03 %, 0.001 %; 0.5 m up, the worst sample 0.57, 0.13, 0.10 dB; 10 m up under a coarse receiver
-    /// (134 samples over 100 m, a 5 to 55 deg fan), 0.44, 0.10, 0.02 dB. A column 10 m up with 100 m of range gains
-    /// about 0.5 % more rays, one at 0.5 m 2 to 3 %; the survey of bench/bench_survey.cpp, whose array's steepest
-    /// rays have steps below a degree, renders the same bit for bit. 0: no cap.
+    /// (134 samples over 100 m, a 5 to 55 deg fan), 0.44, 0.10, 0.02 dB. With both, a column 10 m up with 100 m of
+    /// range has about 0.5 % more rays than with neither, one at 0.5 m about 3 %; the survey of
+    /// bench/bench_survey.cpp, whose array's steepest rays have steps below a degree, renders the same bit for bit.
+    /// 0: no cap.
     double max_launch_step_deg = 1.0;
 };
 

@@ -9,8 +9,8 @@
 /// in the column is g(e) = A + B cos e + C sin e, and its nominal slant range is H / g(e); the range is
 /// monotone between the extrema of g, and on each monotone piece e(r) has the closed form
 /// e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C), phi = atan2(C, B).
-/// Where a step is more than column_density::max_range_step of the range it starts from (a towfish within a few
-/// dozen steps of the seabed), it is divided geometrically.
+/// Where a step is more than column_density::max_range_step of the range it starts from (ranges within 20 steps of
+/// the towfish), it is divided geometrically, where the column's ray budget (max_rays) allows.
 /// Where no such spacing exists (towfish not above the scene, a column pointing up) the angles are uniform.
 /// Either way no step between adjacent angles is wider than column_density::max_step_rad, where the column's ray
 /// budget (max_rays) allows: where the returns crowd together in range (near the towfish's altitude, or under a
@@ -33,19 +33,37 @@ struct column_density {
     std::size_t rays = 0;         ///< rays over the reachable part of the column (0: use rays_per_m)
     std::size_t max_rays = 1u << 16; ///< cap per column
     /// Largest step (rad) between adjacent launch angles (within max_rays: a cap the budget cannot meet is widened).
-    /// Near the towfish's altitude the returns' spacing in range leaves few rays over a wide span of angles (at 1 mm
-    /// altitude a 20 to 60 degree fan returns within three samples), and a tube's trapezoid over such a span misses
-    /// how the beam, the scattering and the footprint change across it; 0: no cap.
+    /// Near the towfish's altitude the returns' spacing in range leaves few rays over a wide span of angles (under a
+    /// receiver sampled at 1 kHz, 10 m up, one step is 4.5 degrees at 55 degrees of depression), and a tube's
+    /// trapezoid over such a span misses how the beam, the scattering and the footprint change across it; 0: no cap.
     double max_step_rad = 0.0;
     /// Largest step in nominal slant range between adjacent rays, as a fraction of the range (0: none). Close to the
     /// towfish's altitude one range step can be a large part of the range itself, and the echo per unit time falls
-    /// several fold across the tube: a towfish 1.1 mm up with 0.037 m steps put 14 % too much in the fourth sample
+    /// several fold across the tube: a towfish 1 mm up with 0.0375 m steps put 14 % too much in the fourth sample
     /// of the echo (0.58 dB, the worst within 80 dB of the peak), and 0.02 dB at 1/20. Such steps are divided
-    /// geometrically. Only ranges within 20 steps of the towfish are touched (with 0.037 m steps, below 0.74 m).
+    /// geometrically (where the budget allows). Only ranges within 20 steps of the towfish are touched: with
+    /// 0.0375 m steps, below 0.75 m; with a few rays per column (ray_density::across), at any altitude.
     double max_range_step = 0.05;
 };
 
 namespace detail {
+
+/// `v` with its step i (from v[i - 1] to v[i]) divided into parts[i - 1] parts, the points between at(i, k, n) for
+/// k = 1 ... n - 1, every value of v kept bit for bit. The counts are given once, so the output's size and its filling
+/// agree whatever the rounding.
+template <class At> void divide_steps(std::vector<double>& v, const std::vector<std::size_t>& parts, At&& at) {
+    std::size_t total = 1;
+    for (const std::size_t n : parts) total += n;
+    std::vector<double> divided(total);
+    std::size_t j = 0;
+    divided[j++] = v.front();
+    for (std::size_t i = 1; i < v.size(); ++i) {
+        const std::size_t n = parts[i - 1];
+        for (std::size_t k = 1; k < n; ++k) divided[j++] = at(i, k, n);
+        divided[j++] = v[i];
+    }
+    v.swap(divided);
+}
 
 /// Divides every step of the monotone, finite angles `es` (rad) wider than max_step_rad evenly in angle, keeping every
 /// angle it had; where that would take the run past max(budget, es.size()) angles the cap is widened, by factors of
@@ -55,51 +73,41 @@ inline void cap_steps(std::vector<double>& es, double max_step_rad, std::size_t 
     const double span = std::abs(es.back() - es.front()); // monotone: the sum of the steps
     if (!std::isfinite(span)) return;
     const double room = double(std::max(budget, es.size()));
-    const auto parts = [&](std::size_t i, double step) {
-        return std::max(std::ceil(std::abs(es[i] - es[i - 1]) / step), 1.0);
-    };
+    std::vector<std::size_t> parts(es.size() - 1);
     // A run of span S in steps of at most `step` needs at least S / step + 1 angles: no smaller cap can fit.
-    double step = room > 1.0 ? std::max(max_step_rad, span / (room - 1.0)) : span;
+    double step = std::max(max_step_rad, span / (room - 1.0));
     double total = 0.0;
     for (int widen = 0; widen < 64; ++widen, step *= 2.0) {
         total = 1.0;
-        for (std::size_t i = 1; i < es.size(); ++i) total += parts(i, step);
+        for (std::size_t i = 1; i < es.size(); ++i) total += std::max(std::ceil(std::abs(es[i] - es[i - 1]) / step), 1.0);
         if (total <= room) break;
     }
     if (!(total <= room) || total == double(es.size())) return; // nothing fits, or no step wider than the cap
-    std::vector<double> capped(static_cast<std::size_t>(total));
-    std::size_t j = 0;
-    capped[j++] = es.front();
-    for (std::size_t i = 1; i < es.size(); ++i) {
-        const double n = parts(i, step);
-        for (double k = 1.0; k < n; k += 1.0) capped[j++] = es[i - 1] + (es[i] - es[i - 1]) * (k / n);
-        capped[j++] = es[i];
-    }
-    es.swap(capped);
+    for (std::size_t i = 1; i < es.size(); ++i)
+        parts[i - 1] = static_cast<std::size_t>(std::max(std::ceil(std::abs(es[i] - es[i - 1]) / step), 1.0));
+    divide_steps(es, parts, [&](std::size_t i, std::size_t k, std::size_t n) {
+        return es[i - 1] + (es[i] - es[i - 1]) * (double(k) / double(n));
+    });
 }
 
 /// Divides every step of the increasing, positive ranges `rs` (m) wider than `ratio` times the range it starts from
 /// geometrically (each part at most that ratio of its start), keeping every range it had, where max(budget,
-/// rs.size()) ranges allow; 0 (or not finite): nothing.
+/// rs.size()) ranges allow (else nothing); 0 (or not finite): nothing.
 inline void cap_range_steps(std::vector<double>& rs, double ratio, std::size_t budget) {
     if (!(ratio > 0.0) || !std::isfinite(ratio) || rs.size() < 2 || !(rs.front() > 0.0)) return;
     const double growth = std::log1p(ratio);
-    const auto parts = [&](std::size_t i) {
-        const double a = rs[i - 1], b = rs[i];
-        return b - a > ratio * a ? std::ceil(std::log(b / a) / growth) : 1.0;
-    };
+    std::vector<std::size_t> parts(rs.size() - 1);
     double total = 1.0;
-    for (std::size_t i = 1; i < rs.size(); ++i) total += parts(i);
-    if (!(total <= double(std::max(budget, rs.size()))) || total == double(rs.size())) return;
-    std::vector<double> divided(static_cast<std::size_t>(total));
-    std::size_t j = 0;
-    divided[j++] = rs.front();
     for (std::size_t i = 1; i < rs.size(); ++i) {
-        const double n = parts(i), q = rs[i] / rs[i - 1];
-        for (double k = 1.0; k < n; k += 1.0) divided[j++] = rs[i - 1] * std::pow(q, k / n);
-        divided[j++] = rs[i];
+        const double a = rs[i - 1], b = rs[i];
+        const double n = b - a > ratio * a ? std::ceil(std::log(b / a) / growth) : 1.0;
+        total += n;
+        parts[i - 1] = n < 1e9 ? static_cast<std::size_t>(n) : std::size_t(1e9);
     }
-    rs.swap(divided);
+    if (!(total <= double(std::max(budget, rs.size()))) || total == double(rs.size())) return;
+    divide_steps(rs, parts, [&](std::size_t i, std::size_t k, std::size_t n) {
+        return rs[i - 1] * std::pow(rs[i] / rs[i - 1], double(k) / double(n));
+    });
 }
 
 } // namespace detail
