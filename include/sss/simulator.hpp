@@ -29,8 +29,9 @@
 /// so are the columns over a small target (narrower than three columns, or a piece of a thin cylinder oblique to
 /// them), which two columns passing either side of it would both miss, and within a column two rays either side of
 /// it (sampling/target_spans.hpp; ray_density.along_split_targets), and near the first return, over a seabed that is not
-/// one plane there, every column (ray_density.along_split_nadir). On an open flat seabed nothing is refined and the
-/// line is unchanged.
+/// one plane there, every column, and over a plane the columns across which the first return moves by more than a
+/// fraction of a sample (ray_density.along_split_nadir). On an open flat seabed under a beam a few degrees wide along
+/// track nothing is refined and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
 /// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
@@ -173,10 +174,21 @@ struct ray_density {
     /// 1 km survey of bench/bench_survey.cpp (72 lines against a converged render) it takes the line of the worst 99th
     /// percentile from 0.45 to 0.15 dB RMS and 2.9 to 0.6 dB there, the RMS of the lines' RMS from 0.182 to 0.155 dB and the
     /// lines above 0.3 dB RMS or 1 dB at the 99th percentile from 9 to 5, no line worse, for about 3 % more time
-    /// (docs/design/along-track.md). A level or sloping plane seabed is unchanged bit for bit where its facets' normals
-    /// agree to rounding (any plane in double; in float, heights within about 250 m of zero at 0.05 m cells, as for
-    /// refine_facets). Where the line ends before that time (a range under 1.4 times the altitude) the whole of each
-    /// column's launch intervals is divided so. Like the rest of the along-track check, it needs refinement
+    /// (docs/design/along-track.md). Where the line ends before that time (a range under 1.4 times the altitude) the
+    /// whole of each column's launch intervals is divided so. A level or sloping plane seabed (its facets' normals
+    /// agreeing to rounding: any plane in double; in float, heights within about 250 m of zero at 0.05 m cells, as
+    /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
+    /// first return (over a level seabed at the towfish's altitude) moves by more than a quarter of a range sample, or
+    /// a twentieth where it holds the side's nearest first return, is divided into thirds from its earliest echo up to
+    /// that movement and two samples more, and the four launch intervals either side share its echo with its thirds'
+    /// in even steps: each column's echo begins
+    /// where its centre's first return lies, and just after it the echo rises as the square root of the time, so the
+    /// column's first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the first sample
+    /// after the nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar equation, under 120 degrees from
+    /// 0.73 dB (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m of range and
+    /// 10 m altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array) over a level
+    /// towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely such a beam's
+    /// nearest columns divide too (docs/design/along-track.md). Like the rest of the along-track check, it needs refinement
     /// (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_nadir = true;
     /// Where a column's echo, sample by sample, departs from what its two neighbours' echoes make likely, the launch
@@ -187,7 +199,7 @@ struct ray_density {
     /// (a lower bound of the line there), the column's value is not its width's: the scene changes across it faster
     /// than linearly (a shadow ending in its outer part, a facet's glint). Only samples within 50 dB of the three
     /// columns' strongest are compared, and nothing where all three see one plane and nothing else (a level or
-    /// sloping seabed is unchanged bit for bit, as for along_split_nadir). This catches what the edges miss: where
+    /// sloping seabed is unchanged bit for bit by it). This catches what the edges miss: where
     /// the beam's axis columns are in shadow and the line is the faint columns of its skirts, an edge crossing one of
     /// them obliquely agrees within a sample with its neighbours' and left a step where the along-track integral
     /// ramps. Where such a faint column (one that along_split_by_weight divides less deeply than a column of even
@@ -214,7 +226,8 @@ struct ray_density {
     /// pitched towfish at a high sample rate, and that is accuracy, not waste: the default 100 kHz planar array (5.6
     /// deg along track) sampled at 100 kHz over a level seabed, against the same simulator at 256 even columns, is
     /// 1.3 dB off in the first samples with even columns 10 m up at 10 deg of pitch and 0.09 dB with 24 columns (2.4
-    /// times the time); 2.4 dB against 0.16 dB 30 m up at 5 deg (3.4 times). A tolerance counted in pulse lengths
+    /// times the time); 2.4 dB against 0.16 dB 30 m up at 5 deg (3.4 times). (Those figures leave along_split_nadir
+    /// off; with it, which divides the columns near the first return over a plane, 0.10 and 0.06 dB at 10 deg.) A tolerance counted in pulse lengths
     /// rather than samples would keep those columns even, and the error: the first samples are a sum of few columns
     /// whose beam weights grow fast across the beam. 0: evenly spaced columns, whatever the beam's width.
     double along_onset = 1.0;
@@ -512,7 +525,8 @@ private:
 
     /// trace over `scene` (the whole scene or the area its rays reach), launching for geometry up to `top_m`; the
     /// small targets among `objects` (none: nullptr) divide the columns over them (ray_density::along_split_targets), and
-    /// the stretch of each column near the first return over a seabed that is not one plane (ray_density::along_split_nadir).
+    /// the stretch of each column near the first return over a seabed that is not one plane, or over a plane where the
+    /// first return moves across the column (ray_density::along_split_nadir).
     template <Scene Sc>
     void trace_over(const Sc& scene, T top_m, const pose<T>& p, side sd, const scene::object_set<T>* objects,
                     echo_sink visit) const {
@@ -534,12 +548,20 @@ private:
         const double onset_tolerance_m = density_.along_onset * 0.5 * c_ref_ * dt_;
         const double altitude_m = double(f.altitude);
         const std::size_t n_even = along_columns(ext, sd);
-        column_edges(edges, a0, a1, n_even, onset_tolerance_m, double(f.max_range_m), [&](double a) {
+        const auto nearest = [&](double a) {
             return nearest_range_m(sd, a, double(ext.depression_min_rad), double(ext.depression_max_rad),
                                    p.body_to_world, altitude_m);
-        });
+        };
+        column_edges(edges, a0, a1, n_even, onset_tolerance_m, double(f.max_range_m), nearest);
         const std::size_t n_along = edges.size() - 1;
         auto bounds = [&](std::size_t j) { return std::pair<double, double>{edges[j], edges[j + 1]}; };
+        // The side's nearest first return over a level seabed (m), at the columns' edges and centres.
+        double first_m = std::numeric_limits<double>::infinity();
+        if (density_.along_split_nadir)
+            for (std::size_t j = 0; j <= n_along; ++j) {
+                first_m = std::min(first_m, nearest(edges[j]));
+                if (j < n_along) first_m = std::min(first_m, nearest(0.5 * (edges[j] + edges[j + 1])));
+            }
         double widest = (a1 - a0) / double(n_along); // the widest column (rad): every one where they are even
         if (n_along != n_even)
             for (std::size_t j = 0; j < n_along; ++j) widest = std::max(widest, edges[j + 1] - edges[j]);
@@ -622,7 +644,15 @@ private:
                 const auto [lo, hi] = bounds(j);
                 target_windows(targets, lo, hi, here.angles, windows);
             }
-            if (density_.along_split_nadir) nadir_windows(here, nadir_end_s(f), windows);
+            // Near the first return; over a plane, the intervals beyond those windows are tapered (below).
+            std::vector<redo_range>& nadir = b.nadir;
+            nadir.clear();
+            if (density_.along_split_nadir) {
+                const auto [lo, hi] = bounds(j);
+                const bool plane = nadir_windows(here, nadir_end_s(f), plane_nadir_reach_s(lo, hi, nearest, first_m), nadir);
+                windows.insert(windows.end(), nadir.begin(), nadir.end());
+                if (!plane) nadir.clear(); // only a plane's are tapered
+            }
             if (echo_check)
                 echo_windows(here, j > 0 ? &rec(j - 1) : nullptr, j + 1 < n_along ? &rec(j + 1) : nullptr, weights, j,
                              n_along == n_even ? 0.5 : toward_right(edges, j), b.flags, windows,
@@ -653,21 +683,51 @@ private:
             runs.clear();
             deep_runs.clear();
             std::ptrdiff_t within = 0, deep_within = 0;
+            std::vector<double>& tau = b.tau; // each interval's share of its thirds' echo: 1 where divided
+            tau.assign(intervals, 0.0);
             for (std::size_t k = 0; k < intervals; ++k) {
                 within += cover[k];
                 deep_within += deep_cover[k];
                 const bool redo = within > 0 && !std::isnan(here.angles[k]) && !std::isnan(here.angles[k + 1]);
-                if (!redo) {
-                    for (std::size_t i = here.first[k]; i < here.first[k + 1]; ++i) visit(here.echoes[i]);
-                    continue;
-                }
+                if (!redo) continue;
+                tau[k] = 1.0;
                 auto& into = deep_within > 0 ? deep_runs : runs;
                 if (!into.empty() && into.back().second + 1 == k) into.back().second = k;
                 else into.emplace_back(k, k);
             }
+            // Either side of a stretch divided near the first return over a plane, the column's echo goes over to its
+            // thirds' in steps (nadir_taper): where the stretch ends, the thirds' last tubes end at their own times, a
+            // third of the echo each, and left a step up and down a third high, a fraction of a sample wide, at the
+            // column's. The steps begin where the divided run holding the window ends.
+            for (const redo_range& w : nadir) {
+                if (w.k0 >= intervals) continue;
+                std::size_t ends[2] = {w.k0, std::min(w.k1, intervals - 1)};
+                while (ends[0] > 0 && tau[ends[0] - 1] >= 1.0) --ends[0];
+                while (ends[1] + 1 < intervals && tau[ends[1] + 1] >= 1.0) ++ends[1];
+                for (std::size_t d = 1; d <= nadir_taper; ++d) {
+                    const double share = 1.0 - double(d) / double(nadir_taper + 1);
+                    for (const std::size_t q : {ends[0] - d, ends[1] + d}) {
+                        if (q >= intervals || tau[q] >= 1.0) continue; // past either end, or divided
+                        if (std::isnan(here.angles[q]) || std::isnan(here.angles[q + 1])) continue;
+                        tau[q] = std::max(tau[q], share);
+                    }
+                }
+            }
+            auto& taper_runs = b.taper_runs;
+            taper_runs.clear();
+            for (std::size_t k = 0; k < intervals; ++k) {
+                if (tau[k] >= 1.0) continue;
+                if (tau[k] > 0.0) {
+                    if (!taper_runs.empty() && taper_runs.back().second + 1 == k) taper_runs.back().second = k;
+                    else taper_runs.emplace_back(k, k);
+                    continue;
+                }
+                for (std::size_t i = here.first[k]; i < here.first[k + 1]; ++i) visit(here.echoes[i]);
+            }
             for (std::size_t i = here.first.empty() ? 0 : here.first.back(); i < here.echoes.size(); ++i)
                 visit(here.echoes[i]);
             const auto [lo, hi] = bounds(j);
+            if (!taper_runs.empty()) taper(scene, f, lo, hi, here, taper_runs, tau, b, visit);
             if (runs.empty() && deep_runs.empty()) continue;
             // A small target lies over the column: its launch intervals divide on until the narrowest columns are a
             // quarter of its angular thickness wide (a sphere's diameter, a cylinder's), two levels past along_split's
@@ -808,6 +868,10 @@ private:
         std::vector<target_span> targets; ///< the side's small targets (ray_density::along_split_targets)
         std::vector<unsigned char> flags; ///< the samples where a column's echo departs (ray_density::along_split_echo)
         std::vector<double> edges;        ///< the side's columns' along-track edges (rad): sampling/column_edges.hpp
+        std::vector<redo_range> nadir;    ///< a column's windows near the first return (ray_density::along_split_nadir)
+        std::vector<double> tau;          ///< each launch interval's share of its thirds' echo (1: divided)
+        std::vector<std::pair<std::size_t, std::size_t>> taper_runs; ///< the intervals that share some
+        column_record taper_outer[2];     ///< their outer thirds
     };
 
     /// Buffers kept between trace calls, so that a ping reuses the memory of the pings before it instead of
@@ -916,40 +980,74 @@ private:
         return 2.0 * std::sqrt(2.0) * std::max(0.0, double(f.altitude)) / c_ref_;
     }
 
+    /// Over a plane seabed, a column is divided near the first return where that return moves across it by more than
+    /// this many range samples; a column holding the side's nearest first return, by more than nadir_first_spread.
+    static constexpr double nadir_plane_spread = 0.25;
+    static constexpr double nadir_first_spread = 0.05;
+    /// Beyond a stretch divided near the first return over a plane, this many launch intervals share the column's
+    /// echo with its thirds', in even steps.
+    static constexpr std::size_t nadir_taper = 4;
+
+    /// How long (two-way, s) after its earliest echo from the seabed the column between along-track angles lo and hi
+    /// (rad) counts as near the first return over a plane seabed: the time its first return moves across it, plus two
+    /// range samples, where that movement exceeds nadir_plane_spread samples (nadir_first_spread where the column
+    /// holds the side's nearest first return, `first_m`); else 0. First returns are a level seabed's at the towfish's
+    /// altitude (nearest(a): the slant range, m, at along-track angle a), sampled at the column's edges and centre:
+    /// they tell how far the return moves, the column's echoes where it begins.
+    template <class Nearest>
+    [[nodiscard]] double plane_nadir_reach_s(double lo, double hi, Nearest&& nearest, double first_m) const {
+        double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
+        for (const double a : {lo, 0.5 * (lo + hi), hi}) {
+            const double r = nearest(a);
+            if (!std::isfinite(r)) continue;
+            r_min = std::min(r_min, r);
+            r_max = std::max(r_max, r);
+        }
+        const double sample_m = 0.5 * c_ref_ * dt_;
+        const double limit = r_min <= first_m * (1.0 + 1e-9) ? nadir_first_spread : nadir_plane_spread;
+        if (!(r_max - r_min > limit * sample_m)) return 0.0;
+        return 2.0 * (r_max - r_min + 2.0 * sample_m) / c_ref_;
+    }
+
     /// The launch intervals of a traced column whose echoes begin before two-way time `t_end_s` (near the first return),
     /// as windows for the along-track division, where the seabed's facets met there are not all one plane (their
-    /// geometric normals more than 1e-3 rad apart, as between facets whose edges are refined: detail::facet_edge); none
-    /// over a plane seabed, level or sloping (ray_density::along_split_nadir).
-    static void nadir_windows(const column_record& rec, double t_end_s, std::vector<redo_range>& out) {
-        if (rec.first.size() < 2 || !(t_end_s > 0.0)) return;
+    /// geometric normals more than 1e-3 rad apart, as between facets whose edges are refined: detail::facet_edge).
+    /// Over a plane seabed, level or sloping, those whose echoes begin within `plane_reach_s` of the column's earliest
+    /// echo from the seabed (plane_nadir_reach_s; none where it is 0), and true. Planarity is judged over the seabed's
+    /// echoes that begin before either end; a column with none there has no window (ray_density::along_split_nadir).
+    static bool nadir_windows(const column_record& rec, double t_end_s, double plane_reach_s, std::vector<redo_range>& out) {
+        if (rec.first.size() < 2) return false;
         const std::size_t intervals = rec.first.size() - 1;
-        auto near = [&](std::size_t k) {
-            for (std::size_t i = rec.first[k]; i < rec.first[k + 1]; ++i)
-                if (std::min(rec.echoes[i].t0_s, rec.echoes[i].t1_s) < t_end_s) return true;
-            return false;
-        };
-        // One plane: every seabed echo near the first return has the first one's normal.
+        const auto begins = [](const tube_echo<T>& e) { return std::min(e.t0_s, e.t1_s); };
+        double first_s = std::numeric_limits<double>::infinity();
+        for (const tube_echo<T>& e : rec.echoes)
+            if (e.surface.object == no_object) first_s = std::min(first_s, begins(e));
+        const double plane_end_s = plane_reach_s > 0.0 && std::isfinite(first_s) ? first_s + plane_reach_s : 0.0;
+        const double judged_s = std::max(t_end_s, plane_end_s);
+        if (!(judged_s > 0.0)) return false;
+        // One plane: every seabed echo that begins before either end has the first one's normal.
         const vec3<T>* plane = nullptr;
         bool planar = true;
-        for (std::size_t k = 0; k < intervals && planar; ++k) {
-            if (!near(k)) continue;
-            for (std::size_t i = rec.first[k]; i < rec.first[k + 1]; ++i) {
-                const hit<T>& h = rec.echoes[i].surface;
-                if (h.object != no_object || !(std::min(rec.echoes[i].t0_s, rec.echoes[i].t1_s) < t_end_s)) continue;
-                if (!plane) {
-                    plane = &h.normal;
-                } else if (!same_normal(h.normal, *plane)) {
-                    planar = false;
-                    break;
-                }
-            }
+        for (std::size_t i = 0; i < rec.echoes.size() && planar; ++i) {
+            const hit<T>& h = rec.echoes[i].surface;
+            if (h.object != no_object || !(begins(rec.echoes[i]) < judged_s)) continue;
+            if (!plane) plane = &h.normal;
+            else if (!same_normal(h.normal, *plane)) planar = false;
         }
-        if (planar) return;
+        if (!plane) return false; // no echo from the seabed there
+        const double end_s = planar ? plane_end_s : t_end_s;
+        if (!(end_s > 0.0)) return false;
+        auto near = [&](std::size_t k) {
+            for (std::size_t i = rec.first[k]; i < rec.first[k + 1]; ++i)
+                if (begins(rec.echoes[i]) < end_s) return true;
+            return false;
+        };
         for (std::size_t k = 0; k < intervals; ++k) {
             if (!near(k)) continue;
             if (!out.empty() && out.back().k1 + 1 == k) out.back().k1 = k;
             else out.push_back({k, k});
         }
+        return planar;
     }
 
     /// The most columns per side whose echoes are held at once, so that a faint column's share of the line can decide
@@ -1389,6 +1487,43 @@ private:
             divide(scene, f, a, c, angles, rec, middle, d.runs[1], level + 1, depth, target_depth, b, visit);
         if (!d.runs[2].empty())
             divide(scene, f, c, hi, angles, d.outer[1], 1.0, d.runs[2], level + 1, depth, target_depth, b, visit);
+    }
+
+    /// Visits the echoes of the launch intervals `truns` of the column between along-track angles lo and hi (rad),
+    /// traced as `here`, each shared with its thirds: interval k's echo is tau[k] times the thirds' (the outer two
+    /// traced here, the middle the column's own scaled to its solid angle) plus 1 - tau[k] times the column's.
+    template <Scene Sc>
+    void taper(const Sc& scene, const trace_frame& f, double lo, double hi, const column_record& here,
+               const std::vector<std::pair<std::size_t, std::size_t>>& truns, const std::vector<double>& tau,
+               trace_buffers& b, echo_sink visit) const {
+        const double width = (hi - lo) / 3.0;
+        const double a = lo + width, c = hi - width;
+        const double middle = (std::sin(c) - std::sin(a)) / (std::sin(hi) - std::sin(lo));
+        for (std::size_t s = 0; s < 2; ++s) {
+            column_record& r = b.taper_outer[s];
+            r.echoes.clear();
+            r.edges.clear();
+            r.first.assign(here.angles.size(), 0);
+            r.seabed_edges = here.seabed_edges;
+            auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
+            const double s_lo = s == 0 ? lo : c, s_hi = s == 0 ? a : hi;
+            in_column(scene, f, s_lo, s_hi, [&](const Sc& col) { trace_runs(col, f, s_lo, s_hi, here.angles, truns, b.scratch, &r, keep); });
+        }
+        for (const auto& [k0, k1] : truns)
+            for (std::size_t k = k0; k <= k1; ++k) {
+                const double t = tau[k];
+                for (std::size_t i = here.first[k]; i < here.first[k + 1]; ++i) {
+                    tube_echo<T> e = here.echoes[i];
+                    e.power *= t * middle + 1.0 - t;
+                    visit(e);
+                }
+                for (const column_record& r : b.taper_outer)
+                    for (std::size_t i = r.first[k]; i < r.first[k + 1]; ++i) {
+                        tube_echo<T> e = r.echoes[i];
+                        e.power *= t;
+                        visit(e);
+                    }
+            }
     }
 
     /// Traces the launch intervals `runs` (each [k0, k1]: the rays at angles[k0] to angles[k1 + 1]) of a column
