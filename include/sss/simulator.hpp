@@ -31,7 +31,7 @@
 /// it (sampling/target_spans.hpp; ray_density.along_split_targets), and near the first return, over a seabed that is not
 /// one plane there, every column, and over a plane the columns across which the first return moves by more than a
 /// fraction of a sample (ray_density.along_split_nadir). On an open flat seabed under a beam a few degrees wide along
-/// track nothing is refined and the line is unchanged.
+/// track and a level towfish nothing is refined and the line is unchanged.
 /// The result is the mean received power in each time sample, relative to the source level reference.
 /// An optional line stage (last template parameter, receiver/line_stage.hpp) then rewrites each line: speckle,
 /// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
@@ -179,8 +179,8 @@ struct ray_density {
     /// agreeing to rounding: any plane in double; in float, heights within about 250 m of zero at 0.05 m cells, as
     /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
     /// first return (over a level seabed at the towfish's altitude) moves by more than a quarter of a range sample, or
-    /// a twentieth where it holds the side's nearest first return, is divided into thirds from its earliest echo up to
-    /// that movement and two samples more, and the four launch intervals either side share its echo with its thirds'
+    /// a twentieth where it holds the side's nearest first return, is divided into thirds from its earliest echo from
+    /// the seabed for as long as that movement and two samples more (where the seabed's echoes there are one plane too), and the four launch intervals either side share its echo with its thirds'
     /// in even steps: each column's echo begins
     /// where its centre's first return lies, and just after it the echo rises as the square root of the time, so the
     /// column's first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the first sample
@@ -225,7 +225,7 @@ struct ray_density {
     /// under its towfish at 10 m (bench/bench_survey.cpp). A beam a few degrees wide narrows its columns under a
     /// pitched towfish at a high sample rate, and that is accuracy, not waste: the default 100 kHz planar array (5.6
     /// deg along track) sampled at 100 kHz over a level seabed, against the same simulator at 256 even columns, is
-    /// 1.3 dB off in the first samples with even columns 10 m up at 10 deg of pitch and 0.09 dB with 24 columns (2.4
+    /// 1.3 dB off in the first samples with even columns 10 m up at 10 deg of pitch and 0.11 dB with 24 columns (2.4
     /// times the time); 2.4 dB against 0.16 dB 30 m up at 5 deg (3.4 times). (Those figures leave along_split_nadir
     /// off; with it, which divides the columns near the first return over a plane, 0.10 and 0.06 dB at 10 deg.) A tolerance counted in pulse lengths
     /// rather than samples would keep those columns even, and the error: the first samples are a sum of few columns
@@ -1012,42 +1012,62 @@ private:
     /// The launch intervals of a traced column whose echoes begin before two-way time `t_end_s` (near the first return),
     /// as windows for the along-track division, where the seabed's facets met there are not all one plane (their
     /// geometric normals more than 1e-3 rad apart, as between facets whose edges are refined: detail::facet_edge).
-    /// Over a plane seabed, level or sloping, those whose echoes begin within `plane_reach_s` of the column's earliest
-    /// echo from the seabed (plane_nadir_reach_s; none where it is 0), and true. Planarity is judged over the seabed's
-    /// echoes that begin before either end; a column with none there has no window (ray_density::along_split_nadir).
+    /// Where they are one plane (or none is met there): where `plane_reach_s` > 0 (plane_nadir_reach_s) and every
+    /// seabed echo that begins within it of the column's earliest echo from the seabed lies on that plane too, those
+    /// launch intervals whose echoes begin within it, and true; else none (ray_density::along_split_nadir).
     static bool nadir_windows(const column_record& rec, double t_end_s, double plane_reach_s, std::vector<redo_range>& out) {
         if (rec.first.size() < 2) return false;
         const std::size_t intervals = rec.first.size() - 1;
         const auto begins = [](const tube_echo<T>& e) { return std::min(e.t0_s, e.t1_s); };
-        double first_s = std::numeric_limits<double>::infinity();
-        for (const tube_echo<T>& e : rec.echoes)
-            if (e.surface.object == no_object) first_s = std::min(first_s, begins(e));
-        const double plane_end_s = plane_reach_s > 0.0 && std::isfinite(first_s) ? first_s + plane_reach_s : 0.0;
-        const double judged_s = std::max(t_end_s, plane_end_s);
-        if (!(judged_s > 0.0)) return false;
-        // One plane: every seabed echo that begins before either end has the first one's normal.
-        const vec3<T>* plane = nullptr;
-        bool planar = true;
-        for (std::size_t i = 0; i < rec.echoes.size() && planar; ++i) {
-            const hit<T>& h = rec.echoes[i].surface;
-            if (h.object != no_object || !(begins(rec.echoes[i]) < judged_s)) continue;
-            if (!plane) plane = &h.normal;
-            else if (!same_normal(h.normal, *plane)) planar = false;
-        }
-        if (!plane) return false; // no echo from the seabed there
-        const double end_s = planar ? plane_end_s : t_end_s;
-        if (!(end_s > 0.0)) return false;
+        double end_s = t_end_s;
         auto near = [&](std::size_t k) {
             for (std::size_t i = rec.first[k]; i < rec.first[k + 1]; ++i)
                 if (begins(rec.echoes[i]) < end_s) return true;
             return false;
         };
-        for (std::size_t k = 0; k < intervals; ++k) {
-            if (!near(k)) continue;
-            if (!out.empty() && out.back().k1 + 1 == k) out.back().k1 = k;
-            else out.push_back({k, k});
+        auto windows = [&] {
+            for (std::size_t k = 0; k < intervals; ++k) {
+                if (!near(k)) continue;
+                if (!out.empty() && out.back().k1 + 1 == k) out.back().k1 = k;
+                else out.push_back({k, k});
+            }
+        };
+        // One plane: every seabed echo of the launch intervals near the first return has the first one's normal.
+        const vec3<T>* plane = nullptr;
+        bool planar = true;
+        if (t_end_s > 0.0)
+            for (std::size_t k = 0; k < intervals && planar; ++k) {
+                if (!near(k)) continue;
+                for (std::size_t i = rec.first[k]; i < rec.first[k + 1]; ++i) {
+                    const hit<T>& h = rec.echoes[i].surface;
+                    if (h.object != no_object || !(begins(rec.echoes[i]) < t_end_s)) continue;
+                    if (!plane) {
+                        plane = &h.normal;
+                    } else if (!same_normal(h.normal, *plane)) {
+                        planar = false;
+                        break;
+                    }
+                }
+            }
+        if (!planar) {
+            windows();
+            return false;
         }
-        return planar;
+        // One plane (or nothing met) there: the plane's rule, where the first return moves across the column, over
+        // every seabed echo it reaches.
+        if (!(plane_reach_s > 0.0)) return false;
+        double first_s = std::numeric_limits<double>::infinity();
+        for (const tube_echo<T>& e : rec.echoes)
+            if (e.surface.object == no_object) first_s = std::min(first_s, begins(e));
+        if (!std::isfinite(first_s)) return false;
+        end_s = first_s + plane_reach_s;
+        for (const tube_echo<T>& e : rec.echoes) {
+            if (e.surface.object != no_object || !(begins(e) < end_s)) continue;
+            if (!plane) plane = &e.surface.normal;
+            else if (!same_normal(e.surface.normal, *plane)) return false;
+        }
+        windows();
+        return true;
     }
 
     /// The most columns per side whose echoes are held at once, so that a faint column's share of the line can decide

@@ -589,8 +589,8 @@ TEST_CASE("a plane seabed, level or sloping, renders the same bit for bit whethe
     }
 }
 
-TEST_CASE("under a beam a few degrees wide along track, a level or sloping plane renders the same bit for bit whether "
-          "columns divide near the first return or not") {
+TEST_CASE("under a beam a few degrees wide along track and a level towfish, a level or sloping plane renders the same "
+          "bit for bit whether columns divide near the first return or not") {
     // Its first return moves across each column by far less than a sample: the default fan (1 degree) and the
     // default 100 kHz planar array, under a level towfish.
     const sss::beam::planar_array<double> array(sss::beam::planar_array_params<double>{.frequency_hz = 100000.0});
@@ -643,7 +643,7 @@ TEST_CASE("over a plane seabed under a rolled and pitched towfish, columns divid
             INFO("divided: rms " << e_divided.rms_db << " dB, worst " << e_divided.worst_db << " dB at "
                                  << e_divided.worst_index << "; whole: rms " << e_whole.rms_db << " dB, worst "
                                  << e_whole.worst_db << " dB at " << e_whole.worst_index);
-            CHECK(std::abs(e_divided.worst_db) <= 0.1); // 0.062 and 0.021 dB level, 0.030 and 0.006 dB sloping
+            CHECK(std::abs(e_divided.worst_db) <= 0.1); // 0.062 and 0.021 dB level, 0.003 and 0.006 dB sloping
             CHECK(e_divided.rms_db <= 0.005);
             worst_whole = std::max(worst_whole, std::abs(e_whole.worst_db));
         }

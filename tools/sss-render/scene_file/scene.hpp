@@ -248,7 +248,8 @@ struct render {
     bool bracket_facet_edges = true;         ///< there, the rays either side of where the edge lies (not halving)
     bool along_split_sparse = true;          ///< the narrowest columns at every other launch angle
     bool along_split_targets = true;         ///< small targets divide the columns over them along track
-    bool along_split_nadir = true;           ///< near the first return, columns over a seabed not one plane divide
+    bool along_split_nadir = true;           ///< near the first return, columns over a seabed not one plane divide,
+                                             ///< and over a plane those across which the first return moves
     double along_split_echo = 0.1;           ///< columns divide where their echo departs from their neighbours' by
                                              ///< more than this fraction of the three columns' echo
     double along_onset = 1.0;                ///< how far (range samples) the first return may move across a column
