@@ -180,16 +180,16 @@ struct ray_density {
     /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
     /// first return (over a level seabed at the towfish's altitude) moves by more than a quarter of a range sample, or
     /// a twentieth where it holds the side's nearest first return, is divided into thirds from its earliest echo from
-    /// the seabed for as long as that movement and two samples more (where the seabed's echoes there are one plane too), and the four launch intervals either side share its echo with its thirds'
-    /// in even steps: each column's echo begins
-    /// where its centre's first return lies, and just after it the echo rises as the square root of the time, so the
-    /// column's first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the first sample
-    /// after the nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar equation, under 120 degrees from
-    /// 0.73 dB (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m of range and
-    /// 10 m altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array) over a level
-    /// towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely such a beam's
-    /// nearest columns divide too (docs/design/along-track.md). Like the rest of the along-track check, it needs refinement
-    /// (refine_depth > 0), along_split >= 3 and at least two columns.
+    /// the seabed for as long as that movement and two samples more (where the seabed's echoes there are one plane
+    /// too), and the four launch intervals either side share its echo with its thirds' in even steps: each column's
+    /// echo begins where its centre's first return lies, and just after it the echo rises as the square root of the
+    /// time, so the column's first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the
+    /// first sample after the nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar equation, under 120
+    /// degrees from 0.73 dB (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m
+    /// of range and 10 m altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array)
+    /// over a level towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely
+    /// such a beam's nearest columns divide too (docs/design/along-track.md). Like the rest of the along-track check,
+    /// it needs refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_nadir = true;
     /// Where a column's echo, sample by sample, departs from what its two neighbours' echoes make likely, the launch
     /// intervals that put echo into those samples are divided into thirds along track whatever the edges agree on
@@ -227,9 +227,10 @@ struct ray_density {
     /// deg along track) sampled at 100 kHz over a level seabed, against the same simulator at 256 even columns, is
     /// 1.3 dB off in the first samples with even columns 10 m up at 10 deg of pitch and 0.11 dB with 24 columns (2.4
     /// times the time); 2.4 dB against 0.16 dB 30 m up at 5 deg (3.4 times). (Those figures leave along_split_nadir
-    /// off; with it, which divides the columns near the first return over a plane, 0.10 and 0.06 dB at 10 deg.) A tolerance counted in pulse lengths
-    /// rather than samples would keep those columns even, and the error: the first samples are a sum of few columns
-    /// whose beam weights grow fast across the beam. 0: evenly spaced columns, whatever the beam's width.
+    /// off; with it, which divides the columns near the first return over a plane, 0.10 and 0.06 dB at 10 deg.) A
+    /// tolerance counted in pulse lengths rather than samples would keep those columns even, and the error: the first
+    /// samples are a sum of few columns whose beam weights grow fast across the beam. 0: evenly spaced columns,
+    /// whatever the beam's width.
     double along_onset = 1.0;
     /// Largest step (deg) between adjacent launch angles of a column across track. Rays are spaced evenly in
     /// nominal return time, so where the returns crowd together in range (close to the towfish's altitude, and
@@ -649,7 +650,8 @@ private:
             nadir.clear();
             if (density_.along_split_nadir) {
                 const auto [lo, hi] = bounds(j);
-                const bool plane = nadir_windows(here, nadir_end_s(f), plane_nadir_reach_s(lo, hi, nearest, first_m), nadir);
+                const bool plane =
+                    nadir_windows(here, nadir_end_s(f), plane_nadir_reach_s(lo, hi, nearest, first_m), nadir);
                 windows.insert(windows.end(), nadir.begin(), nadir.end());
                 if (!plane) nadir.clear(); // only a plane's are tapered
             }
@@ -984,8 +986,8 @@ private:
     /// this many range samples; a column holding the side's nearest first return, by more than nadir_first_spread.
     static constexpr double nadir_plane_spread = 0.25;
     static constexpr double nadir_first_spread = 0.05;
-    /// Beyond a stretch divided near the first return over a plane, this many launch intervals share the column's
-    /// echo with its thirds', in even steps.
+    /// Either side of a stretch divided near the first return over a plane, this many launch intervals share the
+    /// column's echo with its thirds', in even steps.
     static constexpr std::size_t nadir_taper = 4;
 
     /// How long (two-way, s) after its earliest echo from the seabed the column between along-track angles lo and hi
@@ -1015,7 +1017,8 @@ private:
     /// Where they are one plane (or none is met there): where `plane_reach_s` > 0 (plane_nadir_reach_s) and every
     /// seabed echo that begins within it of the column's earliest echo from the seabed lies on that plane too, those
     /// launch intervals whose echoes begin within it, and true; else none (ray_density::along_split_nadir).
-    static bool nadir_windows(const column_record& rec, double t_end_s, double plane_reach_s, std::vector<redo_range>& out) {
+    static bool nadir_windows(const column_record& rec, double t_end_s, double plane_reach_s,
+                              std::vector<redo_range>& out) {
         if (rec.first.size() < 2) return false;
         const std::size_t intervals = rec.first.size() - 1;
         const auto begins = [](const tube_echo<T>& e) { return std::min(e.t0_s, e.t1_s); };
@@ -1527,7 +1530,8 @@ private:
             r.seabed_edges = here.seabed_edges;
             auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
             const double s_lo = s == 0 ? lo : c, s_hi = s == 0 ? a : hi;
-            in_column(scene, f, s_lo, s_hi, [&](const Sc& col) { trace_runs(col, f, s_lo, s_hi, here.angles, truns, b.scratch, &r, keep); });
+            in_column(scene, f, s_lo, s_hi,
+                      [&](const Sc& col) { trace_runs(col, f, s_lo, s_hi, here.angles, truns, b.scratch, &r, keep); });
         }
         for (const auto& [k0, k1] : truns)
             for (std::size_t k = k0; k <= k1; ++k) {
