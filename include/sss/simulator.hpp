@@ -178,8 +178,9 @@ struct ray_density {
     /// whole of each column's launch intervals is divided so. A level or sloping plane seabed (its facets' normals
     /// agreeing to rounding: any plane in double; in float, heights within about 250 m of zero at 0.05 m cells, as
     /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
-    /// first return (over a level seabed at the towfish's altitude) moves by more than a quarter of a range sample, or
-    /// a twentieth where it holds the side's nearest first return, is divided into thirds from its earliest echo from
+    /// first return (over the plane its echoes lie on, along straight rays) moves by more than a quarter of a range
+    /// sample, or where it holds the side's nearest first return a twentieth, or a quarter of the part of its first
+    /// sample after its onset if that is less, is divided into thirds from its earliest echo from
     /// the seabed for as long as that movement and two samples more (where the seabed's echoes there are one plane
     /// too), and the four launch intervals either side share its echo with its thirds' in even steps: each column's
     /// echo begins where its centre's first return lies, and just after it the echo rises as the square root of the
@@ -188,7 +189,9 @@ struct ray_density {
     /// degrees from 0.73 dB (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m
     /// of range and 10 m altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array)
     /// over a level towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely
-    /// such a beam's nearest columns divide too (docs/design/along-track.md). Like the rest of the along-track check,
+    /// such a beam's nearest columns divide too, and so they do over a plane sloping along track (0.15 across and
+    /// 0.075 along, 4 degrees, water bending rays down: the first sample from 24 dB low to 0.5 dB against 512 columns;
+    /// docs/design/along-track.md). Like the rest of the along-track check,
     /// it needs refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_nadir = true;
     /// Where a column's echo, sample by sample, departs from what its two neighbours' echoes make likely, the launch
@@ -556,13 +559,49 @@ private:
         column_edges(edges, a0, a1, n_even, onset_tolerance_m, double(f.max_range_m), nearest);
         const std::size_t n_along = edges.size() - 1;
         auto bounds = [&](std::size_t j) { return std::pair<double, double>{edges[j], edges[j + 1]}; };
-        // The side's nearest first return over a level seabed (m), at the columns' edges and centres.
-        double first_m = std::numeric_limits<double>::infinity();
-        if (density_.along_split_nadir)
+        // The side's nearest first return (m) over a plane, at the columns' edges and centres.
+        const auto side_first_m = [&](auto&& nearest_on_plane) {
+            double r = std::numeric_limits<double>::infinity();
             for (std::size_t j = 0; j <= n_along; ++j) {
-                first_m = std::min(first_m, nearest(edges[j]));
-                if (j < n_along) first_m = std::min(first_m, nearest(0.5 * (edges[j] + edges[j + 1])));
+                r = std::min(r, nearest_on_plane(edges[j]));
+                if (j < n_along) r = std::min(r, nearest_on_plane(0.5 * (edges[j] + edges[j + 1])));
             }
+            return r;
+        };
+        // That over a level seabed.
+        const double first_m =
+            density_.along_split_nadir ? side_first_m(nearest) : std::numeric_limits<double>::infinity();
+        // How long a column between lo and hi counts as near the first return over the plane a seabed echo `on` lies on
+        // (plane_nadir_reach_s): the level seabed's first returns where that plane is level, else the plane's own
+        // (nearest_range_to_plane_m), at its distance from the towfish. The last sloping plane asked about is kept with
+        // the side's nearest first return over it, and stands for any that is the same to rounding (same_normal, the
+        // distance within 1e-6 of it): the column's first returns and the side's nearest come from one plane.
+        struct sloping_plane {
+            vec3<T> normal{};
+            vec3<double> unit_normal{};
+            double distance_m = 0.0, first_m = 0.0;
+        };
+        std::optional<sloping_plane> last_plane;
+        const auto plane_reach_s = [&](double lo, double hi, const hit<T>& on, double first_s) {
+            if (on.normal.x == T(0) && on.normal.y == T(0))
+                return plane_nadir_reach_s(lo, hi, nearest, first_m, first_s);
+            const vec3<double> towards = vec3<double>(p.position) - vec3<double>(on.point);
+            const double d = glm::dot(vec3<double>(on.normal), towards);
+            if (!last_plane || !same_normal(last_plane->normal, on.normal) ||
+                !(std::abs(last_plane->distance_m - d) <= 1e-6 * std::abs(d))) {
+                last_plane = sloping_plane{on.normal, vec3<double>(on.normal), d, 0.0};
+                last_plane->first_m = side_first_m([&](double a) {
+                    return nearest_range_to_plane_m(sd, a, double(ext.depression_min_rad),
+                                                    double(ext.depression_max_rad), p.body_to_world,
+                                                    last_plane->unit_normal, last_plane->distance_m);
+                });
+            }
+            const auto on_plane = [&](double a) {
+                return nearest_range_to_plane_m(sd, a, double(ext.depression_min_rad), double(ext.depression_max_rad),
+                                                p.body_to_world, last_plane->unit_normal, last_plane->distance_m);
+            };
+            return plane_nadir_reach_s(lo, hi, on_plane, last_plane->first_m, first_s);
+        };
         double widest = (a1 - a0) / double(n_along); // the widest column (rad): every one where they are even
         if (n_along != n_even)
             for (std::size_t j = 0; j < n_along; ++j) widest = std::max(widest, edges[j + 1] - edges[j]);
@@ -650,8 +689,8 @@ private:
             nadir.clear();
             if (density_.along_split_nadir) {
                 const auto [lo, hi] = bounds(j);
-                const bool plane =
-                    nadir_windows(here, nadir_end_s(f), plane_nadir_reach_s(lo, hi, nearest, first_m), nadir);
+                const auto reach = [&](const hit<T>& on, double first_s) { return plane_reach_s(lo, hi, on, first_s); };
+                const bool plane = nadir_windows(here, nadir_end_s(f), reach, nadir);
                 windows.insert(windows.end(), nadir.begin(), nadir.end());
                 if (!plane) nadir.clear(); // only a plane's are tapered
             }
@@ -986,18 +1025,24 @@ private:
     /// this many range samples; a column holding the side's nearest first return, by more than nadir_first_spread.
     static constexpr double nadir_plane_spread = 0.25;
     static constexpr double nadir_first_spread = 0.05;
+    /// Or, for the column holding the nearest first return, by more than this share of the part of its first sample
+    /// after its onset (a sliver s): just after the onset the echo rises as the square root of the time, so a column
+    /// whose centre's onset lags by d takes about 1.5 d / s of that sample's echo away.
+    static constexpr double nadir_first_sliver = 0.25;
     /// Either side of a stretch divided near the first return over a plane, this many launch intervals share the
     /// column's echo with its thirds', in even steps.
     static constexpr std::size_t nadir_taper = 4;
 
-    /// How long (two-way, s) after its earliest echo from the seabed the column between along-track angles lo and hi
-    /// (rad) counts as near the first return over a plane seabed: the time its first return moves across it, plus two
-    /// range samples, where that movement exceeds nadir_plane_spread samples (nadir_first_spread where the column
-    /// holds the side's nearest first return, `first_m`); else 0. First returns are a level seabed's at the towfish's
-    /// altitude (nearest(a): the slant range, m, at along-track angle a), sampled at the column's edges and centre:
-    /// they tell how far the return moves, the column's echoes where it begins.
+    /// How long (two-way, s) after its earliest echo from the seabed, at two-way time first_s, the column between
+    /// along-track angles lo and hi (rad) counts as near the first return over a plane seabed: the time its first return
+    /// moves across it, plus two range samples, where that movement exceeds nadir_plane_spread samples; where the column
+    /// holds the side's nearest first return (`first_m`), nadir_first_spread samples or nadir_first_sliver of the part of
+    /// its first sample after first_s, whichever is less; else 0. First returns are those of the plane the column's
+    /// echoes lie on (nearest(a): the slant range, m, of its nearest point at along-track angle a, along straight rays),
+    /// sampled at the column's edges and centre: they tell how far the return moves, the column's echoes where it begins.
     template <class Nearest>
-    [[nodiscard]] double plane_nadir_reach_s(double lo, double hi, Nearest&& nearest, double first_m) const {
+    [[nodiscard]] double plane_nadir_reach_s(double lo, double hi, Nearest&& nearest, double first_m,
+                                             double first_s) const {
         double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
         for (const double a : {lo, 0.5 * (lo + hi), hi}) {
             const double r = nearest(a);
@@ -1006,7 +1051,9 @@ private:
             r_max = std::max(r_max, r);
         }
         const double sample_m = 0.5 * c_ref_ * dt_;
-        const double limit = r_min <= first_m * (1.0 + 1e-9) ? nadir_first_spread : nadir_plane_spread;
+        const double x = first_s / dt_, sliver = std::isfinite(x) ? 1.0 - (x - std::floor(x)) : 1.0;
+        const double limit = r_min <= first_m * (1.0 + 1e-9) ? std::min(nadir_first_spread, nadir_first_sliver * sliver)
+                                                             : nadir_plane_spread;
         if (!(r_max - r_min > limit * sample_m)) return 0.0;
         return 2.0 * (r_max - r_min + 2.0 * sample_m) / c_ref_;
     }
@@ -1014,10 +1061,12 @@ private:
     /// The launch intervals of a traced column whose echoes begin before two-way time `t_end_s` (near the first return),
     /// as windows for the along-track division, where the seabed's facets met there are not all one plane (their
     /// geometric normals more than 1e-3 rad apart, as between facets whose edges are refined: detail::facet_edge).
-    /// Where they are one plane (or none is met there): where `plane_reach_s` > 0 (plane_nadir_reach_s) and every
-    /// seabed echo that begins within it of the column's earliest echo from the seabed lies on that plane too, those
-    /// launch intervals whose echoes begin within it, and true; else none (ray_density::along_split_nadir).
-    static bool nadir_windows(const column_record& rec, double t_end_s, double plane_reach_s,
+    /// Where they are one plane (or none is met there): where the time `plane_reach_s(h, first_s)` gives for the plane
+    /// of a seabed hit h (theirs, or else the column's earliest) and the column's earliest echo from the seabed, at
+    /// first_s, is > 0 (plane_nadir_reach_s), and every seabed echo that begins within it of first_s lies on that plane
+    /// too, those launch intervals whose echoes begin within it, and true; else none (ray_density::along_split_nadir).
+    template <class Reach>
+    static bool nadir_windows(const column_record& rec, double t_end_s, Reach&& plane_reach_s,
                               std::vector<redo_range>& out) {
         if (rec.first.size() < 2) return false;
         const std::size_t intervals = rec.first.size() - 1;
@@ -1036,7 +1085,7 @@ private:
             }
         };
         // One plane: every seabed echo of the launch intervals near the first return has the first one's normal.
-        const vec3<T>* plane = nullptr;
+        const hit<T>* plane = nullptr;
         bool planar = true;
         if (t_end_s > 0.0)
             for (std::size_t k = 0; k < intervals && planar; ++k) {
@@ -1045,8 +1094,8 @@ private:
                     const hit<T>& h = rec.echoes[i].surface;
                     if (h.object != no_object || !(begins(rec.echoes[i]) < t_end_s)) continue;
                     if (!plane) {
-                        plane = &h.normal;
-                    } else if (!same_normal(h.normal, *plane)) {
+                        plane = &h;
+                    } else if (!same_normal(h.normal, plane->normal)) {
                         planar = false;
                         break;
                     }
@@ -1058,16 +1107,21 @@ private:
         }
         // One plane (or nothing met) there: the plane's rule, where the first return moves across the column, over
         // every seabed echo it reaches.
-        if (!(plane_reach_s > 0.0)) return false;
         double first_s = std::numeric_limits<double>::infinity();
+        const hit<T>* earliest = nullptr;
         for (const tube_echo<T>& e : rec.echoes)
-            if (e.surface.object == no_object) first_s = std::min(first_s, begins(e));
-        if (!std::isfinite(first_s)) return false;
-        end_s = first_s + plane_reach_s;
+            if (e.surface.object == no_object && begins(e) < first_s) {
+                first_s = begins(e);
+                earliest = &e.surface;
+            }
+        if (!earliest) return false;
+        if (!plane) plane = earliest;
+        const double reach_s = plane_reach_s(*plane, first_s);
+        if (!(reach_s > 0.0)) return false;
+        end_s = first_s + reach_s;
         for (const tube_echo<T>& e : rec.echoes) {
             if (e.surface.object != no_object || !(begins(e) < end_s)) continue;
-            if (!plane) plane = &e.surface.normal;
-            else if (!same_normal(e.surface.normal, *plane)) return false;
+            if (!same_normal(e.surface.normal, plane->normal)) return false;
         }
         windows();
         return true;

@@ -19,14 +19,16 @@ namespace {
 
 constexpr double deg = 3.14159265358979323846 / 180.0;
 
-// H / (largest downward component over the depressions), searched on a fine grid.
-double nearest_by_search(sss::side sd, double along, double e0, double e1, const sss::mat3<double>& R, double H) {
+// D / (largest component against the plane's unit normal n over the depressions), searched on a fine grid: the
+// nearest point of the plane at distance D along a ray of the launch plane.
+double nearest_by_search(sss::side sd, double along, double e0, double e1, const sss::mat3<double>& R, double D,
+                         const sss::vec3<double>& n = {0.0, 0.0, 1.0}) {
     double best = -1.0;
     for (int i = 0; i <= 200000; ++i) {
         const double e = e0 + (e1 - e0) * double(i) / 200000.0;
-        best = std::max(best, -(R * sss::beam_direction<double>(sd, along, e)).z);
+        best = std::max(best, -glm::dot(R * sss::beam_direction<double>(sd, along, e), n));
     }
-    return best > 0.0 ? H / best : std::numeric_limits<double>::infinity();
+    return best > 0.0 ? D / best : std::numeric_limits<double>::infinity();
 }
 
 } // namespace
@@ -58,6 +60,37 @@ TEST_CASE("the nearest range of a launch plane is H / cos(a - a_n), found by sea
           doctest::Approx(H / std::cos(0.5)));
     // None of the fan descends: no first return.
     CHECK(std::isinf(sss::nearest_range_m<double>(sss::side::starboard, 0.0, -30.0 * deg, -5.0 * deg, level, H)));
+}
+
+TEST_CASE("the nearest range of a launch plane to a sloping plane is D over its largest component against the normal, "
+          "D the plane's distance: the plane's foot when a ray of the plane points at it, and the level seabed's bit for bit") {
+    const double D = 9.5;
+    const sss::vec3<double> level_n{0.0, 0.0, 1.0};
+    for (const sss::vec3<double> n : {glm::normalize(sss::vec3<double>{-0.15, -0.075, 1.0}),
+                                      glm::normalize(sss::vec3<double>{0.3, -0.2, 1.0}), level_n}) {
+        for (const double pitch : {0.0, 10.0 * deg}) {
+            const sss::mat3<double> R = sss::body_to_world_rotation(6.0 * deg, pitch, 0.3);
+            for (const sss::side sd : {sss::side::port, sss::side::starboard}) {
+                for (const double a : {-0.4, 0.0, 0.07, 0.9}) {
+                    CAPTURE(n.x);
+                    CAPTURE(pitch);
+                    CAPTURE(a);
+                    const double got = sss::nearest_range_to_plane_m<double>(sd, a, -10.0 * deg, 80.0 * deg, R, n, D);
+                    const double want = nearest_by_search(sd, a, -10.0 * deg, 80.0 * deg, R, D, n);
+                    CHECK(got >= D * (1.0 - 1e-12)); // no point of the plane is nearer than its foot
+                    if (std::isinf(want)) CHECK(std::isinf(got));
+                    else CHECK(got == doctest::Approx(want).epsilon(1e-6));
+                    if (n.x == 0.0 && n.y == 0.0) CHECK(got == sss::nearest_range_m<double>(sd, a, -10.0 * deg, 80.0 * deg, R, D));
+                }
+            }
+        }
+    }
+    // A level towfish: the ray towards the plane's foot, -n, lies in the launch plane of along-track angle asin(-n.y)
+    // (the towfish heading +y) and within the depressions: the range is D itself.
+    const sss::vec3<double> n = glm::normalize(sss::vec3<double>{-0.15, -0.075, 1.0});
+    const sss::mat3<double> level = sss::body_to_world_rotation(0.0, 0.0, 0.0);
+    CHECK(sss::nearest_range_to_plane_m<double>(sss::side::starboard, std::asin(-n.y), 0.0, 90.0 * deg, level, n, D) ==
+          doctest::Approx(D).epsilon(1e-12));
 }
 
 TEST_CASE("columns stay evenly spaced, bit for bit, where the first return barely moves across them") {

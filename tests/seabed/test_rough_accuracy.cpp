@@ -619,15 +619,22 @@ TEST_CASE("under a beam a few degrees wide along track and a level towfish, a le
 
 namespace {
 
-// An 8 degree fan over `plane` from the rolled and pitched towfish, in `water`, with the columns near the first return
-// divided (the default) and whole, against 512 columns: the divided line's worst sample and RMS per side within the
-// bounds, and the whole one's worst sample, over both sides, beyond `whole_worst_db`.
-template <class P, class Field>
-void check_plane_nadir(const P& water, const Field& plane, double divided_worst_db, double whole_worst_db) {
-    const auto pose = sss_test::rough_pose<double>(true);
+// What check_plane_nadir renders and asks.
+struct plane_nadir_case {
+    bool tilted = true;            ///< the rolled and pitched towfish, else a level one
+    double fan_deg = 8.0;          ///< the ideal fan's width along track
+    double divided_worst_db = 0.1; ///< bound on the divided line's worst sample, each side
+    double divided_rms_db = 0.005; ///< and on its RMS
+    double whole_worst_db = 0.25;  ///< what the whole columns' worst sample exceeds, over both sides
+};
+
+// An ideal fan over `plane` in `water`, with the columns near the first return divided (the default) and whole, against
+// 512 columns, over the samples within 40 dB of the peak.
+template <class P, class Field> void check_plane_nadir(const P& water, const Field& plane, const plane_nadir_case& c) {
+    const auto pose = sss_test::rough_pose<double>(c.tilted);
     auto make = [&](std::size_t along, bool nadir) {
         return sss::simulator<sss::scattering::jackson<double>, P>(
-            {}, water, sss::beam::ideal_fan<double>({.along_width_deg = 8.0}), {}, sss_test::rough_receiver(),
+            {}, water, sss::beam::ideal_fan<double>({.along_width_deg = c.fan_deg}), {}, sss_test::rough_receiver(),
             {.along = along, .along_split_nadir = nadir});
     };
     const auto reference = make(512, false).ping_at(plane, pose);
@@ -641,11 +648,21 @@ void check_plane_nadir(const P& water, const Field& plane, double divided_worst_
         INFO("divided: rms " << e_divided.rms_db << " dB, worst " << e_divided.worst_db << " dB at "
                              << e_divided.worst_index << "; whole: rms " << e_whole.rms_db << " dB, worst "
                              << e_whole.worst_db << " dB at " << e_whole.worst_index);
-        CHECK(std::abs(e_divided.worst_db) <= divided_worst_db);
-        CHECK(e_divided.rms_db <= 0.005);
+        CHECK(std::abs(e_divided.worst_db) <= c.divided_worst_db);
+        CHECK(e_divided.rms_db <= c.divided_rms_db);
         worst_whole = std::max(worst_whole, std::abs(e_whole.worst_db));
     }
-    CHECK(worst_whole > whole_worst_db);
+    CHECK(worst_whole > c.whole_worst_db);
+}
+
+// Water that bends rays down (1470 m/s) or up (1530 m/s): 1500 m/s down to 25 m depth, then 2 m/s per metre to the
+// seabed at 40 m (the towfish at 30 m).
+sss::propagation::layered<double> bending_water(double bottom_mps) {
+    sss::propagation::layered_params<double> w;
+    w.surface_z_m = 40.0;
+    w.frequency_hz = 100000.0;
+    return sss::propagation::layered<double>(
+        sss::propagation::sound_speed_profile<double>({0.0, 25.0, 40.5}, {1500.0, 1500.0, bottom_mps}), w);
 }
 
 } // namespace
@@ -662,25 +679,42 @@ TEST_CASE("over a plane seabed under a rolled and pitched towfish, columns divid
         // starboard sloping.
         check_plane_nadir(sss::propagation::straight<double>{},
                           sss_test::footprint_field<double>([=](double x, double y) { return slope * (x + 0.5 * y); }, 0.25),
-                          0.1, 0.25);
+                          {});
     }
 }
 
 TEST_CASE("in water that bends rays down or up, columns divided near the first return put an 8 degree fan over a level "
           "plane within 0.05 dB of 512 columns under a rolled and pitched towfish, where whole ones leave 0.3 dB") {
-    // The division's stretch and whether a column divides are judged for straight rays over a level seabed at the
-    // towfish's altitude (simulator.hpp, plane_nadir_reach_s); the stretch starts at the column's own earliest echo.
-    // Here the water below 25 m depth (the towfish at 30 m, the seabed at 40 m) goes from 1500 m/s to 1470 or
-    // 1530 m/s, 2 m/s per metre: the first return moves and bends as refraction puts it, and the rule still holds.
+    // The division's stretch and whether a column divides are judged for straight rays over the plane the column's
+    // seabed echoes lie on, here the level seabed (simulator.hpp, plane_nadir_reach_s); the stretch starts at the
+    // column's own earliest echo. In bending_water the first return moves and bends as refraction puts it, and the
+    // rule still holds.
     const auto plane = sss_test::footprint_field<double>([](double, double) { return 0.0; }, 0.25);
     for (const double bottom_mps : {1470.0, 1530.0}) {
         CAPTURE(bottom_mps);
-        sss::propagation::layered_params<double> w;
-        w.surface_z_m = 40.0;
-        w.frequency_hz = 100000.0;
-        const sss::propagation::layered<double> water(
-            sss::propagation::sound_speed_profile<double>({0.0, 25.0, 40.5}, {1500.0, 1500.0, bottom_mps}), w);
         // Divided: 0.011 and 0.027 dB (down), 0.026 and 0.027 dB (up); whole: 0.30 and 0.32 dB.
-        check_plane_nadir(water, plane, 0.05, 0.25);
+        check_plane_nadir(bending_water(bottom_mps), plane, {.divided_worst_db = 0.05});
+    }
+}
+
+TEST_CASE("over a plane sloping along track, the columns divide near the first return as that plane moves it: the "
+          "first sample of the echo is within 0.6 dB of 512 columns in water that bends rays down, where whole columns "
+          "leave it 24 dB low") {
+    // The plane z = 0.15 (x + 0.5 y) slopes 0.075 along track: the nearest point of the plane lies 4.2 deg ahead of the
+    // towfish, outside a 4 degree fan, and the first return moves across the fan's columns by 1.4 samples where over
+    // a level seabed under a level towfish it does not move. Judged over the level seabed, no column divided; judged
+    // over the plane the column's echoes lie on (nearest_range_to_plane_m), the nearest column divides at a twentieth
+    // of a sample and the others at a quarter. Downslope (port), in water bending rays down, the first sample, a
+    // sliver of the nearest column's onset 37 dB below the peak, was 24 dB low.
+    const auto plane = sss_test::footprint_field<double>([](double x, double y) { return 0.15 * (x + 0.5 * y); }, 0.25);
+    SUBCASE("straight rays") {
+        // Divided: 0.016 and 0.020 dB; whole: 0.15 dB port.
+        check_plane_nadir(sss::propagation::straight<double>{}, plane,
+                          {.tilted = false, .fan_deg = 4.0, .divided_worst_db = 0.05, .whole_worst_db = 0.1});
+    }
+    SUBCASE("water bending rays down") {
+        // Divided: 0.49 dB port, 0.23 dB starboard, 0.026 dB RMS; whole: 24 dB port.
+        check_plane_nadir(bending_water(1470.0), plane,
+                          {.tilted = false, .fan_deg = 4.0, .divided_worst_db = 0.6, .divided_rms_db = 0.04, .whole_worst_db = 10.0});
     }
 }

@@ -25,18 +25,24 @@
 
 namespace sss {
 
-/// The slant range (m) of the nearest point of a level seabed `altitude_m` below the transducer that a ray launched
-/// at along-track angle `along_rad` and any depression within [depression_min_rad, depression_max_rad] meets along a
-/// straight path, the body rotated by R; infinity where no such ray descends. With g(e) = A + B cos e + C sin e the
-/// downward world component of the ray at depression e (sampling/launch_angles.hpp), the range is H / max g.
+/// The slant range (m) of the nearest point of the plane with unit normal `up_normal` (world, pointing towards the
+/// transducer) lying `distance_m` from it that a ray launched at along-track angle `along_rad` and any depression within
+/// [depression_min_rad, depression_max_rad] meets along a straight path, the body rotated by R; infinity where no such
+/// ray comes towards the plane. With g(e) = A + B cos e + C sin e the ray's component at depression e against the
+/// normal (A, B, C from the body axes' components along it, R's columns), the range is distance_m / max g: over a
+/// level seabed, the downward component of sampling/launch_angles.hpp.
 template <Real T>
-[[nodiscard]] double nearest_range_m(side s, double along_rad, double depression_min_rad, double depression_max_rad,
-                                     const mat3<T>& R, double altitude_m) noexcept {
+[[nodiscard]] double nearest_range_to_plane_m(side s, double along_rad, double depression_min_rad,
+                                              double depression_max_rad, const mat3<T>& R, const vec3<double>& up_normal,
+                                              double distance_m) noexcept {
     const double sa = std::sin(along_rad), ca = std::cos(along_rad);
-    // World up-components of the body axes are the third row of R (GLM stores columns: R[col][row]).
-    const double A = -double(R[0][2]) * sa;
-    const double B = -double(R[1][2]) * double(side_sign<T>(s)) * ca;
-    const double C = -double(R[2][2]) * ca;
+    // The body axes' components along the normal (GLM stores columns: R[col] is body axis col in world).
+    const auto along_normal = [&](int col) {
+        return double(R[col][0]) * up_normal.x + double(R[col][1]) * up_normal.y + double(R[col][2]) * up_normal.z;
+    };
+    const double A = -along_normal(0) * sa;
+    const double B = -along_normal(1) * double(side_sign<T>(s)) * ca;
+    const double C = -along_normal(2) * ca;
     auto g = [&](double e) { return A + B * std::cos(e) + C * std::sin(e); };
     double best = std::max(g(depression_min_rad), g(depression_max_rad));
     const double phi = std::atan2(C, B); // where B cos e + C sin e peaks, modulo 2 pi
@@ -44,8 +50,19 @@ template <Real T>
         const double e = phi + double(m) * two_pi_v<double>;
         if (e > depression_min_rad && e < depression_max_rad) best = std::max(best, A + std::hypot(B, C));
     }
-    if (!(altitude_m > 0.0) || !(best > 0.0)) return std::numeric_limits<double>::infinity();
-    return altitude_m / best;
+    if (!(distance_m > 0.0) || !(best > 0.0)) return std::numeric_limits<double>::infinity();
+    return distance_m / best;
+}
+
+/// The slant range (m) of the nearest point of a level seabed `altitude_m` below the transducer that a ray launched
+/// at along-track angle `along_rad` and any depression within [depression_min_rad, depression_max_rad] meets along a
+/// straight path, the body rotated by R; infinity where no such ray descends (nearest_range_to_plane_m with the
+/// vertical: the body axes' components along it are R's third row exactly).
+template <Real T>
+[[nodiscard]] double nearest_range_m(side s, double along_rad, double depression_min_rad, double depression_max_rad,
+                                     const mat3<T>& R, double altitude_m) noexcept {
+    return nearest_range_to_plane_m(s, along_rad, depression_min_rad, depression_max_rad, R, vec3<double>{0.0, 0.0, 1.0},
+                                    altitude_m);
 }
 
 /// The edges of a side's along-track columns: `edges` receives the angles a0 = edges[0] < ... < edges[m] = a1 (rad)
