@@ -180,19 +180,19 @@ struct ray_density {
     /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
     /// first return (over the plane its echoes lie on, along straight rays) moves by more than a quarter of a range
     /// sample, or where it holds the side's nearest first return a twentieth, or a quarter of the part of its first
-    /// sample after its onset if that is less, is divided into thirds from its earliest echo from
-    /// the seabed for as long as that movement and two samples more (where the seabed's echoes there are one plane
-    /// too), and the four launch intervals either side share its echo with its thirds' in even steps: each column's
-    /// echo begins where its centre's first return lies, and just after it the echo rises as the square root of the
-    /// time, so the column's first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the
-    /// first sample after the nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar equation, under 120
-    /// degrees from 0.73 dB (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m
-    /// of range and 10 m altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array)
-    /// over a level towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely
+    /// sample after its onset if that is less, is divided into thirds from its earliest echo from the seabed for as
+    /// long as that movement and two samples more (where the seabed's echoes there are one plane too), and the four
+    /// launch intervals either side share its echo with its thirds' in even steps: each column's echo begins where its
+    /// centre's first return lies, and just after it the echo rises as the square root of the time, so the column's
+    /// first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the first sample after the
+    /// nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar equation, under 120 degrees from 0.73 dB
+    /// (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m of range and 10 m
+    /// altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array) over a level plane
+    /// and a level towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely
     /// such a beam's nearest columns divide too, and so they do over a plane sloping along track (0.15 across and
-    /// 0.075 along, 4 degrees, water bending rays down: the first sample from 24 dB low to 0.5 dB against 512 columns;
-    /// docs/design/along-track.md). Like the rest of the along-track check,
-    /// it needs refinement (refine_depth > 0), along_split >= 3 and at least two columns.
+    /// 0.075 along, 4 degrees, water bending rays down: the first sample from 24 dB low to 0.5 dB against 512
+    /// columns; docs/design/along-track.md). Like the rest of the along-track check, it needs refinement
+    /// (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_nadir = true;
     /// Where a column's echo, sample by sample, departs from what its two neighbours' echoes make likely, the launch
     /// intervals that put echo into those samples are divided into thirds along track whatever the edges agree on
@@ -572,35 +572,34 @@ private:
         const double first_m =
             density_.along_split_nadir ? side_first_m(nearest) : std::numeric_limits<double>::infinity();
         // How long a column between lo and hi counts as near the first return over the plane a seabed echo `on` lies on
-        // (plane_nadir_reach_s): the level seabed's first returns where that plane is level, else the plane's own
-        // (nearest_range_to_plane_m), at its distance from the towfish. The last sloping plane asked about is kept with
-        // the side's nearest first return over it, and stands for any that is the same to rounding (same_normal, the
-        // distance within 1e-6 of it): the column's first returns and the side's nearest come from one plane.
-        struct sloping_plane {
+        // (plane_nadir_reach_s): the level seabed's first returns where that plane is the level one under the towfish
+        // (to 1e-6 of the altitude), else the plane's own (nearest_range_to_plane_m), at its distance d from the
+        // towfish. A plane's first returns are d times those of its normal's plane at unit distance: the last normal
+        // asked about is kept with the side's nearest first return at unit distance, and stands for any the same to
+        // rounding (same_normal), so that the column's first returns and the side's nearest come from one plane.
+        struct plane_onset {
             vec3<T> normal{};
             vec3<double> unit_normal{};
-            double distance_m = 0.0, first_m = 0.0;
+            double first_per_m = 0.0;
         };
-        std::optional<sloping_plane> last_plane;
+        std::optional<plane_onset> last_plane;
         const auto plane_reach_s = [&](double lo, double hi, const hit<T>& on, double first_s) {
-            if (on.normal.x == T(0) && on.normal.y == T(0))
-                return plane_nadir_reach_s(lo, hi, nearest, first_m, first_s);
             const vec3<double> towards = vec3<double>(p.position) - vec3<double>(on.point);
-            const double d = glm::dot(vec3<double>(on.normal), towards);
-            if (!last_plane || !same_normal(last_plane->normal, on.normal) ||
-                !(std::abs(last_plane->distance_m - d) <= 1e-6 * std::abs(d))) {
-                last_plane = sloping_plane{on.normal, vec3<double>(on.normal), d, 0.0};
-                last_plane->first_m = side_first_m([&](double a) {
-                    return nearest_range_to_plane_m(sd, a, double(ext.depression_min_rad),
-                                                    double(ext.depression_max_rad), p.body_to_world,
-                                                    last_plane->unit_normal, last_plane->distance_m);
-                });
-            }
-            const auto on_plane = [&](double a) {
+            if (on.normal.x == T(0) && on.normal.y == T(0) &&
+                std::abs(double(on.normal.z) * towards.z - altitude_m) <= 1e-6 * std::abs(altitude_m))
+                return plane_nadir_reach_s(lo, hi, nearest, first_m, first_s);
+            const auto at_unit = [&](double a) {
                 return nearest_range_to_plane_m(sd, a, double(ext.depression_min_rad), double(ext.depression_max_rad),
-                                                p.body_to_world, last_plane->unit_normal, last_plane->distance_m);
+                                                p.body_to_world, last_plane->unit_normal, 1.0);
             };
-            return plane_nadir_reach_s(lo, hi, on_plane, last_plane->first_m, first_s);
+            if (!last_plane || !same_normal(last_plane->normal, on.normal)) {
+                last_plane = plane_onset{on.normal, vec3<double>(on.normal), 0.0};
+                last_plane->first_per_m = side_first_m(at_unit);
+            }
+            const double d = glm::dot(last_plane->unit_normal, towards);
+            if (!(d > 0.0)) return 0.0; // the towfish not above the plane: no first return from it
+            return plane_nadir_reach_s(lo, hi, [&](double a) { return d * at_unit(a); }, d * last_plane->first_per_m,
+                                       first_s);
         };
         double widest = (a1 - a0) / double(n_along); // the widest column (rad): every one where they are even
         if (n_along != n_even)
@@ -1033,13 +1032,14 @@ private:
     /// column's echo with its thirds', in even steps.
     static constexpr std::size_t nadir_taper = 4;
 
-    /// How long (two-way, s) after its earliest echo from the seabed, at two-way time first_s, the column between
-    /// along-track angles lo and hi (rad) counts as near the first return over a plane seabed: the time its first return
-    /// moves across it, plus two range samples, where that movement exceeds nadir_plane_spread samples; where the column
-    /// holds the side's nearest first return (`first_m`), nadir_first_spread samples or nadir_first_sliver of the part of
-    /// its first sample after first_s, whichever is less; else 0. First returns are those of the plane the column's
-    /// echoes lie on (nearest(a): the slant range, m, of its nearest point at along-track angle a, along straight rays),
-    /// sampled at the column's edges and centre: they tell how far the return moves, the column's echoes where it begins.
+    /// How long (two-way, s) after its earliest echo from the seabed, at two-way time first_s (its centre's onset), the
+    /// column between along-track angles lo and hi (rad) counts as near the first return over a plane seabed: the time
+    /// its first return moves across it, plus two range samples, where that movement exceeds nadir_plane_spread
+    /// samples; where the column holds the side's nearest first return (`first_m`), nadir_first_spread samples or
+    /// nadir_first_sliver of the part of the first sample after the column's earliest onset (first_s less the
+    /// centre's lag), whichever is less; else 0. First returns are those of the plane the column's echoes lie on
+    /// (nearest(a): the slant range, m, of its nearest point at along-track angle a, along straight rays), sampled at
+    /// the column's edges and centre: they tell how far the return moves, the column's echoes where it begins.
     template <class Nearest>
     [[nodiscard]] double plane_nadir_reach_s(double lo, double hi, Nearest&& nearest, double first_m,
                                              double first_s) const {
@@ -1051,9 +1051,14 @@ private:
             r_max = std::max(r_max, r);
         }
         const double sample_m = 0.5 * c_ref_ * dt_;
-        const double x = first_s / dt_, sliver = std::isfinite(x) ? 1.0 - (x - std::floor(x)) : 1.0;
-        const double limit = r_min <= first_m * (1.0 + 1e-9) ? std::min(nadir_first_spread, nadir_first_sliver * sliver)
-                                                             : nadir_plane_spread;
+        double limit = nadir_plane_spread;
+        if (r_min <= first_m * (1.0 + 1e-9)) {
+            // The column's earliest onset: its centre's, less how much later the centre's first return lies.
+            const double r_mid = nearest(0.5 * (lo + hi));
+            const double lag_s = std::isfinite(r_mid) ? 2.0 * (r_mid - r_min) / c_ref_ : 0.0;
+            const double x = (first_s - lag_s) / dt_, sliver = std::isfinite(x) ? 1.0 - (x - std::floor(x)) : 1.0;
+            limit = std::min(nadir_first_spread, nadir_first_sliver * sliver);
+        }
         if (!(r_max - r_min > limit * sample_m)) return 0.0;
         return 2.0 * (r_max - r_min + 2.0 * sample_m) / c_ref_;
     }
