@@ -180,7 +180,7 @@ struct ray_density {
     /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
     /// first return (over the plane its echoes lie on, along straight rays) moves by more than a quarter of a range
     /// sample, or where it holds the side's nearest first return a twentieth, or a quarter of the part of its first
-    /// sample after its onset if that is less, is divided into thirds from its earliest echo from the seabed for as
+    /// sample after its earliest onset if that is less, is divided into thirds from its earliest echo from the seabed for as
     /// long as that movement and two samples more (where the seabed's echoes there are one plane too), and the four
     /// launch intervals either side share its echo with its thirds' in even steps: each column's echo begins where its
     /// centre's first return lies, and just after it the echo rises as the square root of the time, so the column's
@@ -573,10 +573,11 @@ private:
             density_.along_split_nadir ? side_first_m(nearest) : std::numeric_limits<double>::infinity();
         // How long a column between lo and hi counts as near the first return over the plane a seabed echo `on` lies on
         // (plane_nadir_reach_s): the level seabed's first returns where that plane is the level one under the towfish
-        // (to 1e-6 of the altitude), else the plane's own (nearest_range_to_plane_m), at its distance d from the
-        // towfish. A plane's first returns are d times those of its normal's plane at unit distance: the last normal
-        // asked about is kept with the side's nearest first return at unit distance, and stands for any the same to
-        // rounding (same_normal), so that the column's first returns and the side's nearest come from one plane.
+        // (to 1e-6 of the altitude and the coordinates' rounding), else the plane's own (nearest_range_to_plane_m), at
+        // its distance d from the towfish. A plane's first returns are d times those of its normal's plane at unit
+        // distance: the last normal asked about is kept with the side's nearest first return at unit distance, and
+        // stands for any within 1e-3 rad of it (same_normal, as planarity is judged), so that the column's first
+        // returns and the side's nearest come from one plane.
         struct plane_onset {
             vec3<T> normal{};
             vec3<double> unit_normal{};
@@ -585,8 +586,10 @@ private:
         std::optional<plane_onset> last_plane;
         const auto plane_reach_s = [&](double lo, double hi, const hit<T>& on, double first_s) {
             const vec3<double> towards = vec3<double>(p.position) - vec3<double>(on.point);
-            if (on.normal.x == T(0) && on.normal.y == T(0) &&
-                std::abs(double(on.normal.z) * towards.z - altitude_m) <= 1e-6 * std::abs(altitude_m))
+            const double rounding = 16.0 * double(std::numeric_limits<T>::epsilon()) *
+                                    (std::abs(double(p.position.z)) + std::abs(double(on.point.z)));
+            if (on.normal.x == T(0) && on.normal.y == T(0) && std::isfinite(altitude_m) &&
+                std::abs(double(on.normal.z) * towards.z - altitude_m) <= 1e-6 * std::abs(altitude_m) + rounding)
                 return plane_nadir_reach_s(lo, hi, nearest, first_m, first_s);
             const auto at_unit = [&](double a) {
                 return nearest_range_to_plane_m(sd, a, double(ext.depression_min_rad), double(ext.depression_max_rad),
@@ -1025,8 +1028,8 @@ private:
     static constexpr double nadir_plane_spread = 0.25;
     static constexpr double nadir_first_spread = 0.05;
     /// Or, for the column holding the nearest first return, by more than this share of the part of its first sample
-    /// after its onset (a sliver s): just after the onset the echo rises as the square root of the time, so a column
-    /// whose centre's onset lags by d takes about 1.5 d / s of that sample's echo away.
+    /// after its earliest onset (a sliver s): just after the onset the echo rises as the square root of the time, so a
+    /// column whose centre's onset lags by d takes about 1.5 d / s of that sample's echo away.
     static constexpr double nadir_first_sliver = 0.25;
     /// Either side of a stretch divided near the first return over a plane, this many launch intervals share the
     /// column's echo with its thirds', in even steps.
@@ -1044,8 +1047,8 @@ private:
     [[nodiscard]] double plane_nadir_reach_s(double lo, double hi, Nearest&& nearest, double first_m,
                                              double first_s) const {
         double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
-        for (const double a : {lo, 0.5 * (lo + hi), hi}) {
-            const double r = nearest(a);
+        const double r_mid = nearest(0.5 * (lo + hi));
+        for (const double r : {nearest(lo), r_mid, nearest(hi)}) {
             if (!std::isfinite(r)) continue;
             r_min = std::min(r_min, r);
             r_max = std::max(r_max, r);
@@ -1054,7 +1057,6 @@ private:
         double limit = nadir_plane_spread;
         if (r_min <= first_m * (1.0 + 1e-9)) {
             // The column's earliest onset: its centre's, less how much later the centre's first return lies.
-            const double r_mid = nearest(0.5 * (lo + hi));
             const double lag_s = std::isfinite(r_mid) ? 2.0 * (r_mid - r_min) / c_ref_ : 0.0;
             const double x = (first_s - lag_s) / dt_, sliver = std::isfinite(x) ? 1.0 - (x - std::floor(x)) : 1.0;
             limit = std::min(nadir_first_spread, nadir_first_sliver * sliver);

@@ -682,8 +682,8 @@ TEST_CASE("over a plane seabed under a rolled and pitched towfish, columns divid
         CAPTURE(slope);
         // Divided: 0.062 and 0.021 dB level, 0.010 and 0.011 dB sloping; whole: 0.39 dB port level, 0.28 dB
         // starboard sloping.
-        const auto plane = sss_test::footprint_field<double>([=](double x, double y) { return slope * (x + 0.5 * y); }, 0.25);
-        check_plane_nadir(sss::propagation::straight<double>{}, plane, {});
+        const auto height = [=](double x, double y) { return slope * (x + 0.5 * y); };
+        check_plane_nadir(sss::propagation::straight<double>{}, sss_test::footprint_field<double>(height, 0.25), {});
     }
 }
 
