@@ -165,34 +165,33 @@ struct ray_density {
     /// and at least two columns.
     bool along_split_targets = true;
     /// Near the first return (echoes that begin before the two-way time of a slant range of sqrt(2) times the towfish's
-    /// altitude: 45 degrees from the vertical over a level seabed), a column over a seabed that is not one plane there is divided
-    /// into thirds along track, whatever its edges agree on (deeper, to the column's depth, where the thirds' edges
-    /// disagree). There the time
-    /// along a column turns at every facet the rays meet square on (dt/de = 0, where the echo per sample peaks as a
-    /// caustic, and Jackson's model its Kirchhoff term), each column at its own time: summed, a few columns make a
-    /// comb of such peaks a sample or two apart that the along-track integral smooths, and no edge marks it. On the
-    /// 1 km survey of bench/bench_survey.cpp (72 lines against a converged render) it takes the line of the worst 99th
-    /// percentile from 0.45 to 0.15 dB RMS and 2.9 to 0.6 dB there, the RMS of the lines' RMS from 0.182 to 0.155 dB and the
-    /// lines above 0.3 dB RMS or 1 dB at the 99th percentile from 9 to 5, no line worse, for about 3 % more time
-    /// (docs/design/along-track.md). Where the line ends before that time (a range under 1.4 times the altitude) the
-    /// whole of each column's launch intervals is divided so. A level or sloping plane seabed (its facets' normals
-    /// agreeing to rounding: any plane in double; in float, heights within about 250 m of zero at 0.05 m cells, as
-    /// for refine_facets) is divided only where one column's first return moves: a column across whose width the
-    /// first return (over the plane its echoes lie on, along straight rays) moves by more than a quarter of a range
-    /// sample, or where it holds the side's nearest first return a twentieth, or a quarter of the part of its first
-    /// sample after its earliest onset if that is less, is divided into thirds from its earliest echo from the seabed for as
-    /// long as that movement and two samples more (where the seabed's echoes there are one plane too), and the four
-    /// launch intervals either side share its echo with its thirds' in even steps: each column's echo begins where its
-    /// centre's first return lies, and just after it the echo rises as the square root of the time, so the column's
-    /// first sample misstated the beam's. Under an ideal fan 20 degrees wide along track the first sample after the
-    /// nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar equation, under 120 degrees from 0.73 dB
-    /// (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9 % more rays at 30 m of range and 10 m
-    /// altitude; under a beam a few degrees wide (the default fan, the default 100 kHz planar array) over a level plane
-    /// and a level towfish 10 m up sampled at 20 kHz the line is the same bit for bit, but pitched or sampled finely
-    /// such a beam's nearest columns divide too, and so they do over a plane sloping along track (0.15 across and
-    /// 0.075 along, 4 degrees, water bending rays down: the first sample from 24 dB low to 0.5 dB against 512
-    /// columns; docs/design/along-track.md). Like the rest of the along-track check, it needs refinement
-    /// (refine_depth > 0), along_split >= 3 and at least two columns.
+    /// altitude: 45 degrees from the vertical over a level seabed), a column over a seabed that is not one plane there
+    /// is divided into thirds along track, whatever its edges agree on (deeper, to the column's depth, where the
+    /// thirds' edges disagree). There the time along a column turns at every facet the rays meet square on (dt/de = 0,
+    /// where the echo per sample peaks as a caustic, and Jackson's model its Kirchhoff term), each column at its own
+    /// time: summed, a few columns make a comb of such peaks a sample or two apart that the along-track integral
+    /// smooths, and no edge marks it. On the 1 km survey of bench/bench_survey.cpp (72 lines against a converged
+    /// render) it takes the line of the worst 99th percentile from 0.45 to 0.15 dB RMS and 2.9 to 0.6 dB there, the RMS
+    /// of the lines' RMS from 0.182 to 0.155 dB and the lines above 0.3 dB RMS or 1 dB at the 99th percentile from 9 to
+    /// 5, no line worse, for about 3 % more time (docs/design/along-track.md). Where the line ends before that time (a
+    /// range under 1.4 times the altitude) the whole of each column's launch intervals is divided so. A level or
+    /// sloping plane seabed (its facets' normals agreeing to rounding: any plane in double; in float, heights within
+    /// about 250 m of zero at 0.05 m cells, as for refine_facets) is divided only where one column's first return
+    /// moves: a column across whose width the first return (over the plane its echoes lie on, along straight rays)
+    /// moves by more than a quarter of a range sample, or where it holds the side's nearest first return a twentieth,
+    /// or a quarter of the part of its first sample after its earliest onset if that is less, is divided into thirds
+    /// from its earliest echo from the seabed for as long as that movement and two samples more (where the seabed's
+    /// echoes there are one plane too), and the four launch intervals either side share its echo with its thirds' in
+    /// even steps: each column's echo begins where its centre's first return lies, and just after it the echo rises as
+    /// the square root of the time, so the column's first sample misstated the beam's. Under an ideal fan 20 degrees
+    /// wide along track the first sample after the nadir time goes from 0.46 to 0.04 dB off the quadrature of the sonar
+    /// equation, under 120 degrees from 0.73 dB (and 0.073 dB RMS over the line) to 0.03 dB (0.006 dB RMS), for 8 to 9
+    /// % more rays at 30 m of range and 10 m altitude; under a beam a few degrees wide (the default fan, the default
+    /// 100 kHz planar array) over a level plane and a level towfish 10 m up sampled at 20 kHz the line is the same bit
+    /// for bit, but pitched or sampled finely such a beam's nearest columns divide too, and so they do over a plane
+    /// sloping along track (0.15 across and 0.075 along, 4 degrees, water bending rays down: the first sample from 24
+    /// dB low to 0.5 dB against 512 columns; docs/design/along-track.md). Like the rest of the along-track check, it
+    /// needs refinement (refine_depth > 0), along_split >= 3 and at least two columns.
     bool along_split_nadir = true;
     /// Where a column's echo, sample by sample, departs from what its two neighbours' echoes make likely, the launch
     /// intervals that put echo into those samples are divided into thirds along track whatever the edges agree on
