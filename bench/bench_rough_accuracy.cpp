@@ -9,6 +9,8 @@
 //   lee       a plateau ending in a slope whose plane passes 0.057 deg below the towfish: every ray meeting the
 //             slope grazes it (its echo per radian, 1/sin of the angle to the facet, in the hundreds)
 //   targets   a lying cylinder, a moored spherical mine and a pipeline spanning a hollow, on gentle rippled relief
+//   slope     ripples 0.2 m from crest to trough, 1.3 m long, on a plane rising 0.15 to starboard (0.075 along
+//             track): the side launches for the plane, not for the level seabed under the towfish
 //   flat      the flat seabed z = 0 (no reference: the refinement must change nothing and cost nothing there)
 // For each scene and density {along, 0, per_sample}, with the refinement off (refine_depth 0: the tubes of the
 // previous simulator), on (the defaults; the columns are close enough here that the seabed's own shadow edges stay
@@ -26,9 +28,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -184,6 +188,10 @@ int main(int argc, char** argv) {
     if (!quick) run_scene("trench", sss_test::trench_field<double>(), true, densities);
     run_scene("lee", sss_test::lee_slope_field<double>(0.057), true, densities);
     run_scene("targets", sss_test::target_scene<double>(), true, densities);
+    run_scene("slope", sss_test::footprint_field<double>([](double x, double y) {
+                  return 0.15 * (x + 0.5 * y) + 0.1 * std::sin(2 * std::numbers::pi * (0.9 * x + 0.3 * y) / 1.3);
+              }),
+              true, densities);
     if (!quick) {
         run_wide("relief", sss_test::ripple_field<double>(), 30.0);
         run_wide("relief", sss_test::ripple_field<double>(), 90.0);

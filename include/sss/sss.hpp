@@ -33,6 +33,7 @@
 #include "sss/scene/primitive.hpp"
 #include "sss/scene/rigid_transform.hpp"
 #include "sss/scene/scene.hpp"
+#include "sss/scene/sloping_plane.hpp"
 #include "sss/scene/sphere.hpp"
 #include "sss/scene/surface_ids.hpp"
 #include "sss/scene/vertical_arc.hpp"

@@ -221,6 +221,10 @@ TEST_CASE("the resolved scene read back is the same scene, with every default wr
     const auto nadir_again = switched_off(&sss::scene_file::render::along_split_nadir);
     CHECK_FALSE(nadir_again.run.along_split_nadir);
     CHECK_FALSE(sss::scene_file::rays_of(nadir_again).along_split_nadir);
+    CHECK(sss::scene_file::rays_of(again).sloping_launch);
+    const auto level_again = switched_off(&sss::scene_file::render::sloping_launch);
+    CHECK_FALSE(level_again.run.sloping_launch);
+    CHECK_FALSE(sss::scene_file::rays_of(level_again).sloping_launch);
     // A number of [render] set to `value`, written and read back: it reaches the scene and its ray_density.
     auto set_to = [&](double sss::scene_file::render::*key, double value) {
         auto changed = d;

@@ -7,9 +7,12 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/matrix.hpp>
+
 #include <sss/beam/concept.hpp>
 #include <sss/core/pose.hpp>
 #include <sss/sampling/launch_angles.hpp>
+#include <sss/scene/sloping_plane.hpp>
 
 namespace {
 const double deg = 3.141592653589793 / 180.0;
@@ -181,4 +184,74 @@ TEST_CASE("close to the seabed no step in nominal range exceeds a twentieth of t
     d.max_range_step = 0.05;
     sss::depression_angles(high, sss::side::starboard, 0.0, 0.0, 90 * deg, R, 10.0, 10.0, 75.0, d);
     CHECK(high == high_plain);
+}
+
+namespace {
+// Nominal slant range to the plane of unit upward normal n at distance H from the towfish.
+double range_to_plane(const sss::mat3<double>& R, sss::side s, double along, double e, const sss::vec3<double>& n, double H) {
+    const auto d = R * sss::beam_direction(s, along, e);
+    return H / -(d.x * n.x + d.y * n.y + d.z * n.z);
+}
+} // namespace
+
+TEST_CASE("over a sloping plane the depression angles are spaced evenly in slant range to that plane, out to where a ray "
+          "comes within the clearance of it at the longest range") {
+    const auto R = sss::body_to_world_rotation(6 * deg, 4 * deg, 0.7);
+    const sss::scene::sloping_plane plane{.gradient = {0.15, -0.075}};
+    const sss::vec3<double> n = plane.up();
+    for (sss::side s : {sss::side::port, sss::side::starboard}) {
+        CAPTURE(s == sss::side::port ? "port" : "starboard");
+        const sss::nominal_seabed nominal{.up = n, .altitude_m = 10.0, .clearance_m = 9.0};
+        std::vector<double> e;
+        sss::column_density d;
+        d.rays_per_m = 10;
+        d.max_range_step = 0.0;
+        // Up to 60 degrees of depression: the plane's nearest point, some 8 degrees from the vertical, is not in it.
+        sss::depression_angles(e, s, 0.01, 0.0, 60 * deg, R, nominal, 30.0, d);
+        REQUIRE(e.size() > 50);
+        CHECK(std::count_if(e.begin(), e.end(), [](double x) { return std::isnan(x); }) == 0);
+        CHECK(e.front() == 60 * deg);
+        std::vector<double> r(e.size());
+        for (std::size_t i = 0; i < e.size(); ++i) r[i] = range_to_plane(R, s, 0.01, e[i], n, 10.0);
+        const double step = r[1] - r[0];
+        CHECK(step == doctest::Approx(0.1).epsilon(0.05));
+        for (std::size_t i = 1; i < r.size(); ++i) CHECK(r[i] - r[i - 1] == doctest::Approx(step).epsilon(1e-6));
+        // The last ray's straight line comes down to the clearance (1 m above the plane) at the longest range, 30 m.
+        CHECK(r.back() * 9.0 / 10.0 == doctest::Approx(30.0).epsilon(1e-9));
+        // What it spans is what launch_span_m says: the rays launched over it are rays_per_m to the metre.
+        const double span = sss::launch_span_m(s, 0.01, 0.0, 60 * deg, R, nominal, 30.0);
+        CHECK(span == doctest::Approx(r.back() - r.front()).epsilon(1e-9));
+        CHECK(double(e.size()) == doctest::Approx(10 * span).epsilon(0.02));
+    }
+}
+
+TEST_CASE("launching for a tilted plane is launching for the level seabed with the world tilted to put that plane level, "
+          "and a towfish not above the scene spans the longest range") {
+    // The plane of normal n = W^T z under the body rotation R is the level plane under W R, W a rotation of the world:
+    // the same angles to rounding.
+    const auto R = sss::body_to_world_rotation(12 * deg, -4 * deg, 1.0);
+    const sss::mat3<double> W = sss::body_to_world_rotation(-5 * deg, 8 * deg, 0.3) *
+                                glm::transpose(sss::body_to_world_rotation(0.0, 0.0, 0.0));
+    const sss::vec3<double> n = glm::transpose(W) * sss::vec3<double>{0.0, 0.0, 1.0};
+    REQUIRE(n.z == doctest::Approx(std::cos(5 * deg) * std::cos(8 * deg)));
+    sss::column_density d;
+    d.rays_per_m = 20;
+    for (sss::side s : {sss::side::port, sss::side::starboard}) {
+        CAPTURE(s == sss::side::port ? "port" : "starboard");
+        std::vector<double> level, plane;
+        sss::depression_angles(level, s, 0.003, 0.0, 90 * deg, sss::mat3<double>(W * R), 8.0, 7.5, 30.0, d);
+        sss::depression_angles(plane, s, 0.003, 0.0, 90 * deg, R,
+                               sss::nominal_seabed{.up = n, .altitude_m = 8.0, .clearance_m = 7.5}, 30.0, d);
+        REQUIRE(level.size() > 100);
+        REQUIRE(plane.size() == level.size());
+        for (std::size_t i = 0; i < level.size(); ++i) {
+            if (std::isnan(level[i])) {
+                CHECK(std::isnan(plane[i]));
+                continue;
+            }
+            CHECK(plane[i] == doctest::Approx(level[i]).epsilon(1e-10));
+        }
+    }
+    CHECK(sss::launch_span_m(sss::side::starboard, 0.0, 10 * deg, 30 * deg, R,
+                             sss::nominal_seabed{.altitude_m = 10.0, .clearance_m = -1.0}, 50.0) == 50.0);
 }

@@ -86,6 +86,64 @@ TEST_CASE("objects count over a rectangle only where their boxes reach over it")
     CHECK(sss::scene::flat_seabed<double>(-3.0).top_m({0.0, 0.0}, {1.0, 1.0}) == -3.0);
 }
 
+namespace {
+// The highest rise of a vertex above `plane` over the vertices within the rectangle.
+double highest_rise(const sss::scene::height_field<double>& f, vec2<double> lo, vec2<double> hi,
+                    const sss::scene::sloping_plane& plane) {
+    double m = -inf;
+    for (std::size_t iy = 0; iy < f.ny(); ++iy)
+        for (std::size_t ix = 0; ix < f.nx(); ++ix) {
+            const double x = f.origin_m().x + f.cell_m() * double(ix), y = f.origin_m().y + f.cell_m() * double(iy);
+            if (x >= lo.x && x <= hi.x && y >= lo.y && y <= hi.y) m = std::max(m, f.height_m(ix, iy) - plane.height_m(x, y));
+        }
+    return m;
+}
+} // namespace
+
+TEST_CASE("how far a scene rises above a sloping plane over a rectangle bounds every vertex there, within the plane's "
+          "change over a block of the maximum pyramid") {
+    const auto f = sloped_field(); // 0.05 (x + 50) + -0.4 ... 0.4 m of noise
+    std::mt19937_64 g(5);
+    std::uniform_real_distribution<double> x(-60.0, 110.0), y(10.0, 130.0), size(0.0, 40.0), slope(-0.1, 0.1);
+    for (int k = 0; k < 500; ++k) {
+        const double x0 = x(g), y0 = y(g);
+        const vec2<double> lo{x0, y0}, hi{x0 + size(g), y0 + size(g)};
+        const sss::scene::sloping_plane plane{.at = {x(g), y(g)}, .z_m = slope(g) * 10.0, .gradient = {slope(g), slope(g)}};
+        const double rise = f.rise_above_m(lo, hi, plane);
+        if (hi.x < -50.0 || lo.x > 100.0 || hi.y < 20.0 || lo.y > 120.0) {
+            CHECK(rise == -inf);
+            continue;
+        }
+        CAPTURE(k);
+        CHECK(rise >= highest_rise(f, lo, hi, plane));
+        // Rectangles up to 40 m take blocks of at most 2 cells (1 m): the bound looks at most 2 m beyond the rectangle
+        // and loses at most 0.1 m per metre of block to the plane's slope there.
+        const vec2<double> margin{2.0, 2.0};
+        CHECK(rise <= highest_rise(f, lo - margin, hi + margin, plane) + 0.2);
+    }
+    // Over the field's slope the rise is the noise; above the level plane through its low end, the slope's 2 m more.
+    const vec2<double> lo{0.0, 40.0}, hi{40.0, 60.0};
+    const sss::scene::sloping_plane along{.at = {-50.0, 0.0}, .z_m = 0.0, .gradient = {0.05, 0.0}};
+    const sss::scene::sloping_plane level{.at = {0.0, 0.0}, .z_m = 2.5, .gradient = {0.0, 0.0}};
+    CHECK(f.rise_above_m(lo, hi, along) == doctest::Approx(0.4).epsilon(0.15));
+    CHECK(f.rise_above_m(lo, hi, level) >= 1.9);
+    // A flat seabed: exactly, at the lowest corner of the plane.
+    CHECK(sss::scene::flat_seabed<double>(1.0).rise_above_m({0.0, 0.0}, {10.0, 4.0}, along) == doctest::Approx(-1.5));
+    // Objects: the top of each box reaching over the rectangle, above the plane's lowest point under the box there.
+    auto seabed = [](double, double) { return 0.0; };
+    std::vector<sss::scene::object<double>> objs;
+    objs.push_back(sss::seabed::tethered_mine<double>({.anchor_m = {0.0, 0.0}, .case_height_m = 5.0, .object_id = 1}, seabed));
+    const sss::scene::object_set<double> set(std::move(objs));
+    const sss::scene::sloping_plane tilted{.at = {0.0, 0.0}, .z_m = 1.0, .gradient = {0.1, 0.0}};
+    const auto& box = set.objects().front().bounds();
+    CHECK(set.rise_above_m({-10.0, -10.0}, {10.0, 10.0}, tilted) == doctest::Approx(box.hi.z - (1.0 + 0.1 * box.lo.x)));
+    CHECK(set.rise_above_m({50.0, -10.0}, {60.0, 10.0}, tilted) == -inf);
+    // A scene: the higher of its seabed's and its objects'.
+    const sss::scene::scene sc(sss::scene::flat_seabed<double>(0.0), set);
+    CHECK(sc.rise_above_m({-10.0, -10.0}, {10.0, 10.0}, tilted) == set.rise_above_m({-10.0, -10.0}, {10.0, 10.0}, tilted));
+    CHECK(sc.rise_above_m({50.0, -10.0}, {60.0, 10.0}, tilted) == doctest::Approx(-1.0 - 0.1 * 50.0));
+}
+
 TEST_CASE("an area view answers every ray over its rectangle as its scene does, with the top of what lies there") {
     auto field = sloped_field();
     std::vector<sss::scene::object<double>> objs;

@@ -114,6 +114,14 @@ template <class Inner> struct one_ray_at_a_time {
     }
     [[nodiscard]] value_type seabed_height_m(value_type x, value_type y) const { return inner->seabed_height_m(x, y); }
     [[nodiscard]] value_type top_m() const { return inner->top_m(); }
+    // Its bounds over an area and against a plane, so that its rays launch as the scene's do.
+    [[nodiscard]] value_type top_m(const sss::vec2<value_type>& lo, const sss::vec2<value_type>& hi) const {
+        return inner->top_m(lo, hi);
+    }
+    [[nodiscard]] double rise_above_m(const sss::vec2<value_type>& lo, const sss::vec2<value_type>& hi,
+                                      const sss::scene::sloping_plane& plane) const {
+        return inner->rise_above_m(lo, hi, plane);
+    }
 };
 /// Lambert, straight rays (or the given water) and an ideal fan on a towfish heading -21 deg at 9 m, rolling and
 /// pitching a few degrees: rays cross a grid obliquely, in columns that are not vertical planes.

@@ -2,13 +2,16 @@
 /// \file
 /// Where to launch rays within one along-track column of a beam.
 ///
-/// Depression angles are spaced so that their returns from a flat seabed at the nominal altitude are evenly
-/// spaced in slant range, hence in two-way time: every time sample receives about the same number of rays
-/// however steep or grazing the geometry, and the energy between two adjacent rays is spread over the short
-/// time span between their returns. With the body rotated by R, the downward world component of a direction
-/// in the column is g(e) = A + B cos e + C sin e, and its nominal slant range is H / g(e); the range is
-/// monotone between the extrema of g, and on each monotone piece e(r) has the closed form
-/// e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C), phi = atan2(C, B).
+/// Depression angles are spaced so that their returns from a nominal seabed (a plane: level at the towfish's altitude,
+/// or sloping as the seabed does, nominal_seabed) are evenly spaced in slant range, hence in two-way time: every time
+/// sample receives about the same number of rays however steep or grazing the geometry, and the energy between two
+/// adjacent rays is spread over the short time span between their returns. With the body rotated by R, the component
+/// of a direction in the column against the plane's downward normal is g(e) = A + B cos e + C sin e, and its nominal
+/// slant range is H / g(e), H the towfish's distance from the plane; the range is monotone between the extrema of g,
+/// and on each monotone piece e(r) has the closed form e = phi -/+ acos((H/r - A)/rho), rho = hypot(B, C),
+/// phi = atan2(C, B). A ray reaches geometry within the longest range Rmax only if g >= clearance / Rmax, the
+/// clearance being the towfish's distance from the plane less how far geometry rises above it: no ray is launched
+/// below that.
 /// Where a step is more than column_density::max_range_step of the range it starts from (ranges within 20 steps of
 /// the towfish), it is divided geometrically, where the column's ray budget (max_rays) allows.
 /// Where no such spacing exists (towfish not above the scene, a column pointing up) the angles are uniform.
@@ -44,6 +47,15 @@ struct column_density {
     /// geometrically (where the budget allows). Only ranges within 20 steps of the towfish are touched: with
     /// 0.0375 m steps, below 0.75 m; with a few rays per column (ray_density::across), at any altitude.
     double max_range_step = 0.05;
+};
+
+/// The plane a column's rays launch for: world unit normal `up` (pointing up), the towfish `altitude_m` from it (m,
+/// along the normal), and no geometry closer to the towfish than `clearance_m` along the normal (m: the altitude less
+/// how far the geometry rises above the plane). The level seabed under the towfish is up = (0, 0, 1).
+struct nominal_seabed {
+    vec3<double> up{0.0, 0.0, 1.0};
+    double altitude_m = 0.0;
+    double clearance_m = 0.0;
 };
 
 namespace detail {
@@ -112,26 +124,101 @@ inline void cap_range_steps(std::vector<double>& rs, double ratio, std::size_t b
 
 } // namespace detail
 
+namespace detail {
+
+/// One monotone piece of a column's launch depressions: ends at the nearest range and at the farthest reachable one.
+struct launch_piece {
+    double e_near, e_far; // ends: nearest range and farthest reachable range
+    double r_near, r_far; // nominal slant ranges there (m)
+    bool far_is_edge;     // the far end is the piece's edge (not cut by the reach)
+    bool increasing_g;    // g grows with e on the piece
+    double centre;        // the maximum of g this piece climbs towards
+};
+
+/// The column's g(e) = A + B cos e + C sin e (the file comment) and its pieces, highest depression first.
+struct launch_geometry {
+    double A = 0.0, B = 0.0, C = 0.0, rho = 0.0, phi = 0.0;
+    std::vector<launch_piece> pieces;
+    double span_m = 0.0; // the pieces' nominal ranges together (m)
+    bool spaced = false; // false: no spacing in range exists (the angles are uniform)
+};
+
+template <Real T>
+[[nodiscard]] launch_geometry launch_pieces(side s, T along_rad, double e_lo, double e_hi, const mat3<T>& R,
+                                            const nominal_seabed& nominal, double Rmax) {
+    launch_geometry lg;
+    const double sa = std::sin(double(along_rad)), ca = std::cos(double(along_rad));
+    // Up-components (against the plane's normal) of the body axes: R[c] is column c, body axis c in the world; for the
+    // level plane the world z components themselves.
+    const bool level = nominal.up.x == 0.0 && nominal.up.y == 0.0 && nominal.up.z == 1.0;
+    const auto up_of = [&](int c) {
+        if (level) return double(R[c][2]);
+        return double(R[c][0]) * nominal.up.x + double(R[c][1]) * nominal.up.y + double(R[c][2]) * nominal.up.z;
+    };
+    lg.A = -up_of(0) * sa;
+    lg.B = -up_of(1) * double(side_sign<T>(s)) * ca;
+    lg.C = -up_of(2) * ca;
+    lg.rho = std::hypot(lg.B, lg.C);
+    const double H = nominal.altitude_m;
+    if (!(H > 0.0) || !(nominal.clearance_m > 0.0) || !(lg.rho > 1e-12) || !(Rmax > 0.0)) return lg;
+    lg.spaced = true;
+    // A ray can reach geometry within Rmax only if g >= clearance / Rmax.
+    const double g_cut = nominal.clearance_m / Rmax;
+    auto g = [&](double e) { return lg.A + lg.B * std::cos(e) + lg.C * std::sin(e); };
+    lg.phi = std::atan2(lg.C, lg.B);
+    // Split [e_lo, e_hi] at the extrema of g (phi + m pi) into monotone pieces.
+    std::vector<double> cuts{e_lo};
+    for (int m = -3; m <= 3; ++m) {
+        const double x = lg.phi + m * pi_v<double>;
+        if (x > e_lo && x < e_hi) cuts.push_back(x);
+    }
+    cuts.push_back(e_hi);
+    std::sort(cuts.begin(), cuts.end());
+    for (std::size_t i = cuts.size() - 1; i-- > 0;) { // from the highest depression down
+        const double a = cuts[i], b = cuts[i + 1];
+        const double mid = 0.5 * (a + b);
+        const double centre = lg.phi + std::round((mid - lg.phi) / two_pi_v<double>) * two_pi_v<double>;
+        const bool inc = mid < centre;
+        const double e_near = inc ? b : a, e_edge_far = inc ? a : b;
+        const double g_near = g(e_near), g_far = g(e_edge_far);
+        if (!(g_near > g_cut)) continue; // nothing on this piece can be reached
+        const bool far_is_edge = g_far >= g_cut;
+        const double r_near = H / g_near, r_far = H / std::max(g_far, g_cut);
+        lg.pieces.push_back({e_near, e_edge_far, r_near, r_far, far_is_edge, inc, centre});
+        lg.span_m += r_far - r_near;
+    }
+    return lg;
+}
+
+} // namespace detail
+
+/// The nominal slant range (m) that the column at `along_rad` on side `s` spaces its rays over, launching for
+/// `nominal`: with column_density::rays_per_m it launches about that many rays per metre of it. Where no spacing in
+/// range exists (the angles are then uniform over the column, as many as over max_range_m), max_range_m.
+template <Real T>
+[[nodiscard]] double launch_span_m(side s, T along_rad, T depression_min_rad, T depression_max_rad, const mat3<T>& R,
+                                   const nominal_seabed& nominal, T max_range_m) {
+    const double e_lo = depression_min_rad, e_hi = depression_max_rad;
+    if (!(e_hi > e_lo)) return 0.0;
+    const detail::launch_geometry lg = detail::launch_pieces(s, along_rad, e_lo, e_hi, R, nominal, double(max_range_m));
+    return lg.spaced ? lg.span_m : double(max_range_m);
+}
+
 /// Depression angles (rad) for the column at `along_rad` on side `s`, in descending order (near range first).
 /// Quiet NaN entries separate runs that are not adjacent (no energy is shared across them).
 /// \param R              body-to-world rotation
-/// \param altitude_m     height of the towfish above the nominal seabed (m)
-/// \param clearance_m    height of the towfish above the highest geometry in the scene (m)
+/// \param nominal        the plane the rays launch for (see the file comment)
 /// \param max_range_m    longest slant range the receiver records (m)
 template <Real T>
 void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_min_rad, T depression_max_rad,
-                       const mat3<T>& R, T altitude_m, T clearance_m, T max_range_m, const column_density& density) {
+                       const mat3<T>& R, const nominal_seabed& nominal, T max_range_m, const column_density& density) {
     out.clear();
     const double e_lo = depression_min_rad, e_hi = depression_max_rad;
     if (!(e_hi > e_lo)) return;
-    const double sa = std::sin(double(along_rad)), ca = std::cos(double(along_rad));
-    // World up-components of the body axes are the third row of R (GLM stores columns: R[col][row]).
-    const double A = -double(R[0][2]) * sa;
-    const double B = -double(R[1][2]) * double(side_sign<T>(s)) * ca;
-    const double C = -double(R[2][2]) * ca;
-    const double rho = std::hypot(B, C);
-    const double H = altitude_m, Rmax = max_range_m;
+    const double Rmax = max_range_m;
     constexpr std::size_t refine_levels = 6;
+    const detail::launch_geometry lg = detail::launch_pieces(s, along_rad, e_lo, e_hi, R, nominal, Rmax);
+    const double H = nominal.altitude_m, A = lg.A, rho = lg.rho;
 
     auto uniform = [&](double lo, double hi, std::size_t n) {
         if (density.max_step_rad > 0.0) // as many as the cap needs, up to the budget (clamped below)
@@ -140,50 +227,16 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
         for (std::size_t i = 0; i < n; ++i)
             out.push_back(static_cast<T>(hi - (hi - lo) * double(i) / double(n - 1)));
     };
-    if (!(H > 0.0) || !(clearance_m > 0.0) || !(rho > 1e-12) || !(Rmax > 0.0)) {
+    if (!lg.spaced) {
         const double n = density.rays != 0 ? double(density.rays) : density.rays_per_m * Rmax;
         uniform(e_lo, e_hi, static_cast<std::size_t>(n) + 2);
         return;
     }
-    // A ray can reach geometry within Rmax only if g >= clearance / Rmax.
-    const double g_cut = double(clearance_m) / Rmax;
-    auto g = [&](double e) { return A + B * std::cos(e) + C * std::sin(e); };
-    const double phi = std::atan2(C, B);
-    // Split [e_lo, e_hi] at the extrema of g (phi + m pi) into monotone pieces.
-    std::vector<double> cuts{e_lo};
-    for (int m = -3; m <= 3; ++m) {
-        const double x = phi + m * pi_v<double>;
-        if (x > e_lo && x < e_hi) cuts.push_back(x);
-    }
-    cuts.push_back(e_hi);
-    std::sort(cuts.begin(), cuts.end());
-
-    struct piece {
-        double e_near, e_far; // ends: nearest range and farthest reachable range
-        double r_near, r_far; // nominal slant ranges there (m)
-        bool far_is_edge;     // the far end is the piece's edge (not cut by the reach)
-        bool increasing_g;    // g grows with e on the piece
-        double centre;        // the maximum of g this piece climbs towards
-    };
-    std::vector<piece> pieces;
-    double span_total = 0.0;
-    for (std::size_t i = cuts.size() - 1; i-- > 0;) { // from the highest depression down
-        const double a = cuts[i], b = cuts[i + 1];
-        const double mid = 0.5 * (a + b);
-        const double centre = phi + std::round((mid - phi) / two_pi_v<double>) * two_pi_v<double>;
-        const bool inc = mid < centre;
-        const double e_near = inc ? b : a, e_edge_far = inc ? a : b;
-        const double g_near = g(e_near), g_far = g(e_edge_far);
-        if (!(g_near > g_cut)) continue; // nothing on this piece can be reached
-        const bool far_is_edge = g_far >= g_cut;
-        const double r_near = H / g_near, r_far = H / std::max(g_far, g_cut);
-        pieces.push_back({e_near, e_edge_far, r_near, r_far, far_is_edge, inc, centre});
-        span_total += r_far - r_near;
-    }
-    if (pieces.empty() || !(span_total > 0.0)) return;
+    const double span_total = lg.span_m;
+    if (lg.pieces.empty() || !(span_total > 0.0)) return;
     const double n_total = std::min(double(density.max_rays),
                                     density.rays != 0 ? double(density.rays) : density.rays_per_m * span_total);
-    for (const piece& p : pieces) {
+    for (const detail::launch_piece& p : lg.pieces) {
         const auto n = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(n_total * (p.r_far - p.r_near) / span_total)) + 1);
         std::vector<double> ranges;
         ranges.reserve(n + refine_levels);
@@ -212,6 +265,16 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
         }
         for (double e : es) out.push_back(static_cast<T>(e));
     }
+}
+
+/// The same launching for the level seabed `altitude_m` below the towfish, with no geometry within `clearance_m` of the
+/// towfish's height (m).
+template <Real T>
+void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_min_rad, T depression_max_rad,
+                       const mat3<T>& R, T altitude_m, T clearance_m, T max_range_m, const column_density& density) {
+    depression_angles(out, s, along_rad, depression_min_rad, depression_max_rad, R,
+                      nominal_seabed{.altitude_m = double(altitude_m), .clearance_m = double(clearance_m)}, max_range_m,
+                      density);
 }
 
 } // namespace sss

@@ -30,6 +30,16 @@
 /// high point elsewhere in a large scene does not make every ray look for geometry from that height down
 /// (scene/area_view.hpp).
 ///
+/// Optional (`PlaneBoundedScene`): a scene that can bound its geometry over part of the plane against a sloping plane
+/// also offers
+///
+/// | `s.rise_above_m(lo, hi, plane)` | `double` | no geometry over the rectangle rises higher above `plane` (m) |
+///
+/// with `plane` a `scene::sloping_plane` (scene/sloping_plane.hpp) and `lo`, `hi` as above: the height is measured
+/// vertically; conservative (any larger value will do), and -infinity where nothing lies over the rectangle. Over a sloping seabed the simulator launches a
+/// side's rays for a plane fitted to it (sss::simulator::trace): how far they must reach follows from how high the
+/// geometry rises above that plane, not above the level through the towfish's nadir.
+///
 /// Optional (`ClearanceScene`): a scene that can tell how far a thick segment runs in open water also offers
 ///
 /// | `s.clear_length_m(r, t_max_m, band_m)` | `T` | a length d in [0, t_max_m]: no geometry within vertical distance band_m of r's points at distances [0, d] |
@@ -83,6 +93,7 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/beside_rays.hpp"
+#include "sss/scene/sloping_plane.hpp"
 #include "sss/scene/vertical_arc.hpp"
 
 namespace sss {
@@ -107,6 +118,13 @@ concept BatchScene = Scene<S> && requires(const S& s, std::span<const ray<typena
 template <class S>
 concept AreaScene = Scene<S> && requires(const S& s, const vec2<typename S::value_type>& p) {
     { s.top_m(p, p) } -> std::same_as<typename S::value_type>;
+};
+
+/// A Scene that bounds its geometry against a sloping plane over a rectangle (see the table above).
+template <class S>
+concept PlaneBoundedScene = Scene<S> && requires(const S& s, const vec2<typename S::value_type>& p,
+                                                 const scene::sloping_plane& plane) {
+    { s.rise_above_m(p, p, plane) } -> std::same_as<double>;
 };
 
 /// A Scene that bounds how far a thick segment runs in open water (see the table above).

@@ -12,6 +12,7 @@
 #include "sss/core/hit.hpp"
 #include "sss/core/ray.hpp"
 #include "sss/scene/concept.hpp"
+#include "sss/scene/sloping_plane.hpp"
 
 namespace sss::scene {
 
@@ -60,6 +61,10 @@ public:
     [[nodiscard]] T top_m() const noexcept { return height_m_; }
     /// The plane lies under every rectangle.
     [[nodiscard]] T top_m(const vec2<T>&, const vec2<T>&) const noexcept { return height_m_; }
+    /// How far the seabed rises above `plane` over the rectangle [lo, hi] (PlaneBoundedScene): exactly, at a corner.
+    [[nodiscard]] double rise_above_m(const vec2<T>& lo, const vec2<T>& hi, const sloping_plane& plane) const noexcept {
+        return double(height_m_) - plane.lowest_m(double(lo.x), double(lo.y), double(hi.x), double(hi.y));
+    }
 
 private:
     T height_m_;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -35,6 +36,7 @@
 #include "sss/scene/height_field_pyramid.hpp"
 #include "sss/scene/height_field_surface.hpp"
 #include "sss/scene/height_field_tracer.hpp"
+#include "sss/scene/sloping_plane.hpp"
 
 namespace sss::scene {
 
@@ -275,28 +277,43 @@ public:
     /// among those covering the rectangle's cells, at the finest level that needs at most 16 blocks along each axis
     /// (so at least the highest vertex there, and at most top_m()); -infinity for a rectangle off the grid.
     [[nodiscard]] T top_m(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
-        // In cells from vertex (0, 0).
-        const double fu0 = double(lo.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
-        const double fu1 = double(hi.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
-        const double fv0 = double(lo.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
-        const double fv1 = double(hi.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
-        const double cx = double(grid_.nx - 2), cy = double(grid_.ny - 2); // last cell index
-        if (!(fu1 >= 0.0) || !(fv1 >= 0.0) || !(fu0 <= cx + 1.0) || !(fv0 <= cy + 1.0))
-            return -std::numeric_limits<T>::infinity(); // off the grid (or NaN)
-        const double u0 = std::floor(fu0), u1 = std::ceil(fu1), v0 = std::floor(fv0), v1 = std::ceil(fv1);
+        const std::optional<cell_span> cells = cells_under(lo, hi);
+        if (!cells) return -std::numeric_limits<T>::infinity(); // off the grid (or NaN)
         if (pyramid_.levels() == 0) return bounds_.top_m;
-        // The cells holding the rectangle: [u0, u1 - 1], and the cell before u0 when the rectangle starts on a
-        // vertex line (its vertices are the same, but rounding of the world coordinate could put it there).
-        const auto a = static_cast<std::int32_t>(std::clamp(u0 - 1.0, 0.0, cx));
-        const auto b = static_cast<std::int32_t>(std::clamp(u1, 0.0, cx));
-        const auto c = static_cast<std::int32_t>(std::clamp(v0 - 1.0, 0.0, cy));
-        const auto d = static_cast<std::int32_t>(std::clamp(v1, 0.0, cy));
-        std::int32_t level = 1;
-        while (level < pyramid_.levels() && ((b >> level) - (a >> level) >= 16 || (d >> level) - (c >> level) >= 16))
-            ++level;
+        const std::int32_t level = block_level(*cells, 16);
         T m = -std::numeric_limits<T>::infinity();
-        for (std::int32_t by = c >> level; by <= (d >> level); ++by)
-            for (std::int32_t bx = a >> level; bx <= (b >> level); ++bx) m = std::max(m, pyramid_.max_m(level, bx, by));
+        for (std::int32_t by = cells->c >> level; by <= (cells->d >> level); ++by)
+            for (std::int32_t bx = cells->a >> level; bx <= (cells->b >> level); ++bx)
+                m = std::max(m, pyramid_.max_m(level, bx, by));
+        return m;
+    }
+    /// No geometry over the rectangle [lo, hi] (world x, y, m) rises more than this above `plane` (vertically, m;
+    /// PlaneBoundedScene): over each block of the maximum pyramid that covers the rectangle's cells (as top_m(lo, hi)
+    /// takes them), at the finest level that needs at most 64 blocks along each axis, the block's highest vertex less
+    /// the plane's lowest point over the block; -infinity for a rectangle off the grid. It may exceed the rise of every
+    /// vertex over the rectangle by the rise of a vertex within a block and a cell of it, and by the plane's change
+    /// across a block.
+    [[nodiscard]] double rise_above_m(const vec2<T>& lo, const vec2<T>& hi, const sloping_plane& plane) const noexcept {
+        const std::optional<cell_span> cells = cells_under(lo, hi);
+        if (!cells) return -std::numeric_limits<double>::infinity(); // off the grid (or NaN)
+        const double cell = double(grid_.cell_m), x0 = double(grid_.origin_m.x), y0 = double(grid_.origin_m.y);
+        // The rise of the block of vertices [i0, i1] x [j0, j1] whose highest vertex is top.
+        const auto block_rise = [&](double top, std::int32_t i0, std::int32_t i1, std::int32_t j0, std::int32_t j1) {
+            return top - plane.lowest_m(x0 + cell * i0, y0 + cell * j0, x0 + cell * i1, y0 + cell * j1);
+        };
+        if (pyramid_.levels() == 0) { // one cell
+            T top = grid_.at(0, 0);
+            for (std::int32_t y = 0; y <= 1; ++y)
+                for (std::int32_t x = 0; x <= 1; ++x) top = std::max(top, grid_.at(x, y));
+            return block_rise(double(top), 0, 1, 0, 1);
+        }
+        const std::int32_t level = block_level(*cells, 64);
+        double m = -std::numeric_limits<double>::infinity();
+        for (std::int32_t by = cells->c >> level; by <= (cells->d >> level); ++by)
+            for (std::int32_t bx = cells->a >> level; bx <= (cells->b >> level); ++bx)
+                m = std::max(m, block_rise(double(pyramid_.max_m(level, bx, by)), bx << level,
+                                           std::min((bx + 1) << level, grid_.nx - 1), by << level,
+                                           std::min((by + 1) << level, grid_.ny - 1)));
         return m;
     }
     /// Lowest vertex (m).
@@ -334,6 +351,35 @@ public:
     [[nodiscard]] std::size_t acceleration_bytes() const noexcept { return pyramid_.bytes(); }
 
 private:
+    /// Cells [a, b] x [c, d] (indices) that hold a rectangle of the plane.
+    struct cell_span {
+        std::int32_t a, b, c, d;
+    };
+    /// The cells holding the rectangle [lo, hi] (world x, y, m): [u0, u1 - 1] in cells from vertex (0, 0), and the cell
+    /// before u0 when the rectangle starts on a vertex line (its vertices are the same, but rounding of the world
+    /// coordinate could put it there); none for a rectangle off the grid (or NaN).
+    [[nodiscard]] std::optional<cell_span> cells_under(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
+        const double fu0 = double(lo.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
+        const double fu1 = double(hi.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
+        const double fv0 = double(lo.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
+        const double fv1 = double(hi.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
+        const double cx = double(grid_.nx - 2), cy = double(grid_.ny - 2); // last cell index
+        if (!(fu1 >= 0.0) || !(fv1 >= 0.0) || !(fu0 <= cx + 1.0) || !(fv0 <= cy + 1.0)) return std::nullopt;
+        const double u0 = std::floor(fu0), u1 = std::ceil(fu1), v0 = std::floor(fv0), v1 = std::ceil(fv1);
+        return cell_span{static_cast<std::int32_t>(std::clamp(u0 - 1.0, 0.0, cx)),
+                         static_cast<std::int32_t>(std::clamp(u1, 0.0, cx)),
+                         static_cast<std::int32_t>(std::clamp(v0 - 1.0, 0.0, cy)),
+                         static_cast<std::int32_t>(std::clamp(v1, 0.0, cy))};
+    }
+    /// The finest level of the maximum pyramid (at least 1) at which `cells` lie within fewer than `blocks` blocks
+    /// along each axis.
+    [[nodiscard]] std::int32_t block_level(const cell_span& cells, std::int32_t blocks) const noexcept {
+        std::int32_t level = 1;
+        while (level < pyramid_.levels() &&
+               ((cells.b >> level) - (cells.a >> level) >= blocks || (cells.d >> level) - (cells.c >> level) >= blocks))
+            ++level;
+        return level;
+    }
     /// Checks the grid and builds the bounds and the pyramid over heights `values` (size of them).
     /// read_done (may be empty): see external_heights.
     void init(std::size_t nx, std::size_t ny, T cell_m, vec2<T> origin_m, const T* values, std::size_t size,

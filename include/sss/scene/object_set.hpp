@@ -34,6 +34,7 @@
 #include "sss/scene/beside_rays.hpp"
 #include "sss/scene/detail/bvh_node.hpp"
 #include "sss/scene/object.hpp"
+#include "sss/scene/sloping_plane.hpp"
 
 namespace sss::scene {
 
@@ -73,6 +74,21 @@ public:
         for (const object<T>& o : objects_) {
             const box<T>& b = o.bounds();
             if (b.hi.x >= lo.x && b.lo.x <= hi.x && b.hi.y >= lo.y && b.lo.y <= hi.y) m = std::max(m, b.hi.z);
+        }
+        return m;
+    }
+
+    /// No object over the rectangle [lo, hi] (world x, y, m) rises more than this above `plane` (vertically, m): over
+    /// each object whose bounding box reaches over the rectangle, the box's top less the plane's lowest point over the
+    /// part of the box's footprint within the rectangle; -infinity when none does.
+    [[nodiscard]] double rise_above_m(const vec2<T>& lo, const vec2<T>& hi, const sloping_plane& plane) const noexcept {
+        double m = -std::numeric_limits<double>::infinity();
+        for (const object<T>& o : objects_) {
+            const box<T>& b = o.bounds();
+            if (!(b.hi.x >= lo.x && b.lo.x <= hi.x && b.hi.y >= lo.y && b.lo.y <= hi.y)) continue;
+            const double x0 = double(std::max(b.lo.x, lo.x)), x1 = double(std::min(b.hi.x, hi.x));
+            const double y0 = double(std::max(b.lo.y, lo.y)), y1 = double(std::min(b.hi.y, hi.y));
+            m = std::max(m, double(b.hi.z) - plane.lowest_m(x0, y0, x1, y1));
         }
         return m;
     }

@@ -135,6 +135,13 @@ public:
         else s = seabed_.top_m();
         return std::max(s, objects_.top_m(lo, hi));
     }
+    /// How far the seabed and the objects over the rectangle [lo, hi] rise above `plane` (PlaneBoundedScene, where the
+    /// seabed is one).
+    [[nodiscard]] double rise_above_m(const vec2<T>& lo, const vec2<T>& hi, const sloping_plane& plane) const
+        requires PlaneBoundedScene<Seabed>
+    {
+        return std::max(seabed_.rise_above_m(lo, hi, plane), objects_.rise_above_m(lo, hi, plane));
+    }
 
 private:
     /// Replaces the seabed's hit h by the objects' nearest hit before it (within t_max_m when h is none), if any.

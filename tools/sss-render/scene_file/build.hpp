@@ -222,6 +222,7 @@ template <Real T = float> [[nodiscard]] world<T> make_world(const description& d
     r.along_split_echo = d.run.along_split_echo;
     r.along_onset = d.run.along_onset;
     r.max_launch_step_deg = d.run.max_launch_step_deg;
+    r.sloping_launch = d.run.sloping_launch;
     if (d.run.seabed_edges_along != "auto") r.along_split_seabed = d.run.seabed_edges_along == "on";
     return r;
 }

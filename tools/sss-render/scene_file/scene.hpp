@@ -254,6 +254,7 @@ struct render {
                                              ///< more than this fraction of the three columns' echo
     double along_onset = 1.0;                ///< how far (range samples) the first return may move across a column
     double max_launch_step_deg = 1.0;        ///< largest step between a column's launch angles across track (0: none)
+    bool sloping_launch = true;              ///< launch for a plane fitted to a sloping seabed where that saves rays
     std::string precision = "float";         ///< float or double: the scalar of the world and the simulator (build.hpp)
 };
 

@@ -72,6 +72,7 @@ struct toml_out {
     o.kv("along_split_echo", d.run.along_split_echo);
     o.kv("along_onset", d.run.along_onset);
     o.kv("max_launch_step_deg", d.run.max_launch_step_deg);
+    o.kv("sloping_launch", d.run.sloping_launch);
     o.kv("precision", d.run.precision);
 
     const auto& b = d.bed;
