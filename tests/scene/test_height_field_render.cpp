@@ -100,9 +100,14 @@ template <class Inner, bool guided> struct guide_probe {
     [[nodiscard]] T seabed_height_m(T x, T y) const { return inner->seabed_height_m(x, y); }
     [[nodiscard]] T top_m() const { return inner->top_m(); }
     [[nodiscard]] T top_m(const sss::vec2<T>& lo, const sss::vec2<T>& hi) const { return inner->top_m(lo, hi); }
-    // Its seabed and objects, as a scene::scene shows them: the simulator launches for their tops as over `Inner`.
+    // Its seabed and objects, as a scene::scene shows them, and its rise above a plane: the simulator launches for
+    // their tops, and for a sloping seabed's plane, as over `Inner`.
     [[nodiscard]] const auto& seabed() const { return inner->seabed(); }
     [[nodiscard]] const auto& objects() const { return inner->objects(); }
+    [[nodiscard]] double rise_above_m(const sss::vec2<T>& lo, const sss::vec2<T>& hi,
+                                      const sss::scene::sloping_plane& plane) const {
+        return inner->rise_above_m(lo, hi, plane);
+    }
 };
 
 /// The same scene without its batch method: the simulator then traces every ray alone.

@@ -8,8 +8,10 @@
 /// heights are read in two passes of bands of rows (the finiteness check and the bounds, then the maximum pyramid),
 /// and the pages behind each pass are released as it goes (madvise MADV_DONTNEED), so that building the field
 /// holds a band of rows, not the heights, and only the pages under the rays of the pings being rendered come back
-/// into memory. Resident memory is then the pyramid (a third of the heights' bytes) plus those pages, whatever the
-/// seabed's size. The operating system reads pages on demand and may drop them again under memory pressure.
+/// into memory (and those of the 16 x 16 heights each side fits its launch plane to, over the area its rays reach:
+/// simulator::sloping_launch). Resident memory is then the pyramid (a third of the heights' bytes) plus those pages,
+/// whatever the seabed's size. The operating system reads pages on demand and may drop them again under memory
+/// pressure.
 ///
 /// write_raw_f32_by_rows(path, grid, band_rows, fill) writes an nx x ny grid in bands of band_rows rows, asking
 /// fill(iy0, rows, out) for rows [iy0, iy0 + rows) each time: only one band is ever in memory. With a fill that

@@ -371,8 +371,8 @@ private:
                          static_cast<std::int32_t>(std::clamp(v0 - 1.0, 0.0, cy)),
                          static_cast<std::int32_t>(std::clamp(v1, 0.0, cy))};
     }
-    /// The finest level of the maximum pyramid (at least 1) at which `cells` lie within fewer than `blocks` blocks
-    /// along each axis.
+    /// The finest level of the maximum pyramid (at least 1, at most its levels) at which `cells` lie within at most
+    /// `blocks` blocks along each axis.
     [[nodiscard]] std::int32_t block_level(const cell_span& cells, std::int32_t blocks) const noexcept {
         std::int32_t level = 1;
         while (level < pyramid_.levels() &&

@@ -505,10 +505,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.boolean("along_split_nadir", d.run.along_split_nadir);
         r.non_negative("along_split_echo", d.run.along_split_echo);
         r.non_negative("along_onset", d.run.along_onset);
-        r.boolean("sloping_launch", d.run.sloping_launch);
         r.non_negative("max_launch_step_deg", d.run.max_launch_step_deg);
         if (d.run.max_launch_step_deg > 90.0)
             r.fail("max_launch_step_deg", "must be <= 90, got " + detail::table_reader::fmt(d.run.max_launch_step_deg));
+        r.boolean("sloping_launch", d.run.sloping_launch);
         r.choice("precision", d.run.precision, {"float", "double"});
         r.finish();
     }
