@@ -599,15 +599,16 @@ private:
     /// `n` with its clearance lowered by how far a ray bends down from its straight line on its way to the longest
     /// range (RangeHeightPropagation; straight rays: `n` itself), times bent_down_margin. The launch's cut (a ray
     /// reaches geometry within the range only if its component against the plane's normal is at least the clearance
-    /// over the range) holds for straight rays; in water that bends rays down, a ray launched just above the cut still comes
-    /// down onto the seabed within the range. Measured on the column at `along` for the ray at the cut, at the
-    /// horizontal distance its straight line reaches the range (its height there with no scene, looked for within four
-    /// times the one-way time, so that slow water does not hide the bend). Over a plane sloping 0.08 with ripples, in
-    /// water going from 1500 m/s 15 m above the seabed to 1470 m/s at it (the ray at the cut 0.6 m below its straight
-    /// line at 30 m), the cut without it left the line 0.21 dB RMS and 0.86 dB at the 99th percentile off the converged
-    /// reference (tests/seabed/test_rough_accuracy.cpp; 0.023 and 0.069 dB with it). It is measured on one ray, not a
-    /// bound over every ray of the side; a propagation that bends rays but cannot say where they pass a range gets
-    /// none. (The level seabed's cut, with the clearance above the whole seabed's top, has no such allowance.)
+    /// over the range) holds for straight rays; in water that bends rays down, a ray launched just above the cut still
+    /// comes down onto the seabed within the range. Measured on the column at `along` for the ray at the cut, at the
+    /// horizontal distance its straight line reaches the range (its height there with no scene, looked for within
+    /// four times the one-way time, so that slow water does not hide the bend). Over a plane sloping 0.08 with
+    /// ripples, in water going from 1500 m/s 15 m above the seabed to 1470 m/s at it (the ray at the cut 0.6 m below
+    /// its straight line at 30 m), the cut without it left the line 0.21 dB RMS and 0.86 dB at the 99th percentile off
+    /// the converged reference (tests/seabed/test_rough_accuracy.cpp; 0.023 and 0.069 dB with it). It is measured on
+    /// one ray, not a bound over every ray of the side; a propagation that bends rays but cannot say where they pass a
+    /// range gets none. (The level seabed's cut, with the clearance above the whole seabed's top, has no such
+    /// allowance.)
     [[nodiscard]] nominal_seabed bent_down(nominal_seabed n, side sd, T along, const beam_extent<T>& ext,
                                            const pose<T>& p, T max_range_m, T t_max_one_way_s) const {
         if constexpr (RangeHeightPropagation<P>) {

@@ -36,9 +36,10 @@
 /// | `s.rise_above_m(lo, hi, plane)` | `double` | no geometry over the rectangle rises higher above `plane` (m) |
 ///
 /// with `plane` a `scene::sloping_plane` (scene/sloping_plane.hpp) and `lo`, `hi` as above: the height is measured
-/// vertically; conservative (any larger value will do), and -infinity where nothing lies over the rectangle. Over a sloping seabed the simulator launches a
-/// side's rays for a plane fitted to it (sss::simulator::trace): how far they must reach follows from how high the
-/// geometry rises above that plane, not above the level through the towfish's nadir.
+/// vertically; conservative (any larger value will do), and -infinity where nothing lies over the rectangle. Over a
+/// sloping seabed the simulator launches a side's rays for a plane fitted to it (sss::simulator::trace): how far they
+/// must reach follows from how high the geometry rises above that plane, not above the level through the towfish's
+/// nadir.
 ///
 /// Optional (`ClearanceScene`): a scene that can tell how far a thick segment runs in open water also offers
 ///
