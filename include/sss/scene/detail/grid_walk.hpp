@@ -68,23 +68,47 @@ template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi
     return lo <= hi;
 }
 
-/// Prepares `q` for ray `r` limited to distance t_max_m; false when the ray cannot hit the grid at all.
-template <Real T> inline bool setup_ray(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>& r, T t_max_m,
-                                        grid_ray<T>& q) noexcept {
-    if (!(t_max_m > T(0))) return false;
+/// The part of a grid ray that depends on its origin alone, shared by rays from one point (the wedge sweep).
+template <Real T> struct grid_origin {
+    T u0, v0, z0, w0;
+    T z_margin; // a height well above rounding at this origin's scale (m)
+    bool finite;
+};
+
+/// The origin part of setup_ray for rays from `origin`.
+template <Real T>
+[[nodiscard]] inline grid_origin<T> origin_in_grid(const height_grid_view<T>& g, height_bounds<T> hb,
+                                                   const vec3<T>& origin) noexcept {
+    grid_origin<T> o;
+    o.u0 = (origin.x - g.origin_m.x) * g.inv_cell_m;
+    o.v0 = (origin.y - g.origin_m.y) * g.inv_cell_m;
+    o.z0 = origin.z;
+    o.w0 = o.u0 - o.v0;
+    o.finite = std::isfinite(o.u0) && std::isfinite(o.v0) && std::isfinite(o.z0);
+    // Widens the height slab by a margin far above rounding: below bottom_m a ray that was above the surface has
+    // hit it already, above top_m nothing can be hit. This also makes s_hi finite for every unit ray.
+    o.z_margin = T(1e-4) * (T(1) + std::abs(o.z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m)) +
+                 T(1e-3) * (hb.top_m - hb.bottom_m);
+    return o;
+}
+
+/// Prepares `q` for the ray from origin `o` (origin_in_grid) along `direction`, limited to distance t_max_m; false
+/// when the ray cannot hit the grid at all. Always inlined: the wedge sweep sets up every ray of a column.
+template <Real T>
+SSS_FORCE_INLINE bool setup_ray(const height_grid_view<T>& g, height_bounds<T> hb, const grid_origin<T>& o,
+                                const vec3<T>& direction, T t_max_m, grid_ray<T>& q) noexcept {
+    if (!(t_max_m > T(0)) || !o.finite) return false;
     const T inv_c = g.inv_cell_m;
-    q.u0 = (r.origin.x - g.origin_m.x) * inv_c;
-    q.v0 = (r.origin.y - g.origin_m.y) * inv_c;
-    q.z0 = r.origin.z;
-    q.du = r.direction.x * inv_c;
-    q.dv = r.direction.y * inv_c;
-    q.dz = r.direction.z;
-    if (!std::isfinite(q.u0) || !std::isfinite(q.v0) || !std::isfinite(q.z0) || !std::isfinite(q.du) ||
-        !std::isfinite(q.dv) || !std::isfinite(q.dz))
-        return false;
+    q.u0 = o.u0;
+    q.v0 = o.v0;
+    q.z0 = o.z0;
+    q.du = direction.x * inv_c;
+    q.dv = direction.y * inv_c;
+    q.dz = direction.z;
+    if (!std::isfinite(q.du) || !std::isfinite(q.dv) || !std::isfinite(q.dz)) return false;
     inverse_and_step(q.du, q.inv_du, q.su);
     inverse_and_step(q.dv, q.inv_dv, q.sv);
-    q.w0 = q.u0 - q.v0;
+    q.w0 = o.w0;
     q.dw = q.du - q.dv;
     std::int32_t sw = 0;
     inverse_and_step(q.dw, q.inv_dw, sw);
@@ -94,10 +118,7 @@ template <Real T> inline bool setup_ray(const height_grid_view<T>& g, height_bou
     T lo = T(0), hi = t_max_m;
     if (!clip_slab(q.u0, q.du, q.inv_du, static_cast<T>(g.nx - 1), lo, hi)) return false;
     if (!clip_slab(q.v0, q.dv, q.inv_dv, static_cast<T>(g.ny - 1), lo, hi)) return false;
-    // Height slab, widened by a margin far above rounding: below bottom_m a ray that was above the surface
-    // has hit it already, above top_m nothing can be hit. This also makes s_hi finite for every unit ray.
-    q.z_margin = T(1e-4) * (T(1) + std::abs(q.z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m)) +
-                 T(1e-3) * (hb.top_m - hb.bottom_m);
+    q.z_margin = o.z_margin;
     if (q.dz < T(0)) {
         hi = std::min(hi, (q.z0 - (hb.bottom_m - q.z_margin)) / -q.dz);
     } else if (q.dz > T(0)) {
@@ -107,6 +128,12 @@ template <Real T> inline bool setup_ray(const height_grid_view<T>& g, height_bou
     q.s_lo = lo;
     q.s_hi = hi;
     return true;
+}
+
+/// Prepares `q` for ray `r` limited to distance t_max_m; false when the ray cannot hit the grid at all.
+template <Real T> inline bool setup_ray(const height_grid_view<T>& g, height_bounds<T> hb, const ray<T>& r, T t_max_m,
+                                        grid_ray<T>& q) noexcept {
+    return setup_ray(g, hb, origin_in_grid(g, hb, r.origin), r.direction, t_max_m, q);
 }
 
 /// Distance at which the ray crosses the line u = i, v = j, or u - v = k.
