@@ -38,11 +38,14 @@ public:
     /// Rho (cells) beyond which the wedge meets no cell of the grid.
     [[nodiscard]] T end_cells() const noexcept { return end_; }
 
-    /// Envelope of ring i (m): the highest vertex under it, or -infinity where it lies outside the grid.
+    /// Envelope of ring i (m): the highest vertex under it, or -infinity where it lies outside the grid. Each ring is
+    /// evaluated the first time it is asked for, and only then: the walks of a column ask for a few rings far apart.
     [[nodiscard]] T envelope(std::int32_t i) {
         const std::size_t k = static_cast<std::size_t>(i - first_);
-        while (values_.size() <= k) values_.push_back(compute(first_ + static_cast<std::int32_t>(values_.size())));
-        return values_[k];
+        if (values_.size() <= k) values_.resize(std::max(k + 1, 2 * values_.size()), unknown);
+        T& v = values_[k];
+        if (v == unknown) v = compute(i);
+        return v;
     }
 
 private:
@@ -81,7 +84,8 @@ private:
     std::int32_t first_;
     T sagitta_per_cell_{};
     T end_{};
-    std::vector<T> values_;
+    std::vector<T> values_; // by ring from first_; `unknown` where not evaluated yet
+    static constexpr T unknown = std::numeric_limits<T>::max(); // a ring with this envelope is only evaluated again
 };
 
 } // namespace sss::scene::detail
