@@ -1,6 +1,11 @@
 # sss_target_options(<target>): the compile settings of sss's own targets (tests, header checks,
 # benchmarks, examples). Consumers of sss::sss never see these flags.
 #   -Wall -Wextra -Wpedantic -Wconversion always; -Werror with SSS_WERROR; -march=native with SSS_NATIVE.
+# With -march=native the compiler may fuse a*b+c into one rounding (GCC and Clang do by default where the machine
+# has FMA), and fuse the same expression differently where it is inlined into different code. The tests check that
+# different paths give the same hits and lines bit for bit (a column at once against one ray at a time, a walk guided
+# by a neighbour against a plain one), which needs each expression rounded the same way everywhere: SSS_NATIVE keeps
+# multiply-adds unfused (-ffp-contract=off).
 
 function(sss_target_options target)
     target_link_libraries(${target} PRIVATE sss::sss)
@@ -11,7 +16,7 @@ function(sss_target_options target)
             target_compile_options(${target} PRIVATE -Werror)
         endif()
         if(SSS_NATIVE)
-            target_compile_options(${target} PRIVATE -march=native)
+            target_compile_options(${target} PRIVATE -march=native -ffp-contract=off)
         endif()
     elseif(MSVC)
         target_compile_options(${target} PRIVATE /W4 /permissive-)

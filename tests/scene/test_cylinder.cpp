@@ -4,7 +4,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -195,6 +197,48 @@ TEST_CASE_TEMPLATE("A cylinder's box is tight: the ends' box grown by a sqrt(1 -
     const auto d = diag.bounds();
     CHECK(d.hi.x == doctest::Approx(1.0 + std::sqrt(0.5)));
     CHECK(d.hi.z == doctest::Approx(1.0));
+}
+
+TEST_CASE_TEMPLATE("A cylinder nearly along a world axis keeps its caps' rims inside its box", T, float, double) {
+    // Tilted 1e-6 to 0.1 rad from an axis: the box's half-extent along that axis is a sin(tilt), which 1 - u_i^2
+    // would lose to cancellation (u_i within rounding of 1). The rims, in double from the cylinder's own ends, radius
+    // and axis, must lie in the box to a few roundings of its coordinates.
+    std::mt19937_64 g(12);
+    std::uniform_real_distribution<double> u(0, 1);
+    double worst_m = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+        const double tilt = std::pow(10.0, -6.0 + 5.0 * u(g)), turn = 6.283185307 * u(g);
+        const int axis = k % 3;
+        double d[3];
+        d[axis] = 1.0;
+        d[(axis + 1) % 3] = std::tan(tilt) * std::cos(turn);
+        d[(axis + 2) % 3] = std::tan(tilt) * std::sin(turn);
+        const double len = 0.5 + 10 * u(g), radius = 0.02 + 2 * u(g);
+        const vec3<T> a{T(20 * u(g) - 10), T(20 * u(g) - 10), T(4 * u(g) - 2)};
+        const vec3<T> b = a + vec3<T>{T(d[0] * len), T(d[1] * len), T(d[2] * len)};
+        const cylinder<T> cyl(a, b, T(radius));
+        const auto box = cyl.bounds();
+        // The axis and two directions across it, in double from the ends as stored.
+        const vec3<double> e0(a), e1(b);
+        const vec3<double> w = glm::normalize(e1 - e0);
+        const vec3<double> helper = std::abs(w.x) < 0.5 ? vec3<double>{1, 0, 0} : vec3<double>{0, 1, 0};
+        const vec3<double> p = glm::normalize(glm::cross(w, helper)), q = glm::cross(w, p);
+        const double slack = 8 * double(std::numeric_limits<T>::epsilon()) *
+                             (1 + std::max({std::abs(double(box.lo.x)), std::abs(double(box.hi.x)), std::abs(double(box.lo.y)),
+                                            std::abs(double(box.hi.y)), std::abs(double(box.lo.z)), std::abs(double(box.hi.z))}));
+        for (int j = 0; j < 64; ++j) {
+            const double phi = 6.283185307179586 * j / 64;
+            for (const vec3<double>& c : {e0, e1}) {
+                const vec3<double> rim = c + double(T(radius)) * (std::cos(phi) * p + std::sin(phi) * q);
+                for (int i = 0; i < 3; ++i) {
+                    worst_m = std::max(worst_m, double(box.lo[i]) - rim[i] - slack);
+                    worst_m = std::max(worst_m, rim[i] - double(box.hi[i]) - slack);
+                }
+            }
+        }
+    }
+    CHECK(worst_m <= 0.0);
+    MESSAGE("the farthest a rim point lies outside the box, beyond the slack: " << worst_m << " m");
 }
 
 TEST_CASE("Degenerate or non-finite cylinders are rejected, naming the parameter") {

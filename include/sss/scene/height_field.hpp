@@ -9,6 +9,12 @@
 /// (nx - 1) x (ny - 1) cells are numbered the same way, cell (ix, iy) at index iy (nx - 1) + ix.
 ///
 /// Memory: the heights, the optional id arrays, and the pyramid (about a third of the heights' bytes).
+///
+/// Bit for bit. The batch and guided traces below give intersect's hits "bit for bit": each computes the same
+/// expressions as the single-ray walk. That holds where every expression rounds alike wherever it is inlined. A
+/// compiler that fuses a*b + c into one rounding (GCC and Clang do by default where the target has FMA, as with
+/// -march=native) may fuse it in one place and not another; the paths then differ in the last bits, each still a hit
+/// of the same surface. sss's own targets keep multiply-adds unfused when built for the native processor.
 
 #include <algorithm>
 #include <array>

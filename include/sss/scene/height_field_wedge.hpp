@@ -36,7 +36,8 @@
 /// rho d_theta). Such a ray starts its exact walk at the entry crossing of the cell that holds rho_a (a breakpoint
 /// of the single-ray walk, evaluated by the same formula), usually one or two cells before its own hit. It leaves
 /// the ring pointer where it is: the pointer moves on only for rays the chain does not cover, so most rays of a
-/// column test no ring at all (bench_height_field's cone columns: 0.1 ring tests per ray in float, against 1.2).
+/// column test no ring at all (bench_height_field's cone columns: 0.1 ring tests per ray in float; 1.2 if the
+/// pointer moved for every ray).
 ///
 /// Rays that start inside the sediment, or enter the grid's footprint through its side below the surface, follow
 /// the single-ray rule: they are not stopped while they rise out of the surface.
@@ -60,13 +61,12 @@
 namespace sss::scene {
 
 /// Traces the wedge run `rays` (as found by detail::find_wedge_run: `run` and the rays' `slopes`) limited to
-/// distance t_max_m, calling emit(k, const grid_hit<T>* h) once for every ray k (h null for a miss). Always inlined,
-/// and `emit` with it: GCC 12 left it out of line at -O3, and then cone columns took 15 to 18 % longer in double
-/// (1 to 2 % in float).
+/// distance t_max_m, calling emit(k, const grid_hit<T>* h) once for every ray k (h null for a miss). Always inlined
+/// into its caller: out of line (as GCC 12 leaves it at -O3), cone columns take 15 to 18 % longer in double.
 template <Real T, class Emit>
 SSS_FORCE_INLINE void trace_wedge(const height_grid_view<T>& g, const max_pyramid<T>& p, height_bounds<T> hb,
-                 std::span<const ray<T>> rays, std::span<const detail::wedge_slope<T>> slopes,
-                 const detail::wedge_run<T>& run, T t_max_m, Emit&& emit) {
+                                  std::span<const ray<T>> rays, std::span<const detail::wedge_slope<T>> slopes,
+                                  const detail::wedge_run<T>& run, T t_max_m, Emit&& emit) {
     const std::size_t n = rays.size();
     if (n == 0) return;
     const bool steep_first = run.steep_first;
@@ -136,7 +136,8 @@ SSS_FORCE_INLINE void trace_wedge(const height_grid_view<T>& g, const max_pyrami
         // above it when it is shallower by more than the sideways slope bound allows, with margin for rounding
         // (rings before `shared` are clear for it, the chain covers the rest). The shared pointer moves on only
         // where the chain does not hold: left behind, it still marks rings clear for this ray, and the chain then
-        // asks for more gain, so the test is only stricter.
+        // asks for more gain, so the test is only stricter. Where the test fails, the pointer moves on for this ray
+        // and the chain is tried once more from there.
         auto chain_holds = [&] {
             const T turn = T(1.001) * std::abs(slopes[k].sin_turn - chain_sin) + T(8) * eps;
             const T gain = (chain_tau - tau) - lipschitz * turn; // f gained over the previous ray per m of rho

@@ -33,6 +33,7 @@
 #include "sss/core/ray.hpp"
 #include "sss/scene/beside_rays.hpp"
 #include "sss/scene/detail/bvh_node.hpp"
+#include "sss/scene/detail/solid_crossing.hpp"
 #include "sss/scene/object.hpp"
 #include "sss/scene/sloping_plane.hpp"
 
@@ -125,6 +126,7 @@ public:
         const detail::box_ray<T> br(r);
         T t_best = t_max_m;
         std::uint32_t best = no_item;
+        detail::crossing<T> best_crossing{};
         std::array<std::uint32_t, max_depth> stack;
         std::size_t top = 0;
         stack[top++] = 0;
@@ -140,6 +142,7 @@ public:
                     if (c) {
                         t_best = c->t;
                         best = item;
+                        best_crossing = *c;
                     }
                 }
                 continue;
@@ -155,8 +158,10 @@ public:
             }
         }
         if (best == no_item) return std::nullopt;
-        return (best & detail::cylinder_tag) ? cylinders_[best & ~detail::cylinder_tag].intersect(r, t_best)
-                                             : spheres_[best].intersect(r, t_best);
+        // The hit at the crossing found: solving again with t_best as the limit would need the same rounding twice,
+        // which a compiler that fuses multiply-adds (-march=native with FMA) does not promise, and lose the hit.
+        return (best & detail::cylinder_tag) ? cylinders_[best & ~detail::cylinder_tag].hit_at(r, best_crossing)
+                                             : spheres_[best].hit_at(r, best_crossing);
     }
 
     /// How far r runs with no object within vertical distance band_m of it (ClearanceScene): where it enters the

@@ -59,8 +59,13 @@ public:
     [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, T t_max_m) const noexcept {
         const auto c = first_crossing(r, t_max_m);
         if (!c) return std::nullopt;
-        const vec3<T> radial = (r.origin - center_) + r.direction * c->t;
-        return detail::make_hit(r, c->t, glm::normalize(radial), ids_);
+        return hit_at(r, *c);
+    }
+
+    /// The hit of ray r at its crossing c (first_crossing's), without solving for the crossing again.
+    [[nodiscard]] hit<T> hit_at(const ray<T>& r, const detail::crossing<T>& c) const noexcept {
+        const vec3<T> radial = (r.origin - center_) + r.direction * c.t;
+        return detail::make_hit(r, c.t, glm::normalize(radial), ids_);
     }
 
     /// The crossing alone (distance, whether the ray started inside), without building the hit.

@@ -70,9 +70,9 @@ template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi
 
 /// The part of a grid ray that depends on its origin alone, shared by rays from one point (the wedge sweep).
 template <Real T> struct grid_origin {
-    T u0, v0, z0, w0;
-    T z_margin; // a height well above rounding at this origin's scale (m)
-    bool finite;
+    T u0, v0, z0, w0; // as in grid_ray
+    T z_margin;       // as in grid_ray: it depends on the origin's height alone
+    bool finite;      // u0, v0 and z0 are finite
 };
 
 /// The origin part of setup_ray for rays from `origin`.
@@ -85,8 +85,8 @@ template <Real T>
     o.z0 = origin.z;
     o.w0 = o.u0 - o.v0;
     o.finite = std::isfinite(o.u0) && std::isfinite(o.v0) && std::isfinite(o.z0);
-    // Widens the height slab by a margin far above rounding: below bottom_m a ray that was above the surface has
-    // hit it already, above top_m nothing can be hit. This also makes s_hi finite for every unit ray.
+    // The margin, far above rounding, by which setup_ray widens the height slab: below bottom_m a ray that was above
+    // the surface has hit it already, above top_m nothing can be hit. It also makes s_hi finite for every unit ray.
     o.z_margin = T(1e-4) * (T(1) + std::abs(o.z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m)) +
                  T(1e-3) * (hb.top_m - hb.bottom_m);
     return o;
