@@ -133,3 +133,24 @@ TEST_CASE_TEMPLATE("trace_fan reports the distances and cells intersect_many tur
     for (int s : seen) CHECK(s == 1);
     CHECK(hits > 2000);
 }
+
+TEST_CASE_TEMPLATE("A fan ray whose f rounds to zero at both ends of its segment meets the segment at its start", T,
+                   float, double) {
+    // A compiler fusing multiply-adds may evaluate f = g - tau rho at the segment's ends otherwise than the sweep
+    // did; where both come out 0 the linear root is 0/0. The ray lies on the segment there, and the hit is at
+    // its start, not lost.
+    using sss::scene::detail::fan_distance;
+    using sss::scene::detail::fan_segment;
+    using sss::scene::detail::fan_slope;
+    const fan_slope<T> sl{.tau = T(0.5), .inv_h = T(1.25)};
+    const fan_segment<T> on{.rho_a = T(2), .g_a = T(1), .rho_b = T(4), .g_b = T(2), .ix = 0, .iy = 0, .triangle = {}};
+    CHECK(fan_distance(on, sl, T(100)) == T(2) * T(1.25));
+    // Below at both ends (fa < fb = 0 is as possible): the start too.
+    const fan_segment<T> below{.rho_a = T(2), .g_a = T(0.5), .rho_b = T(4), .g_b = T(2), .ix = 0, .iy = 0,
+                               .triangle = {}};
+    CHECK(fan_distance(below, sl, T(100)) == T(2) * T(1.25));
+    // An ordinary crossing keeps its linear root: f goes from 1 to -1, so rho = 3.
+    const fan_segment<T> crossing{.rho_a = T(2), .g_a = T(2), .rho_b = T(4), .g_b = T(1), .ix = 0, .iy = 0,
+                                  .triangle = {}};
+    CHECK(fan_distance(crossing, sl, T(100)) == T(3) * T(1.25));
+}

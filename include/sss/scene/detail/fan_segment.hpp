@@ -26,11 +26,16 @@ inline constexpr std::uint32_t no_fan_segment = std::numeric_limits<std::uint32_
 
 /// The distance (m) at which the ray with slope `sl` crosses segment `sg`, on which its f = g - tau rho goes
 /// from > 0 to <= 0: the linear root, s = rho_hit / |(dx, dy)|; 0 when that is not in (0, t_max_m].
+///
+/// f is evaluated here again, and a compiler that fuses multiply-adds may round it otherwise than the sweep
+/// did: then fa <= fb is possible (fa = fb = 0 would make the root 0/0 and lose the hit). The ray is then at
+/// or below the surface at rho_a to within rounding, and the root is taken there.
 template <Real T>
 [[nodiscard]] inline T fan_distance(const fan_segment<T>& sg, fan_slope<T> sl, T t_max_m) noexcept {
     const T fb = sg.g_b - sl.tau * sg.rho_b;
     const T fa = sg.g_a - sl.tau * sg.rho_a; // > 0: this ray, or a steeper one, was above at rho_a
-    const T r_hit = std::clamp(sg.rho_a + (sg.rho_b - sg.rho_a) * (fa / (fa - fb)), sg.rho_a, sg.rho_b);
+    const T u = fa > fb ? fa / (fa - fb) : T(0);
+    const T r_hit = std::clamp(sg.rho_a + (sg.rho_b - sg.rho_a) * u, sg.rho_a, sg.rho_b);
     const T s = r_hit * sl.inv_h;
     return s > T(0) && s <= t_max_m ? s : T(0);
 }
