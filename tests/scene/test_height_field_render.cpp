@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "support/compare.hpp"
 #include "support/flat_seabed_oracle.hpp"
+#include "support/fused.hpp"
 #include <sss/sss.hpp>
 #include <sss/scene/height_field.hpp>
 
@@ -211,6 +213,28 @@ template <class T> sss::propagation::layered<T> bending_water() {
         sss::propagation::sound_speed_profile<T>({T(0), T(18), T(30), T(40)}, {T(1500), T(1500), T(1480), T(1478)}), p);
 }
 
+/// Two lines that take the same arithmetic: the same bit for bit; where multiply-adds are fused
+/// (tests/support/fused.hpp), the same to rounding: the hits move by ulps, and a refinement's decision near its
+/// threshold may go either way, so each sample is compared against the line's peak and the energies in total.
+template <class V> void check_same_line(const V& a, const V& b) {
+    if constexpr (!sss_test::fused) {
+        CHECK(a == b);
+    } else {
+        REQUIRE(a.size() == b.size());
+        double peak = 0, worst = 0, total_a = 0, total_b = 0;
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            peak = std::max(peak, double(b[k]));
+            worst = std::max(worst, std::abs(double(a[k]) - double(b[k])));
+            total_a += double(a[k]);
+            total_b += double(b[k]);
+        }
+        // GCC 12 at -O3 -mfma: at most 3e-7 of the peak and 1e-9 of the total, in float.
+        INFO("fused: worst " << worst / peak << " of the peak, total " << std::abs(total_a - total_b) / total_b);
+        CHECK(worst <= 1e-4 * peak);
+        CHECK(std::abs(total_a - total_b) <= 1e-5 * total_b);
+    }
+}
+
 /// Pings 0, 3, 6 and 9 of `sim` over `sc` with and without the guide: the same lines, bit for bit; the guide's uses.
 template <class Sim, class Sc> long guided_against_plain(const Sim& sim, const Sc& sc) {
     static_assert(!sss::GuidedScene<guide_probe<Sc, false>> && sss::GuidedScene<guide_probe<Sc, true>>);
@@ -218,8 +242,8 @@ template <class Sim, class Sc> long guided_against_plain(const Sim& sim, const S
     for (std::size_t i = 0; i < 4; ++i) {
         const auto guided = sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
         const auto plain = sim.ping(guide_probe<Sc, false>{&sc}, 3 * i);
-        CHECK(guided.port == plain.port);
-        CHECK(guided.starboard == plain.starboard);
+        check_same_line(guided.port, plain.port);
+        check_same_line(guided.starboard, plain.starboard);
     }
     return calls.load();
 }
@@ -261,11 +285,11 @@ TEST_CASE_TEMPLATE("Columns see the scene over the rectangle their rays stay ove
     const auto layered_sim = rolling_towfish<T>(bending_water<T>());
     for (std::size_t i = 0; i < 4; ++i) {
         const auto a = straight_sim.ping(sc, 3 * i), b = straight_sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
-        CHECK(a.port == b.port);
-        CHECK(a.starboard == b.starboard);
+        check_same_line(a.port, b.port);
+        check_same_line(a.starboard, b.starboard);
         const auto c = layered_sim.ping(sc, 3 * i), d = layered_sim.ping(guide_probe<Sc, true>{&sc, &calls}, 3 * i);
-        CHECK(c.port == d.port);
-        CHECK(c.starboard == d.starboard);
+        check_same_line(c.port, d.port);
+        check_same_line(c.starboard, d.starboard);
     }
     // Some columns pass beside both targets, some meet one.
     const auto pose = straight_sim.motion().pose_at(0);

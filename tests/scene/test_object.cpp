@@ -4,7 +4,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -70,7 +72,7 @@ TEST_CASE_TEMPLATE("A placed object is hit where its local primitives are hit by
     const sss::mat3<T> Rt = glm::transpose(where.rotation);
     std::mt19937_64 g(3);
     std::uniform_real_distribution<double> u(-1, 1);
-    int hits = 0;
+    int hits = 0, ties = 0;
     for (int i = 0; i < 5000; ++i) {
         const vec3<T> target = where.point(vec3<T>{T(1.2 * u(g)), T(1.2 * u(g)), T(1.3 + 1.4 * u(g))});
         const vec3<T> o = target + glm::normalize(vec3<T>{T(u(g)), T(u(g)), T(u(g))}) * T(15);
@@ -81,8 +83,22 @@ TEST_CASE_TEMPLATE("A placed object is hit where its local primitives are hit by
         REQUIRE(bool(hw) == bool(hl));
         if (!hw) continue;
         ++hits;
-        CHECK(hw->distance_m == doctest::Approx(double(hl->distance_m)).epsilon(sizeof(T) == 4 ? 1e-4 : 1e-9));
-        CHECK(hw->material == hl->material);
+        const double tol = sizeof(T) == 4 ? 1e-4 : 1e-9;
+        CHECK(hw->distance_m == doctest::Approx(double(hl->distance_m)).epsilon(tol));
+        if (hw->material != hl->material) {
+            // Where two primitives meet (the post leaving the disc), both are hit at one distance, and the two
+            // frames' rounding (or a compiler's fused multiply-adds) may pick either: the world's choice must
+            // then be hit in the local frame as near as the local choice.
+            ++ties;
+            double d = std::numeric_limits<double>::infinity();
+            const auto nearer = [&](const auto& primitive) {
+                const auto h = primitive.intersect(rl, T(40));
+                if (h && h->material == hw->material) d = std::min(d, double(h->distance_m));
+            };
+            for (const auto& s : local.spheres()) nearer(s);
+            for (const auto& c : local.cylinders()) nearer(c);
+            CHECK(d == doctest::Approx(double(hl->distance_m)).epsilon(tol));
+        }
         CHECK(hw->object == 9u);
         CHECK(hw->label == 3u);
         CHECK(glm::dot(hw->normal, where.rotation * hl->normal) > T(0.9999));
@@ -90,6 +106,7 @@ TEST_CASE_TEMPLATE("A placed object is hit where its local primitives are hit by
         CHECK(glm::length(hw->point - placed.bounding().center_m) <= placed.bounding().radius_m * T(1.0001));
     }
     CHECK(hits > 1000);
+    CHECK(ties <= 5);
 }
 
 TEST_CASE_TEMPLATE("An object's box is the union of its primitives' boxes and its top is the highest point", T, float,
