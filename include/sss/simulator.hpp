@@ -646,7 +646,7 @@ private:
     void trace_over(const Sc& scene, T top_m, const std::optional<nominal_seabed>& sloping, const pose<T>& p, side sd,
                     const scene::object_set<T>* objects, echo_sink visit) const {
         const beam_extent<T> ext = beam_.extent(sd);
-        const double t_max_s = double(samples_) * dt_;
+        const double t_max_s = line_reach_s();
         trace_frame f{p, sd, ext, T{}, T{}, T{}, {}, {}, nullptr};
         f.t_max_one_way = one_way_limit_s();
         f.max_range_m = static_cast<T>(0.5 * t_max_s * c_ref_);
@@ -921,9 +921,16 @@ private:
     /// True when a line stage is asked for.
     static constexpr bool has_stage = !std::is_same_v<Stage, no_line_stage>;
 
-    /// How long a ray is followed, one way (s): slightly past the line's end, so that the ray placed exactly at the
+    /// The latest two-way time (s) whose echo reaches the line: its length, and the receiver clock's delay (a
+    /// compressed chirp's T: the line holds the envelope that late, time_sampler). The refinement's comparisons per
+    /// sample (samples_of) and the labels place echoes by arrival within the line's own times: an echo arriving in
+    /// the last T reaches the last samples through its leading sidelobes and lobe only, and is not refined for them.
+    [[nodiscard]] double line_reach_s() const noexcept {
+        return double(samples_) * dt_ + receiver_.pulse.filter_delay_s();
+    }
+    /// How long a ray is followed, one way (s): slightly past line_reach_s, so that the ray placed exactly at the
     /// last range is not lost to rounding (the sampler drops whatever falls beyond the line).
-    [[nodiscard]] T one_way_limit_s() const noexcept { return static_cast<T>(0.5 * double(samples_) * dt_ * (1.0 + 1e-5)); }
+    [[nodiscard]] T one_way_limit_s() const noexcept { return static_cast<T>(0.5 * line_reach_s() * (1.0 + 1e-5)); }
 
     template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
         return line_context<T>{p, sd, dt_, c_ref_,

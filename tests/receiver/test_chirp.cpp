@@ -55,6 +55,33 @@ TEST_CASE("a chirp resolves two point targets c/(2B) apart that a CW pulse of th
     CHECK(dip_db(two_points(chirp, 0.5 / bandwidth)) == 0.0);
 }
 
+TEST_CASE("a compressed chirp's echo peaks at its arrival, also within T of the transmission or past the line's end") {
+    const sss::pulse chirp{.length_s = length, .shape = sss::pulse_shape::lfm, .bandwidth_hz = bandwidth};
+    CHECK(chirp.filter_delay_s() == length);
+    CHECK(chirp.peak_delay_s() == 0.0);
+    const auto peak_of = [&](double arrival_s, std::vector<double>& y) {
+        sss::time_sampler s(1200, dt, chirp);
+        s.add_point(arrival_s, 1.0);
+        s.render(y);
+        return static_cast<std::size_t>(std::max_element(y.begin(), y.end()) - y.begin());
+    };
+    std::vector<double> y;
+    // Arrival at 2 ms: sample 320 starts there; the main lobe is centred on that sample's start.
+    std::size_t k = peak_of(0.002 + 0.5 * dt, y);
+    CHECK(k == 320);
+    const double in_line_peak = y[k];
+    // At 0.5 ms, before the filter's delay has passed: the echo is in the line, and peaks at its arrival (sample 80).
+    k = peak_of(0.0005 + 0.5 * dt, y);
+    CHECK(k == 80);
+    // All its energy but the sidelobes more than 0.5 ms before the peak (0.2 %).
+    CHECK(std::accumulate(y.begin(), y.end(), 0.0) * dt / chirp.energy_s() == doctest::Approx(1.0).epsilon(5e-3));
+    // A quarter of a main lobe (two samples) past the line's end at 1200 dt: the lobe's leading side is in the last
+    // samples, sinc^2(1/4) = 0.81 of the peak at two samples from it.
+    k = peak_of(1200 * dt + 0.25 / bandwidth, y);
+    CHECK(k == 1199);
+    CHECK(y[1199] > 0.6 * in_line_peak);
+}
+
 TEST_CASE("the compressed chirp's energy is about 1/B and the time sampler conserves it") {
     const sss::pulse chirp{.length_s = length, .shape = sss::pulse_shape::lfm, .bandwidth_hz = bandwidth};
     // int sinc^2(B s) ds = 1/B; the autocorrelation's taper (1 - |s|/T) takes about 1/(B T) of it... within 5%.
@@ -70,7 +97,7 @@ TEST_CASE("the compressed chirp's energy is about 1/B and the time sampler conse
     std::vector<double> y;
     s.render(y);
     const double total = std::accumulate(y.begin(), y.end(), 0.0) * dt;
-    CHECK(total == doctest::Approx(3.0 * chirp.energy_s()).epsilon(1e-3));
+    CHECK(total / (3.0 * chirp.energy_s()) == doctest::Approx(1.0).epsilon(1e-3));
 }
 
 TEST_CASE("speckle under a chirp: adjacent samples correlate as the compressed pulse's |rho_a(dt)|^2") {

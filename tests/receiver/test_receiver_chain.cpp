@@ -124,7 +124,38 @@ TEST_CASE("ground range: an echo from the seabed lands in the ground-range pixel
     CHECK(*altitude == doctest::Approx(10.0).epsilon(0.01));
 }
 
-TEST_CASE("quantisation: 8 and 16 bits round gain x amplitude, clip at full scale, and keep order") {
+TEST_CASE("a compressed chirp's echoes lie at their ranges: the matched filter's delay is out of the line") {
+    using sss::scene::flat_seabed;
+    using sss::scene::object;
+    using sss::scene::object_set;
+    using sss::scene::sphere;
+    // The sphere of the test above, and the fan reaching nadir, under a 5 ms chirp of 20 kHz (c T / 2 = 3.75 m, the
+    // offset its filter's delay would leave; c / (2B) = 3.75 cm) sampled at 40 kHz.
+    sss::receiver_params rx;
+    rx.sample_rate_hz = 40000.0;
+    rx.pulse = sss::pulse{.length_s = 5e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 20e3};
+    std::vector<object<double>> objs{object<double>({sphere<double>(sss::vec3<double>{30.0, 0.0, 0.1}, 0.1, {.material = 1, .object = 1})}, {})};
+    const sss::scene::scene sc(flat_seabed<double>(0.0), object_set<double>(std::move(objs)));
+    const sss::simulator<lambert, straight, fan, line_motion> sim(lambert({.mu_db = {-60.0, -6.0}}), straight{}, fan{},
+                                                                  motion_at(10.0), rx);
+    const auto lines = sim.ping(sc, 0);
+    const auto peak = static_cast<std::size_t>(std::max_element(lines.starboard.begin(), lines.starboard.end()) -
+                                               lines.starboard.begin());
+    // The sphere's nearest point at slant |C - S| - a: its compressed peak in the sample holding 2 r / c.
+    const double slant = std::sqrt(30.0 * 30.0 + 9.9 * 9.9) - 0.1;
+    const double expected = 2.0 * slant / 1500.0 / sim.dt_s();
+    MESSAGE("chirp highlight in sample " << peak << ", expected " << expected);
+    CHECK(std::abs(double(peak) - expected) <= 2.0);
+    // The first bottom return gives the altitude, as under a burst.
+    const sss::simulator<lambert, straight, fan, line_motion> down(
+        lambert{}, straight{}, fan(sss::beam::ideal_fan_params<double>{.vertical_width_deg = 90.0, .depression_deg = 45.0}),
+        motion_at(10.0), rx);
+    const auto altitude = sss::first_return_altitude(down.ping(flat_seabed<double>(0.0), 0).starboard, down.dt_s(), 1500.0);
+    REQUIRE(altitude);
+    CHECK(*altitude == doctest::Approx(10.0).epsilon(0.01));
+}
+
+TEST_CASE("quantisation: 8, 16, 32 and 64 bits round gain x amplitude, clip at full scale, and keep order") {
     const std::vector<double> power{0.0, 1.0, 4.0, 100.0, 1e6, 2.25};
     const auto q8 = sss::quantise<std::uint8_t>(std::span<const double>(power), sss::quantise_params{.gain = 10.0});
     CHECK(q8 == std::vector<std::uint8_t>{0, 10, 20, 100, 255, 15});
@@ -136,4 +167,9 @@ TEST_CASE("quantisation: 8 and 16 bits round gain x amplitude, clip at full scal
     // A gain chosen for a reference power puts it at the chosen count.
     CHECK(sss::quantise<std::uint8_t>(std::span<const double>(power).subspan(3, 1),
                                       sss::quantise_params{.gain = sss::quantise_gain(100.0, 128.0)})[0] == 128);
+    // 32 and 64 bits clip too: a 64-bit count saturates at the largest double below 2^64, which it can hold.
+    const std::vector<double> huge{1e300};
+    CHECK(sss::quantise<std::uint32_t>(std::span<const double>(huge), sss::quantise_params{})[0] == 4294967295u);
+    CHECK(sss::quantise<std::uint64_t>(std::span<const double>(huge), sss::quantise_params{})[0] ==
+          18446744073709549568ull);
 }

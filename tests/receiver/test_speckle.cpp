@@ -128,6 +128,28 @@ TEST_CASE("a scatterer density makes the K shape follow the resolution cell: spi
     CHECK(far_ratio > 2.0);
 }
 
+TEST_CASE("with a scatterer density a chirp's K shape follows its resolution cell, as a burst's of length 1/B does") {
+    // A 1 ms chirp of 10 kHz resolves c / (2B) = 7.5 cm, as a 0.1 ms burst does; its window holds 8 sidelobes each side
+    // too, which are not its cell. About 71 m out: nu = 20 x (71 m x 0.01) x 0.075 m = 1.1, <I^2>/<I>^2 = 3.9.
+    const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5, .scatterer_density_per_m2 = 20.0,
+                                                     .along_beamwidth_rad = 0.01, .texture_patch_m = 0.05}, 4);
+    const auto ratio = [&](const sss::pulse& p) {
+        double s1 = 0, s2 = 0;
+        for (std::size_t i = 0; i < 300; ++i) {
+            auto ctx = context(double(i), p.length_s);
+            ctx.pulse = p;
+            const auto I = intensities(sp, ctx, 0);
+            for (std::size_t k = 1800; k < 2000; ++k) { s1 += I[k]; s2 += I[k] * I[k]; }
+        }
+        return s2 * 60000.0 / (s1 * s1);
+    };
+    const double burst = ratio(sss::pulse{.length_s = 1e-4});
+    const double chirp = ratio(sss::pulse{.length_s = 1e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 1e4});
+    MESSAGE("<I^2>/<I>^2 under the burst " << burst << ", under the chirp " << chirp);
+    CHECK(burst > 3.0);
+    CHECK(std::abs(chirp - burst) < 0.15 * burst);
+}
+
 TEST_CASE("adjacent samples correlate as the pulse's |rho_a(dt)|^2: rectangular 4 samples long gives (3/4)^2") {
     const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5}, 3);
     for (auto shape : {sss::pulse_shape::rectangular, sss::pulse_shape::hann}) {

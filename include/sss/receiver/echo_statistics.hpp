@@ -52,10 +52,12 @@ public:
     /// True when the simulator must say which material dominates each sample (a K shape per material).
     [[nodiscard]] bool needs_materials() const noexcept { return p_.speckle && !p_.speckle->k_shape_by_material.empty(); }
 
-    /// Mean noise power per sample on the render's reference (0 without noise).
-    [[nodiscard]] double noise_power_per_sample(double dt_s, double render_source_level_db) const {
+    /// Mean noise power per sample on the render's reference (0 without noise), in a line received with `received`
+    /// (a compressed chirp's matched filter passes less: noise.hpp).
+    [[nodiscard]] double noise_power_per_sample(double dt_s, double render_source_level_db,
+                                                const pulse& received = pulse{}) const {
         if (!p_.noise) return 0.0;
-        return noise_power(*p_.noise, dt_s) * std::pow(10.0, render_source_level_db / 10.0);
+        return noise_power(*p_.noise, dt_s, received) * std::pow(10.0, render_source_level_db / 10.0);
     }
 
     template <Real T> void process(std::vector<T>& line, const line_context<T>& ctx) const {
@@ -70,7 +72,7 @@ public:
         if (p_.noise || p_.volume) {
             const auto& table = sss::detail::half_normal_table();
             const std::uint64_t ping = ping_key(ctx);
-            const double noise = noise_power_per_sample(ctx.dt_s, ctx.source_level_db);
+            const double noise = noise_power_per_sample(ctx.dt_s, ctx.source_level_db, ctx.pulse);
             const double sqrt_noise = std::sqrt(noise);
             const std::uint64_t noise_key = sss::detail::mix(ping, 0x0015eULL);
             const std::uint64_t volume_key = sss::detail::mix(ping, 0x7011eULL);

@@ -13,6 +13,12 @@
 ///   dominates above about 100-200 kHz.
 /// An electronic floor, a spectrum level referred to the receiver input, adds without the directivity gain.
 /// The noise is a circular complex Gaussian field, independent from sample to sample (bandwidth 1/dt).
+///
+/// Under a compressed chirp the line is the matched filter's output scaled so that an echo's peak is its power
+/// before compression (receiver/pulse.hpp); that filter, h(t) = s*(-t) / E_s for a chirp s of energy E_s = T,
+/// passes white noise of spectral level N0 as N0 int |h|^2 dt = N0 / T, whatever the band before it: B = 1/T, the
+/// compression gain B_rx T over the receiver's band B_rx (Cook & Bernfeld, "Radar Signals", 1967). The
+/// compressed noise is correlated over 1/B; it is kept independent from sample to sample.
 
 #include <array>
 #include <cmath>
@@ -20,6 +26,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/receiver/pulse.hpp"
 
 namespace sss {
 
@@ -85,6 +92,16 @@ struct noise_params {
     double n = ambient * std::pow(10.0, (in_band - p.directivity_index_db) / 10.0);
     if (std::isfinite(p.electronic_floor_db)) n += std::pow(10.0, (p.electronic_floor_db + in_band) / 10.0);
     return n;
+}
+
+/// The same in a line received with `pulse`: for a compressed chirp in the matched filter's band, B = 1/T (see the
+/// file comment); for a burst as noise_power(p, dt_s).
+[[nodiscard]] inline double noise_power(const noise_params& p, double dt_s, const pulse& received) {
+    if (received.shape != pulse_shape::lfm) return noise_power(p, dt_s);
+    received.validate();
+    noise_params compressed = p;
+    compressed.band_hz = 1.0 / received.length_s;
+    return noise_power(compressed, dt_s);
 }
 
 } // namespace sss

@@ -9,7 +9,8 @@
 ///   output is the chirp's autocorrelation, of amplitude (Cook & Bernfeld, "Radar Signals", 1967, ch. 6)
 ///       chi(s) = (1 - |s|/T) sinc(B s (1 - |s|/T)),  |s| <= T,  sinc(x) = sin(pi x) / (pi x),
 ///   so p(t) = chi(t - T)^2 over [0, 2T]: a main lobe 2/B wide at its -4 dB points 1/B apart, a range resolution
-///   c / (2B) whatever T. Its peak comes T after the echo's arrival (the filter's delay, `peak_delay_s`).
+///   c / (2B) whatever T. Its peak comes T after the echo's arrival: the filter's delay, which a chirp sonar's
+///   receiver takes out of its clock (`filter_delay_s`), so that an echo's compressed peak marks its range.
 /// A point scatterer at two-way delay s returns power P p(t - s); the receiver sees the echo-power density
 /// convolved with p. `amplitude` is the signed envelope (chi for a chirp) that speckle's correlation follows.
 
@@ -50,11 +51,14 @@ struct pulse {
     /// Support of the envelope the receiver sees (s): the length, twice it for a compressed chirp.
     [[nodiscard]] double duration_s() const noexcept { return shape == pulse_shape::lfm ? 2.0 * length_s : length_s; }
 
-    /// Delay from an echo's arrival to its envelope's peak (s): 0 for a burst (flat from its arrival), the
-    /// matched filter's delay T for a chirp. (A Hann burst peaks at length/2.)
-    [[nodiscard]] double peak_delay_s() const noexcept {
-        return shape == pulse_shape::lfm ? length_s : (shape == pulse_shape::hann ? 0.5 * length_s : 0.0);
-    }
+    /// The delay the receiver takes out of its clock (s): the matched filter's delay T for a chirp, 0 for a burst.
+    /// Sample k of a line holds the envelope at k dt + filter_delay_s() after the transmission, so that a chirp's
+    /// echo peaks at its arrival, and range c t / 2 holds at its peak.
+    [[nodiscard]] double filter_delay_s() const noexcept { return shape == pulse_shape::lfm ? length_s : 0.0; }
+
+    /// Delay from an echo's arrival to its peak in the line (s): 0 for a rectangular burst (flat from its arrival)
+    /// and for a chirp (its filter's delay taken out), length/2 for a Hann burst.
+    [[nodiscard]] double peak_delay_s() const noexcept { return shape == pulse_shape::hann ? 0.5 * length_s : 0.0; }
 
     /// Range resolution time (s): the length of a burst, 1/B for a compressed chirp.
     [[nodiscard]] double resolution_s() const noexcept { return shape == pulse_shape::lfm ? 1.0 / bandwidth_hz : length_s; }

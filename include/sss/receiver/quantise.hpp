@@ -29,7 +29,10 @@ struct quantise_params {
 template <std::unsigned_integral U, Real T>
 [[nodiscard]] std::vector<U> quantise(std::span<const T> values, const quantise_params& p) {
     p.validate();
-    constexpr double top = double(std::numeric_limits<U>::max());
+    // The largest count, as a double that converts back to U: beyond 53 bits U's maximum itself rounds up to 2^bits,
+    // which U cannot hold; 2^bits - 2^(bits - 53) is the largest double below it.
+    constexpr U max = std::numeric_limits<U>::max();
+    constexpr double top = std::numeric_limits<U>::digits <= 53 ? double(max) : double(U(max - (max >> 53)));
     std::vector<U> out(values.size());
     for (std::size_t i = 0; i < values.size(); ++i) {
         const double v = std::max(0.0, double(values[i]));

@@ -31,7 +31,8 @@
 /// patches (Jakeman & Pusey, IEEE Trans. Antennas Propag. 24, 1976; Abraham & Lyons, IEEE J. Oceanic Eng. 27(4),
 /// 2002): intensity K-distributed with E[I^2]/E[I]^2 = 2 (1 + 1/nu); nu may differ per material (the simulator tells
 /// a stage that asks which material's echo dominates each sample: coarse, patchy beds spikier than fine ones). With a scatterer density the shape follows
-/// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse).
+/// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse's resolution:
+/// its length, 1/B for a chirp).
 ///
 /// The lattice is world-fixed in a frame turned to the nearest of 64 headings (5.625 degrees apart): a pass on
 /// the same heading sees the same cells; another aspect sees other speckle, as a real seabed does. Along track it
@@ -119,6 +120,7 @@ public:
         if (n == 0) return;
         const auto& table = sss::detail::half_normal_table();
         const double c = ctx.c_mps, dt = ctx.dt_s, tau = ctx.pulse.duration_s();
+        const double delay = ctx.pulse.filter_delay_s(); // sample k holds the envelope at its time plus this
         const double H = std::max(double(ctx.altitude_m), 1e-3);
         const double L = p_.transducer_length_m;
         const double s_a = L / 3.0;
@@ -127,6 +129,9 @@ public:
         const bool chirp = ctx.pulse.shape == pulse_shape::lfm;
         const double lag_lo = chirp ? std::max(0.0, ctx.pulse.length_s - 8.0 / ctx.pulse.bandwidth_hz) : 0.0;
         const double lag_hi = chirp ? std::min(tau, ctx.pulse.length_s + 8.0 / ctx.pulse.bandwidth_hz) : tau;
+        // The resolution cell's share of the window: the cell is the pulse's resolution long (1/B for a chirp, whose
+        // window holds sidelobes too; the whole window for a burst).
+        const double resolution_share = ctx.pulse.resolution_s() / (lag_hi - lag_lo);
         // The lattice frame: the nearest of 64 headings. delta: the ping's heading from it.
         const double step = 2.0 * pi_v<double> / 64.0;
         const double yaw = double(ctx.pose.yaw_rad);
@@ -159,7 +164,7 @@ public:
 
         // Ground points: rows along track at the lattice's cell centres within the co-array, columns across at
         // its cell centres from nadir out to the line's last range.
-        const double r_max = 0.5 * c * dt * double(n);
+        const double r_max = 0.5 * c * (dt * double(n) + delay);
         const double g_max = std::sqrt(std::max(0.0, r_max * r_max - H * H));
         const double dg = s_c / cd;
         const double i_first = sigma > 0 ? std::ceil(c_p / s_c - 0.5) : std::floor(c_p / s_c - 0.5);
@@ -171,9 +176,9 @@ public:
             return static_cast<std::size_t>(std::clamp(std::ceil((g - g0) / dg), 0.0, double(points)));
         };
         // Ground range of the delays a sample's window holds: sample k sees scatterers at two-way times
-        // [t_k - lag_hi, t_k - lag_lo], t_k its centre.
+        // [t_k - lag_hi, t_k - lag_lo], t_k its centre on the envelope's clock (the receiver's, plus its delay).
         const auto window = [&](std::size_t k, double& g_lo, double& g_hi, double& r_lo, double& r_hi) {
-            const double t_k = (double(k) + 0.5) * dt;
+            const double t_k = (double(k) + 0.5) * dt + delay;
             r_hi = std::max(0.0, 0.5 * c * (t_k - lag_lo));
             r_lo = std::max(0.0, 0.5 * c * (t_k - lag_hi));
             g_hi = std::sqrt(std::max(0.0, r_hi * r_hi - H * H));
@@ -248,7 +253,7 @@ public:
         for (std::size_t k = 0; k < n; ++k) {
             const double y = double(mean[k]);
             if (!(y > 0.0)) continue;
-            const double t_k = (double(k) + 0.5) * dt;
+            const double t_k = (double(k) + 0.5) * dt + delay;
             double g_lo = 0, g_hi = 0, r_lo = 0, r_hi = 0;
             window(k, g_lo, g_hi, r_lo, r_hi);
             const std::size_t m_lo = index_of(g_lo), m_hi = index_of(g_hi);
@@ -283,7 +288,7 @@ public:
                     nu = p_.k_shape_by_material[std::min<std::size_t>(ctx.materials[k], p_.k_shape_by_material.size() - 1)];
                 if (p_.scatterer_density_per_m2 > 0.0)
                     nu = std::max(1e-3, p_.scatterer_density_per_m2 * (0.5 * (r_lo + r_hi) * p_.along_beamwidth_rad) *
-                                            std::max(g_hi - g_lo, s_c));
+                                            std::max((g_hi - g_lo) * resolution_share, s_c));
                 const auto pj = static_cast<std::int64_t>(std::floor((a_p + g_mid * along_per_g) / p_.texture_patch_m));
                 const auto pi = static_cast<std::int64_t>(std::floor((c_p + g_mid * cross_per_g) / p_.texture_patch_m));
                 if (!(nu > 0.0)) {

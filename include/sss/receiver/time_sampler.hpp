@@ -16,8 +16,13 @@
 /// y_k is the mean received power over sample k. The result is exact for any density when the pulse lasts a
 /// whole number of samples (the share is then linear within each sub-bin, and no slope is limited), and for
 /// densities linear within each sub-bin otherwise. Energy is conserved exactly (the slope terms carry none):
-/// sum_k y_k dt = (sum of deposits) x (pulse energy), up to echoes whose pulse runs past the last sample.
+/// sum_k y_k dt = (sum of deposits) x (pulse energy), up to echoes whose pulse runs past either end of the line.
 /// Accumulation is in double for every scalar type.
+///
+/// The line runs on the receiver's clock: sample k covers [k dt, (k + 1) dt) after the transmission less the
+/// pulse's filter delay d (pulse::filter_delay_s: a compressed chirp's T, so that an echo peaks at its arrival).
+/// Deposits are kept at their delay less d, from -d on, so that an echo arriving within d of the transmission
+/// still lands its envelope's part after time 0; echoes up to (samples) dt + d reach the line.
 
 #include <algorithm>
 #include <array>
@@ -39,15 +44,24 @@ public:
     /// \param samples   number of output samples (the line covers [0, samples dt))
     /// \param dt_s      sample interval (s)
     /// \param p         transmitted pulse
-    time_sampler(std::size_t samples, double dt_s, const pulse& p)
-        : n_(samples), dt_(dt_s), inv_h_(double(sub_bins) / dt_s), m0_(samples * sub_bins, 0.0), m1_(samples * sub_bins, 0.0) {
+    time_sampler(std::size_t samples, double dt_s, const pulse& p) : n_(samples), dt_(dt_s), inv_h_(double(sub_bins) / dt_s) {
         sss::require_positive(dt_s, "time_sampler.dt_s");
         p.validate();
+        delay_s_ = p.filter_delay_s();
+        // The delay in samples, rounded up, and one more where there is one: an echo at time 0 is kept whatever
+        // the rounding of delay / dt.
+        lead_ = delay_s_ > 0.0 ? static_cast<std::size_t>(std::ceil(delay_s_ / dt_s)) + 1 : 0;
+        lead_bins_ = static_cast<double>(lead_ * sub_bins);
+        m0_.assign((n_ + lead_) * sub_bins, 0.0);
+        m1_.assign((n_ + lead_) * sub_bins, 0.0);
         build_kernels(p);
     }
 
     [[nodiscard]] std::size_t size() const noexcept { return n_; }
     [[nodiscard]] double dt_s() const noexcept { return dt_; }
+    /// The receiver's clock's delay (s): pulse::filter_delay_s. Echoes arriving up to size() dt_s() + this reach
+    /// the line.
+    [[nodiscard]] double delay_s() const noexcept { return delay_s_; }
     /// Kernel taps, [D * sub_bins + r].
     [[nodiscard]] const std::vector<double>& kernel0() const noexcept { return k0_; }
     [[nodiscard]] const std::vector<double>& kernel1() const noexcept { return k1_; }
@@ -61,8 +75,8 @@ public:
     /// Echo power `power` arriving at a single delay t_s (s).
     void add_point(double t_s, double power) noexcept {
         if (!(t_s >= 0.0)) return;
-        const double x = t_s * inv_h_;
-        if (!(x < static_cast<double>(m0_.size()))) return;
+        const double x = (t_s - delay_s_) * inv_h_ + lead_bins_;
+        if (!(x >= 0.0 && x < static_cast<double>(m0_.size()))) return;
         const auto j = static_cast<std::size_t>(x);
         m0_[j] += power;
         m1_[j] += power * (x - static_cast<double>(j));
@@ -70,18 +84,22 @@ public:
 
     /// Echo power `power` spread evenly over the delays between t0_s and t1_s (either order).
     void add_span(double t0_s, double t1_s, double power) noexcept {
-        double a = std::min(t0_s, t1_s) * inv_h_;
-        const double b = std::max(t0_s, t1_s) * inv_h_;
+        const double t_lo = std::min(t0_s, t1_s), t_hi = std::max(t0_s, t1_s);
+        double a = t_lo * inv_h_;
+        const double b = t_hi * inv_h_;
         const double width = b - a;
         if (!(width > 1e-9)) {
             add_point(0.5 * (t0_s + t1_s), power);
             return;
         }
-        const auto bins = static_cast<double>(m0_.size());
-        if (!(a < bins) || !(b > 0.0)) return;
         const double density = power / width; // power per sub-bin of delay
+        // Into the bins: delays less the clock's delay, from -lead_ samples; delays before 0 are dropped.
+        a = (std::max(t_lo, 0.0) - delay_s_) * inv_h_ + lead_bins_;
+        const double b_bins = (t_hi - delay_s_) * inv_h_ + lead_bins_;
+        const auto bins = static_cast<double>(m0_.size());
+        if (!(a < bins) || !(b_bins > 0.0) || !(t_hi > 0.0)) return;
         a = std::max(a, 0.0);
-        const double end = std::min(b, bins);
+        const double end = std::min(b_bins, bins);
         auto j = static_cast<std::size_t>(a);
         while (a < end && j < m0_.size()) {
             const double bin_end = std::min(static_cast<double>(j + 1), end);
@@ -99,9 +117,10 @@ public:
         const std::size_t taps = k0_.size() / sub_bins;
         for (std::size_t k = 0; k < n_; ++k) {
             double y = 0.0;
-            const std::size_t dmax = std::min(taps - 1, k);
+            const std::size_t kk = k + lead_; // the sample's place among the bins, which start lead_ samples early
+            const std::size_t dmax = std::min(taps - 1, kk);
             for (std::size_t d = 0; d <= dmax; ++d) {
-                const std::size_t base = (k - d) * sub_bins;
+                const std::size_t base = (kk - d) * sub_bins;
                 for (std::size_t r = 0; r < sub_bins; ++r) {
                     const double m0 = m0_[base + r];
                     double slope = m1_[base + r] - 0.5 * m0;
@@ -184,6 +203,9 @@ private:
     std::size_t n_;
     double dt_;
     double inv_h_;
+    double delay_s_ = 0.0;   // the clock's delay: deposits are kept at their delay less this
+    std::size_t lead_ = 0;   // samples of bins before time 0 (the delay, rounded up, and one)
+    double lead_bins_ = 0.0; // lead_ in sub-bins
     bool exact_ = true;
     std::vector<double> m0_, m1_;
     std::vector<double> k0_, k1_;
