@@ -437,9 +437,11 @@ TEST_CASE("the XTF beam angles of a uniform array are its two-way half-power wid
     CHECK(fan.vertical_deg == doctest::Approx(50.0));
 }
 
-TEST_CASE("a Lambert parameter above -4.97 dB (mu above 1/pi) is refused where Lambert's law is used, with its key and line") {
-    CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = -4\n").starts_with("s.toml:3:9: seabed.region[0].mu_db: must be <= -4.97 dB"));
-    CHECK(error_of("[sonar]\ntarget_mu_db = 0\n").starts_with("s.toml:2:16: sonar.target_mu_db: must be <= -4.97 dB"));
+TEST_CASE("a Lambert parameter above -4.9715 dB (mu above 1/pi) is refused where Lambert's law is used, with its key and line") {
+    CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = -4\n").starts_with("s.toml:3:9: seabed.region[0].mu_db: must be <= -4.9715 dB"));
+    CHECK(error_of("[sonar]\ntarget_mu_db = 0\n").starts_with("s.toml:2:16: sonar.target_mu_db: must be <= -4.9715 dB"));
+    CHECK(error_of("[sonar]\ntarget_mu_db = -4.971\n").starts_with("s.toml:2:16: sonar.target_mu_db: must be <= -4.9715 dB"));
+    CHECK(error_of("[sonar]\ntarget_mu_db = -4.9715\n") == "no error");
     CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = -5\n") == "no error");
     // Under Jackson's model neither is used: left as given.
     CHECK(error_of("[seabed]\n[[seabed.region]]\nmu_db = 0\n[sonar]\nscattering = \"jackson\"\ntarget_mu_db = 0\n") == "no error");

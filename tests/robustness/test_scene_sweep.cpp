@@ -81,7 +81,7 @@ config valid_config(draw& d) {
     c.array.transmit.vertical = {.count = 1, .element_m = d.in(0.005, 0.05)};
     c.water = {.sound_speed_mps = d.in(1000.0, 2500.0), .absorption_db_per_km = d.in(0.0, 200.0)};
     c.scattering = d.chance(0.5) ? scattering_kind::lambert : scattering_kind::jackson;
-    c.mu_db = d.in(-60.0, -4.97);
+    c.mu_db = d.in(-60.0, sss::scattering::lambert_max_db);
     c.jackson_f_hz = d.in(10e3, 500e3);
     c.sediment = static_cast<sss::scattering::sediment>(d.index(static_cast<std::size_t>(sss::scattering::sediment::sandy_clay) + 1));
     c.motion = {.start_m = {d.in(-100.0, 100.0), d.in(-100.0, 100.0)}, .heading_deg = d.in(-720.0, 720.0),

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstddef>
 #include <vector>
 
@@ -52,6 +53,17 @@ TEST_CASE("the hard-target model is reciprocal and its backscatter is the bistat
             for (double phi : {0.0, 1.0, 2.5, sss::pi_v<double>})
                 CHECK(steel.bistatic(gi, gs, phi, 0) == doctest::Approx(steel.bistatic(gs, gi, phi, 0)).epsilon(1e-12));
     CHECK(steel.backscatter(0.8, 0) == steel.bistatic(0.8, 0.8, sss::pi_v<double>, 0));
+}
+
+TEST_CASE("the hard-target model reads a NaN grazing angle as 0 and a NaN bistatic angle as backscatter, as Jackson's does") {
+    const hard_target<double> steel(hard_target_params<double>{.reflection = 0.9, .rms_slope = 0.2, .diffuse_db = -15.0});
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    CHECK(steel.bistatic(nan, 0.3, 1.0, 0) == steel.bistatic(0.0, 0.3, 1.0, 0));
+    CHECK(steel.bistatic(0.3, nan, 1.0, 0) == steel.bistatic(0.3, 0.0, 1.0, 0));
+    CHECK(steel.bistatic(0.4, 0.3, nan, 0) == steel.bistatic(0.4, 0.3, 3.141592653589793, 0));
+    CHECK(std::isfinite(steel.backscatter(nan, 0)));
+    CHECK_THROWS_AS(hard_target<double>(hard_target_params<double>{.diffuse_db = -4.971}), sss::invalid_parameter);
+    CHECK_NOTHROW(hard_target<double>(hard_target_params<double>{.diffuse_db = -4.9715}));
 }
 
 TEST_CASE("by_material sends seabed ids to the seabed model and later ids to the target model") {

@@ -68,7 +68,12 @@ TEST_CASE("the Lambertian policy keeps one parameter per material and rejects en
     CHECK(s.mu(1) == doctest::Approx(0.1));
     CHECK(s.mu(99) == s.mu(1));
     CHECK(s.backscatter(1.0f, std::numeric_limits<std::uint32_t>::max()) == s.backscatter(1.0f, 1));
-    CHECK_NOTHROW(lambertian<double>{-4.97});
+    // mu = 1/pi, 10 log10(1/pi) = -4.97150 dB, is the bound: -4.9715 is within it, -4.971 (mu pi = 1.0001) beyond.
+    CHECK_NOTHROW(lambertian<double>{-4.9715});
+    CHECK_NOTHROW(lambertian<double>{sss::scattering::lambert_max_db});
+    CHECK_THROWS_AS(lambertian<double>{-4.971}, sss::invalid_parameter);
+    CHECK_THROWS_AS(lambertian<float>{-4.971f}, sss::invalid_parameter);
+    CHECK(std::pow(10.0, sss::scattering::lambert_max_db / 10.0) * 3.141592653589793 == doctest::Approx(1.0).epsilon(1e-15));
     try {
         const lambertian<double> bad({.mu_db = {-27.0, -3.0}});
         FAIL("no exception");

@@ -27,13 +27,14 @@
 #include "sss/core/decibel.hpp"
 #include "sss/core/error.hpp"
 #include "sss/scattering/concept.hpp"
+#include "sss/scattering/lambertian.hpp"
 
 namespace sss::scattering {
 
 template <Real T> struct hard_target_params {
     T reflection = T(0.94);   ///< normal-incidence amplitude reflection coefficient |R|, in [0, 1]
     T rms_slope = T(0.1);     ///< RMS facet slope s (rad-like, tan of the tilt), > 0
-    T diffuse_db = T(-20);    ///< Lambert parameter 10 log10(mu) of the diffuse part (dB), <= -4.97
+    T diffuse_db = T(-20);    ///< Lambert parameter 10 log10(mu) of the diffuse part (dB), <= -4.9715 (mu <= 1/pi)
 };
 
 /// The specular (Kirchhoff geometric-optics) cross section for grazing angles g_i, g_s (rad) and azimuth phi
@@ -64,8 +65,8 @@ public:
             sss::require_in_range(materials_[i].reflection, T(0), T(1), who + ".reflection");
             sss::require_positive(materials_[i].rms_slope, who + ".rms_slope");
             sss::require_finite(materials_[i].diffuse_db, who + ".diffuse_db");
-            sss::require(materials_[i].diffuse_db <= T(-4.97), who + ".diffuse_db",
-                                 "must be <= -4.97 dB (mu <= 1/pi, energy conservation)");
+            sss::require(materials_[i].diffuse_db <= T(lambert_max_db), who + ".diffuse_db",
+                         "must be <= -4.9715 dB (mu <= 1/pi, energy conservation)");
             mu_.push_back(db_to_power(materials_[i].diffuse_db));
         }
     }
@@ -78,10 +79,13 @@ public:
 
     [[nodiscard]] T bistatic(T graze_in_rad, T graze_out_rad, T phi_rad, std::uint32_t material) const noexcept {
         const std::size_t m = index(material);
-        const double gi = std::clamp(double(graze_in_rad), 0.0, pi_v<double> / 2.0);
-        const double gs = std::clamp(double(graze_out_rad), 0.0, pi_v<double> / 2.0);
+        // Grazing angles clamped to [0, pi/2], NaN read as 0, and a NaN bistatic angle as backscatter, as the
+        // Jackson policies read them: sigma stays finite.
+        const auto graze = [](T g) { return std::isnan(g) ? 0.0 : std::clamp(double(g), 0.0, pi_v<double> / 2.0); };
+        const double gi = graze(graze_in_rad), gs = graze(graze_out_rad);
+        const double phi = std::isnan(phi_rad) ? pi_v<double> : double(phi_rad);
         const double diffuse = double(mu_[m]) * std::sin(gi) * std::sin(gs);
-        return static_cast<T>(diffuse + kirchhoff_specular_sigma(gi, gs, double(phi_rad), double(materials_[m].reflection),
+        return static_cast<T>(diffuse + kirchhoff_specular_sigma(gi, gs, phi, double(materials_[m].reflection),
                                                                  double(materials_[m].rms_slope)));
     }
 

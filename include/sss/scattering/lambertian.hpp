@@ -4,7 +4,7 @@
 ///
 /// Backscatter S_b = 10 log10(mu) + 10 log10(sin^2 theta); bistatic sigma = mu sin(theta_i) sin(theta_s)
 /// (theta: grazing angles, rad). Mackenzie (1961), JASA 33, 1498, found 10 log10(mu) = -27 dB for deep-sea
-/// sediments at 530 and 1120 Hz; a perfectly diffuse, energy-conserving surface has mu = 1/pi (-4.97 dB),
+/// sediments at 530 and 1120 Hz; a perfectly diffuse, energy-conserving surface has mu = 1/pi (-4.9715 dB),
 /// the physical upper bound.
 
 #include <algorithm>
@@ -21,6 +21,10 @@
 
 namespace sss::scattering {
 
+/// The largest Lambert parameter (dB): mu = 1/pi, 10 log10(1/pi) = -4.9715 dB, at which a perfectly diffuse surface
+/// scatters all it receives (energy conservation).
+inline constexpr double lambert_max_db = -4.971498726941338;
+
 /// Lambert's law for one angle pair: sigma = mu sin(graze_in) sin(graze_out) (linear).
 template <Real T> [[nodiscard]] inline T lambert_sigma(T mu, T graze_in_rad, T graze_out_rad) noexcept {
     return mu * std::sin(graze_in_rad) * std::sin(graze_out_rad);
@@ -28,7 +32,7 @@ template <Real T> [[nodiscard]] inline T lambert_sigma(T mu, T graze_in_rad, T g
 
 /// Settings of the Lambertian policy.
 template <Real T> struct lambertian_params {
-    /// Lambert parameter 10 log10 mu (dB) per material id, <= -4.97 dB (mu <= 1/pi); ids beyond the list use
+    /// Lambert parameter 10 log10 mu (dB) per material id, <= -4.9715 dB (mu <= 1/pi); ids beyond the list use
     /// the last entry. Not empty. Default: Mackenzie's (1961) -27 dB.
     std::vector<T> mu_db{T(-27)};
 };
@@ -51,7 +55,8 @@ public:
             const auto name = [&] { return "lambertian.mu_db[" + std::to_string(i) + "]"; };
             if (!std::isfinite(db)) sss::require_finite(db, name());
             // mu = 1/pi is the energy-conserving bound for a perfectly diffuse surface.
-            if (!(db <= T(-4.97))) sss::require(false, name(), "must be <= -4.97 dB (mu <= 1/pi, energy conservation)");
+            if (!(db <= T(lambert_max_db))) // in T: the bound itself, rounded to T, is within it
+                sss::require(false, name(), "must be <= -4.9715 dB (mu <= 1/pi, energy conservation)");
             mu_.push_back(db_to_power(db));
         }
     }

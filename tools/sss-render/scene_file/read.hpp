@@ -9,6 +9,7 @@
 
 #include <sss/core/constants.hpp>
 #include <sss/core/error.hpp>
+#include <sss/scattering/lambertian.hpp>
 #include <sss/scattering/sediments.hpp>
 #include <sss/seabed/composite.hpp>
 
@@ -452,11 +453,11 @@ inline const std::vector<std::pair<std::string_view, std::vector<std::string_vie
     {"pipeline", {"route_m", "radius_m", "max_span_m"}},
 };
 
-/// A Lambertian parameter (dB) at most 10 log10(1/pi) = -4.97 dB: a perfectly diffuse surface scatters at most what it
-/// receives (the library's lambertian holds the same bound; here it names the scene's key and line).
+/// A Lambertian parameter (dB) at most 10 log10(1/pi) = -4.9715 dB: a perfectly diffuse surface scatters at most what
+/// it receives (the library's lambertian holds the same bound; here it names the scene's key and line).
 inline void lambert_bound(const table_reader& t, std::string_view key, double mu_db) {
-    if (mu_db > -4.97)
-        t.fail(key, "must be <= -4.97 dB (a Lambertian surface scatters at most 1/pi of what it receives), got " +
+    if (!(mu_db <= sss::scattering::lambert_max_db))
+        t.fail(key, "must be <= -4.9715 dB (a Lambertian surface scatters at most 1/pi of what it receives), got " +
                         table_reader::fmt(mu_db));
 }
 
