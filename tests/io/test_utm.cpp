@@ -30,6 +30,16 @@ double meridian_arc_m(double lat_deg) {
     return sum * h / 3.0;
 }
 
+// `pings` lines of four samples of 1 (what an XTF of poses needs besides them).
+waterfall<double> flat_lines(std::size_t pings) {
+    waterfall<double> w;
+    w.pings = pings;
+    w.samples = 4;
+    w.dt_s = 1e-4;
+    w.values.assign(w.pings * 2 * w.samples, 1.0);
+    return w;
+}
+
 } // namespace
 
 TEST_CASE("on a zone's central meridian the easting is 500 km and the northing k0 times the meridian's arc") {
@@ -109,11 +119,7 @@ TEST_CASE("a UTM zone outside 1 to 60, or a position that is not finite or beyon
 }
 
 TEST_CASE("an XTF of a UTM world carries the exact latitude and longitude of each pose") {
-    waterfall<double> w;
-    w.pings = 3;
-    w.samples = 4;
-    w.dt_s = 1e-4;
-    w.values.assign(w.pings * 2 * w.samples, 1.0);
+    const waterfall<double> w = flat_lines(3);
     std::vector<pose<double>> poses(3);
     for (std::size_t i = 0; i < poses.size(); ++i) {
         poses[i].position = {652000.0 + 3.0 * double(i), 6230000.0 + 40.0 * double(i), 10.0};
@@ -136,4 +142,48 @@ TEST_CASE("an XTF of a UTM world carries the exact latitude and longitude of eac
     // Ping 1 is 40 m further grid north: 40 m of meridian (111345.5 m per degree at 56.2 N) within the scale factor
     // there (1.0001) and the grid convergence (2 deg, cos 0.9993).
     CHECK(f.pings[1].y - f.pings[0].y == doctest::Approx(40.0 / 111345.5).epsilon(2e-3));
+}
+
+TEST_CASE("true north's grid bearing is the meridian convergence: tan c = tan l sin(latitude) to 0.01 deg, 0 on the central "
+          "meridian, mirrored east and south") {
+    const io::utm_zone z{.zone = 32}; // central meridian 9 E
+    const double rad = pi_v<double> / 180.0;
+    for (const double e : {200000.0, 300000.0, 450000.0, 700000.0, 800000.0})
+        for (const double n : {1000000.0, 4000000.0, 6650000.0, 8500000.0}) {
+            const io::geodetic_position g = io::utm_to_geodetic(z, e, n);
+            const double l = (g.longitude_deg - 9.0) * rad;
+            // West of the central meridian (l < 0) the meridian runs east of grid north: a positive bearing.
+            const double spherical = -std::atan(std::tan(l) * std::sin(g.latitude_deg * rad)) / rad;
+            CAPTURE(e);
+            CAPTURE(n);
+            CHECK(std::abs(io::utm_north_grid_bearing_deg(z, e, n) - spherical) <= 0.01);
+            const double here = io::utm_north_grid_bearing_deg(z, e, n);
+            CHECK(std::abs(io::utm_north_grid_bearing_deg(z, 1e6 - e, n) + here) <= 1e-7);
+            CHECK(std::abs(io::utm_north_grid_bearing_deg({.zone = 32, .south = true}, e, 1e7 - n) + here) <= 1e-7);
+        }
+    CHECK(std::abs(io::utm_north_grid_bearing_deg(z, 500000.0, 6650000.0)) < 1e-9);
+}
+
+TEST_CASE("an XTF of a UTM world gives headings from true north: a towfish heading grid north 200 km west of the central "
+          "meridian at 60 N heads 3.1 degrees west of true north") {
+    const waterfall<double> w = flat_lines(2);
+    std::vector<pose<double>> poses(2);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        poses[i].position = {300000.0, 6650000.0 + 10.0 * double(i), 10.0};
+        poses[i].time_s = 0.1 * double(i);
+        poses[i].yaw_rad = 0.0; // grid north
+    }
+    io::xtf_render_params p{.ping_interval_s = 0.1, .utm = io::utm_zone{.zone = 32}};
+    p.header.nav_units = io::xtf_nav_units::latitude_longitude;
+    const io::xtf_file f = io::make_xtf<double>(w, poses, p);
+    const double c = io::utm_north_grid_bearing_deg({.zone = 32}, 300000.0, 6650000.0);
+    MESSAGE("convergence " << c << " deg, heading " << f.pings[0].heading_deg);
+    CHECK(c == doctest::Approx(3.1).epsilon(0.02));
+    CHECK(f.pings[0].heading_deg == doctest::Approx(360.0 - c).epsilon(1e-9));
+    // In projected metres (the UTM metres themselves) the heading is from true north too; in a world that is not
+    // UTM, from its +y.
+    p.header.nav_units = io::xtf_nav_units::projected_m;
+    CHECK(io::make_xtf<double>(w, poses, p).pings[0].heading_deg == doctest::Approx(360.0 - c).epsilon(1e-9));
+    p.utm.reset();
+    CHECK(io::make_xtf<double>(w, poses, p).pings[0].heading_deg == 0.0);
 }

@@ -98,6 +98,50 @@ file_error error_of(const std::vector<std::uint8_t>& b) {
 
 } // namespace
 
+TEST_CASE("XTF ping times, SecondsPerPing and FixedVSOP follow the poses' own times, not the nominal interval") {
+    // The poses of the render, retimed as a trajectory timed by its own clock would be: 0.5 s apart, then 1 s for the
+    // last ping; the nominal interval passed in (0.2 s) is only for a file of one ping.
+    render r = small_render();
+    const double times[6] = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0};
+    for (std::size_t i = 0; i < 6; ++i) r.poses[i].time_s = 10.0 + times[i]; // row 0 at 10 s: only differences count
+    const auto p = params(io::xtf_sample_format::f32, io::xtf_nav_units::projected_m);
+    const xtf_file f = io::make_xtf<double>(r.w, r.poses, p);
+    io::write_xtf("timed.xtf", f);
+    const xtf_file g = io::read_xtf("timed.xtf");
+    REQUIRE(g.pings.size() == 6u);
+    for (std::size_t i = 0; i < 6; ++i)
+        CHECK(std::abs(g.pings[i].time_unix_s - (1'700'000'000.25 + times[i])) <= 0.005 + 1e-6); // HSeconds: 1/100 s
+    // Ping 2 between pings 1 and 3: 1 s over 2 pings, 0.4 m of track each (2 m/s over 0.2 s each in the render).
+    CHECK(g.pings[2].seconds_per_ping == doctest::Approx(0.5));
+    CHECK(g.pings[2].speed_mps == doctest::Approx(0.8).epsilon(1e-5));
+    const auto bytes = detail::read_file_bytes("timed.xtf");
+    // The second ping's starboard channel header: 1024 bytes of file header, a ping record each before it.
+    std::size_t at = 1024;
+    at += detail::get_le<std::uint32_t>(bytes.data(), at + 10); // NumBytesThisRecord of ping 0
+    at += detail::get_le<std::uint32_t>(bytes.data(), at + 10); // of ping 1
+    const std::size_t port_channel = at + 256;
+    const std::uint32_t port_samples = detail::get_le<std::uint32_t>(bytes.data(), port_channel + 42);
+    const std::size_t starboard_channel = port_channel + 64 + 4 * std::size_t(port_samples);
+    for (const std::size_t c : {port_channel, starboard_channel}) {
+        CHECK(detail::get_le<float>(bytes.data(), c + 20) == doctest::Approx(0.5));        // SecondsPerPing
+        CHECK(detail::get_le<float>(bytes.data(), c + 54) == doctest::Approx(40.0).epsilon(1e-5)); // FixedVSOP, cm per ping
+    }
+    std::filesystem::remove("timed.xtf");
+    // Times given in double take the place of the poses' (which in float lose milliseconds after hours).
+    auto q = p;
+    q.row_times_s = {3600.0, 3600.25, 3600.5, 3600.75, 3601.0, 3601.25};
+    const xtf_file h = io::make_xtf<double>(r.w, r.poses, q);
+    CHECK(h.pings[5].time_unix_s == 1'700'000'000.25 + 1.25);
+    CHECK(h.pings[2].seconds_per_ping == doctest::Approx(0.25).epsilon(1e-12));
+    // Poses whose times do not increase (none given): the nominal interval.
+    for (auto& pose : r.poses) pose.time_s = 0.0;
+    const xtf_file z = io::make_xtf<double>(r.w, r.poses, p);
+    CHECK(z.pings[4].time_unix_s == doctest::Approx(1'700'000'000.25 + 4 * 0.2).epsilon(1e-15));
+    CHECK(z.pings[4].seconds_per_ping == doctest::Approx(0.2).epsilon(1e-12));
+    q.row_times_s[3] = q.row_times_s[2];
+    CHECK_THROWS_AS((void)io::make_xtf<double>(r.w, r.poses, q), invalid_parameter);
+}
+
 TEST_CASE("An XTF round trip of a render keeps every header field, navigation value and float sample") {
     const render r = small_render();
     const auto p = params(io::xtf_sample_format::f32, io::xtf_nav_units::latitude_longitude);
@@ -366,8 +410,28 @@ TEST_CASE("A ping time the header's calendar cannot hold (before the year 1 or a
             (void)io::encode_xtf(f);
             FAIL("no error for " << t);
         } catch (const invalid_parameter& e) {
-            CHECK(e.parameter() == "xtf_ping.time_unix_s");
+            CHECK(e.parameter() == "xtf_file.pings[0].time_unix_s");
         }
+    }
+}
+
+TEST_CASE("A sample that an XTF file cannot hold is refused naming its ping, side and index") {
+    const render r = small_render();
+    xtf_file f = io::make_xtf<double>(r.w, r.poses, params(io::xtf_sample_format::u16, io::xtf_nav_units::projected_m));
+    f.pings[3].starboard[7] = -1.0f;
+    try {
+        (void)io::encode_xtf(f);
+        FAIL("no error for a negative count");
+    } catch (const invalid_parameter& e) {
+        CHECK(e.parameter() == "xtf_file.pings[3].starboard[7]");
+    }
+    f.pings[3].starboard[7] = 0.0f;
+    f.pings[2].port[5] = std::numeric_limits<float>::infinity();
+    try {
+        (void)io::encode_xtf(f);
+        FAIL("no error for an infinite sample");
+    } catch (const invalid_parameter& e) {
+        CHECK(e.parameter() == "xtf_file.pings[2].port[5]");
     }
 }
 

@@ -222,6 +222,14 @@ public:
             renamed.push_back(final);
             names.push_back(final.string());
         }
+        // The renames on the disk too: each directory once.
+        std::vector<std::filesystem::path> synced;
+        for (const std::string& n : names) {
+            const std::filesystem::path dir = std::filesystem::path(n).parent_path();
+            if (std::find(synced.begin(), synced.end(), dir) != synced.end()) continue;
+            synced.push_back(dir);
+            sss::detail::sync_directory_of(n);
+        }
         drop_kept();
         files_.clear();
         return names;
@@ -580,6 +588,7 @@ template <Real T> int render_scene(const description& d, const render_request& r
                                       .sound_speed_mps = d.sea.sound_speed_mps,
                                       .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
                                                  .longitude_deg = d.out.xtf_origin_longitude_deg}};
+        for (std::size_t i = r.first; i < r.last; ++i) xp.row_times_s.push_back(track.time_since_ping0_s(i));
         if (d.out.xtf_utm_zone > 0)
             xp.utm = sss::io::utm_zone{.zone = int(d.out.xtf_utm_zone), .south = d.out.xtf_utm_hemisphere == "south"};
         const auto widths = widths_of(beam_of<T>(d), d.sensor.depression_deg);

@@ -251,6 +251,7 @@ inline void write_text(const std::string& path, const std::string& text) { sss::
 inline void write_label_images(const std::string& stem, const label_image& img, std::span<const label_class> classes) {
     check_label_image(img);
     check_class_names(classes);
+    detail::check_png_image(stem + "_class.png", img.width(), img.pings, img.width() * img.pings);
     const auto cls = sss::detail::encode_png_grey<std::uint8_t>(img.width(), img.pings, class_pixels(img));
     const auto inst = sss::detail::encode_png_grey<std::uint16_t>(img.width(), img.pings, instance_pixels(img));
     sss::detail::json_writer j;

@@ -32,15 +32,29 @@
 
 namespace sss::io {
 
+namespace detail {
+/// The image's size and pixel count, checked before `path` is written, with the file named in the message.
+inline void check_png_image(const std::string& path, std::size_t width, std::size_t height, std::size_t pixels) {
+    if (!(width >= 1 && height >= 1 && width <= 0x7fffffffu && height <= 0x7fffffffu))
+        sss::require(false, "png size", "width and height must lie in [1, 2^31 - 1], got " + std::to_string(width) +
+                                            " x " + std::to_string(height) + " for '" + path + "'");
+    if (pixels != width * height)
+        sss::require(false, "png samples", "must hold width x height = " + std::to_string(width * height) +
+                                               " values, got " + std::to_string(pixels) + " for '" + path + "'");
+}
+} // namespace detail
+
 /// Writes an 8-bit greyscale PNG: `height` rows of `width` values, top row first (through a temporary renamed
 /// when complete: a failure leaves no file).
 inline void write_png_grey8(const std::string& path, std::size_t width, std::size_t height, std::span<const std::uint8_t> pixels) {
+    detail::check_png_image(path, width, height, pixels.size());
     const auto bytes = sss::detail::encode_png_grey<std::uint8_t>(width, height, pixels);
     sss::detail::write_file_atomically(path, bytes.data(), bytes.size());
 }
 
 /// Writes a 16-bit greyscale PNG (as write_png_grey8).
 inline void write_png_grey16(const std::string& path, std::size_t width, std::size_t height, std::span<const std::uint16_t> pixels) {
+    detail::check_png_image(path, width, height, pixels.size());
     const auto bytes = sss::detail::encode_png_grey<std::uint16_t>(width, height, pixels);
     sss::detail::write_file_atomically(path, bytes.data(), bytes.size());
 }

@@ -20,6 +20,7 @@
 /// l the longitude from the central meridian. The series is accurate to a few nanometres within 3900 km of the
 /// central meridian, far beyond a zone's 6 degrees. Angles in radians above, degrees at the interface.
 
+#include <algorithm>
 #include <cmath>
 
 #include "sss/core/constants.hpp"
@@ -147,6 +148,21 @@ inline void geodetic_to_utm(const utm_zone& z, const geodetic_position& p, doubl
     }
     easting_m = 5e5 + k0 * k.a_rect_m * eta;
     northing_m = k0 * k.a_rect_m * xi + (z.south ? 1e7 : 0.0);
+}
+
+/// The grid bearing of true north at UTM position (easting_m, northing_m) in zone z (deg, clockwise from grid north):
+/// the meridian's direction on the grid, that is the meridian convergence (on the sphere tan(c) = tan(l) sin(latitude),
+/// l the longitude from the central meridian: Snyder, 1987, "Map Projections: A Working Manual", USGS Professional
+/// Paper 1395, eq. 8-9 and p. 62). Positive west of the central meridian in the northern hemisphere, where meridians
+/// lean east of grid north as they run north. A direction at grid bearing b_g has the true bearing b_g less this.
+/// Found from the projection itself: the grid direction of a step of 10^-5 degrees north and south along the meridian.
+[[nodiscard]] inline double utm_north_grid_bearing_deg(const utm_zone& z, double easting_m, double northing_m) {
+    const geodetic_position g = utm_to_geodetic(z, easting_m, northing_m);
+    constexpr double step_deg = 1e-5;
+    double e0 = 0, n0 = 0, e1 = 0, n1 = 0;
+    geodetic_to_utm(z, {std::max(g.latitude_deg - step_deg, -90.0), g.longitude_deg}, e0, n0);
+    geodetic_to_utm(z, {std::min(g.latitude_deg + step_deg, 90.0), g.longitude_deg}, e1, n1);
+    return std::atan2(e1 - e0, n1 - n0) * (180.0 / pi_v<double>);
 }
 
 } // namespace sss::io

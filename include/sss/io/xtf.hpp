@@ -58,8 +58,10 @@ namespace sss::io {
 
 /// How a render becomes an XTF file.
 struct xtf_render_params {
-    double start_unix_s = 0.0;               ///< UTC time of ping 0 (s since 1970)
-    double ping_interval_s = 0.1;            ///< ping i is at start + i interval (s), > 0
+    double start_unix_s = 0.0;               ///< UTC time of row 0 (s since 1970)
+    double ping_interval_s = 0.1;            ///< (s), > 0: row i at start + i interval where no times are known
+    /// Each row's time since row 0 (s), in double; empty: the poses' time_s (in T) where they increase.
+    std::vector<double> row_times_s{};
     std::uint32_t first_ping_number = 1;     ///< PingNumber of ping 0
     double sound_speed_mps = 1500.0;         ///< the render's reference sound speed (m/s), > 0
     geodetic_origin origin{};                ///< latitude/longitude of world (0, 0), for NavUnits 3
@@ -71,7 +73,10 @@ struct xtf_render_params {
 
 /// An XTF file from a waterfall and the poses of its pings (`poses[i]` for row i). `altitude_m[i]`, when
 /// given, is the towfish's height above the seabed at ping i; otherwise the pose's z (a flat seabed at z = 0).
-/// Speed is the distance between neighbouring poses over their time difference; heave is 0.
+/// Each ping's time is start_unix_s plus its time since row 0: row_times_s, or its pose's time_s less row 0's
+/// where those increase strictly (a trajectory's own times, when it has them), or i ping_interval_s. Its speed is
+/// the distance between neighbouring poses over their time difference, SecondsPerPing their time difference per
+/// ping, and FixedVSOP the distance per ping; heave is 0.
 template <Real T>
 [[nodiscard]] xtf_file make_xtf(const waterfall<T>& w, std::span<const pose<T>> poses, const xtf_render_params& p,
                                 std::span<const double> altitude_m = {}) {
@@ -85,6 +90,20 @@ template <Real T>
                      return "leaves no room for " + std::to_string(w.pings) + " pings: PingNumber (32 bits) would wrap past " +
                             std::to_string(std::numeric_limits<std::uint32_t>::max());
                  });
+    sss::require(p.row_times_s.empty() || p.row_times_s.size() == w.pings, "xtf_render_params.row_times_s",
+                 "must be empty or one per ping");
+    // Each row's time since row 0.
+    std::vector<double> since(w.pings, 0.0);
+    bool increasing = true;
+    for (std::size_t i = 0; i < w.pings; ++i) {
+        since[i] = p.row_times_s.empty() ? double(poses[i].time_s) - double(poses[0].time_s)
+                                         : p.row_times_s[i] - p.row_times_s[0];
+        if (!std::isfinite(since[i]) || (i > 0 && !(since[i] > since[i - 1]))) increasing = false;
+    }
+    if (!increasing) {
+        sss::require(p.row_times_s.empty(), "xtf_render_params.row_times_s", "must be finite and increase strictly");
+        for (std::size_t i = 0; i < w.pings; ++i) since[i] = double(i) * p.ping_interval_s;
+    }
     xtf_file f;
     f.header = p.header;
     f.pings.resize(w.pings);
@@ -93,7 +112,7 @@ template <Real T>
         xtf_ping& q = f.pings[i];
         const pose<T>& s = poses[i];
         q.ping_number = p.first_ping_number + static_cast<std::uint32_t>(i);
-        q.time_unix_s = p.start_unix_s + double(i) * p.ping_interval_s;
+        q.time_unix_s = p.start_unix_s + since[i];
         const double east = double(s.position.x), north = double(s.position.y);
         if (p.header.nav_units == xtf_nav_units::latitude_longitude) {
             const geodetic_position g = p.utm ? utm_to_geodetic(*p.utm, east, north) : to_geodetic(p.origin, east, north);
@@ -105,17 +124,20 @@ template <Real T>
         }
         q.altitude_m = altitude_m.empty() ? double(s.position.z) : altitude_m[i];
         const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(i + 1, w.pings - 1);
-        const double dt = double(poses[b].time_s) - double(poses[a].time_s);
+        const double dt = since[b] - since[a];
+        q.seconds_per_ping = p.ping_interval_s;
         if (b > a && dt > 0.0) {
             const auto d = poses[b].position - poses[a].position;
             q.speed_mps = std::hypot(double(d.x), double(d.y)) / dt;
+            q.seconds_per_ping = dt / double(b - a);
         }
-        q.heading_deg = heading_in_circle_deg(double(s.yaw_rad) * deg);
+        // The world's yaw is from its +y; where that is UTM grid north, the file's heading is from true north.
+        const double north_bearing_deg = p.utm ? utm_north_grid_bearing_deg(*p.utm, east, north) : 0.0;
+        q.heading_deg = heading_in_circle_deg(double(s.yaw_rad) * deg - north_bearing_deg);
         q.pitch_deg = double(s.pitch_rad) * deg;
         q.roll_deg = double(s.roll_rad) * deg;
         q.sound_speed_mps = p.sound_speed_mps;
         q.slant_range_m = double(w.samples) * w.dt_s * 0.5 * p.sound_speed_mps;
-        q.seconds_per_ping = p.ping_interval_s;
         q.port.resize(w.samples);
         q.starboard.resize(w.samples);
         for (std::size_t k = 0; k < w.samples; ++k) {
@@ -162,10 +184,10 @@ template <Real T>
         put_le<std::uint16_t>(q, 4, 2);
         put_le<std::uint32_t>(q, 10, static_cast<std::uint32_t>(bytes));
         // Years 1 to 9999, as the header's year field and the civil calendar hold them.
-        sss::require(p.time_unix_s >= -62135596800.0 && p.time_unix_s < 253402300800.0, "xtf_ping.time_unix_s", [&] {
-            return "must lie in years 1 to 9999 (-62135596800 to 253402300800 s since 1970), got " +
-                   std::to_string(p.time_unix_s);
-        });
+        if (!(p.time_unix_s >= -62135596800.0 && p.time_unix_s < 253402300800.0))
+            sss::require(false, "xtf_file.pings[" + std::to_string(i) + "].time_unix_s",
+                         "must lie in years 1 to 9999 (-62135596800 to 253402300800 s since 1970), got " +
+                             std::to_string(p.time_unix_s));
         const long long cs = std::llround(p.time_unix_s * 100.0);
         const long long days = (cs >= 0 ? cs : cs - 8639999) / 8640000;
         const long long in_day = cs - days * 8640000;
@@ -206,14 +228,19 @@ template <Real T>
             put_le<float>(k, 54, static_cast<float>(100.0 * p.speed_mps * p.seconds_per_ping));
             put_le<std::int16_t>(k, 58, static_cast<std::int16_t>(weight));
             c += xtf_chan_header_bytes;
+            // A bad sample is named by its ping, side and index: "xtf_file.pings[3].starboard[7]".
+            const auto which = [&](std::size_t j) {
+                return "xtf_file.pings[" + std::to_string(i) + "]." + (ch == 0 ? "port[" : "starboard[") +
+                       std::to_string(ch == 0 ? s.size() - 1 - j : j) + "]";
+            };
             for (std::size_t j = 0; j < s.size(); ++j) {
                 const float v = s[ch == 0 ? s.size() - 1 - j : j]; // port far-to-near
-                if (!std::isfinite(v)) require_finite(v, "xtf_ping.samples");
+                if (!std::isfinite(v)) require_finite(v, which(j));
                 if (fmt == xtf_sample_format::f32) {
                     put_le<float>(out.data(), c + 4 * j, v);
                     continue;
                 }
-                require(v >= 0.0f, "xtf_ping.samples", "must be >= 0 for an unsigned sample format");
+                if (!(v >= 0.0f)) require(false, which(j), "must be >= 0 for an unsigned sample format");
                 const double count = std::min(top, std::round(double(v) * scale));
                 if (fmt == xtf_sample_format::u8) put_le<std::uint8_t>(out.data(), c + j, static_cast<std::uint8_t>(count));
                 else put_le<std::uint16_t>(out.data(), c + 2 * j, static_cast<std::uint16_t>(count));

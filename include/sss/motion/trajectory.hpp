@@ -173,6 +173,16 @@ public:
     /// ping without times).
     [[nodiscard]] double start_time_s() const noexcept { return t0_; }
 
+    /// Ping `ping`'s time since ping 0 (s) in double, as pose_at gives it in T (which, in float, rounds it to
+    /// milliseconds after a few hours).
+    [[nodiscard]] double time_since_ping0_s(std::size_t ping) const {
+        if (ping >= count_)
+            throw invalid_parameter("ping", "ping " + std::to_string(ping) + " lies beyond the trajectory's " +
+                                                std::to_string(count_) + " pings");
+        if (!has_time_) return static_cast<double>(ping) * static_cast<double>(p_.ping_interval_s);
+        return eval(time_, locate(std::min(k0_ + static_cast<double>(ping), key_.back()))) - t0_;
+    }
+
     [[nodiscard]] sss::pose<T> pose_at(std::size_t ping) const {
         if (ping >= count_)
             throw invalid_parameter("ping", "ping " + std::to_string(ping) + " lies beyond the trajectory's " +

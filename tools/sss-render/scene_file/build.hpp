@@ -325,11 +325,11 @@ template <Real T>
 }
 
 /// UTC time (s since 1970) of ping `first` in the XTF file: output.xtf_start_unix_s, plus the trajectory's own
-/// time of ping 0 when the motion is a trajectory (a CSV timed in Unix seconds then needs no offset), plus
-/// `first` ping intervals.
+/// time of ping 0 when the motion is a trajectory (a CSV timed in Unix seconds then needs no offset), plus ping
+/// `first`'s time since ping 0 (`first` ping intervals, or the trajectory's own times where it has them).
 template <Real T> [[nodiscard]] double xtf_start_unix_s(const description& d, const scene_motion<T>& tow, std::size_t first) {
     const double ping0_s = tow.sampled() ? tow.sampled()->start_time_s() : 0.0;
-    return d.out.xtf_start_unix_s + ping0_s + double(first) * d.tow.ping_interval_s;
+    return d.out.xtf_start_unix_s + ping0_s + tow.time_since_ping0_s(first);
 }
 
 /// The receiver's stages a scene applies to the lines, in order, each with its parameters in words (the .npy

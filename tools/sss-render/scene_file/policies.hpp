@@ -101,6 +101,11 @@ public:
         if (const auto* t = std::get_if<trajectory>(&m_)) return t->pose_at(ping);
         return std::get_if<perturbed>(&m_)->pose_at(ping);
     }
+    /// Ping i's time since ping 0 (s) in double: pose_at's time_s without T's rounding.
+    [[nodiscard]] double time_since_ping0_s(std::size_t ping) const {
+        if (const auto* t = std::get_if<trajectory>(&m_)) return t->time_since_ping0_s(ping);
+        return static_cast<double>(ping) * static_cast<double>(std::get_if<perturbed>(&m_)->params().ping_interval_s);
+    }
     /// The track without oscillations (perturbed), or the trajectory's pose: the swath geometry of coverage.hpp.
     [[nodiscard]] sss::pose<T> nominal_pose_at(std::size_t ping) const {
         if (const auto* t = std::get_if<trajectory>(&m_)) return t->pose_at(ping);

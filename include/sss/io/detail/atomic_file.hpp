@@ -8,6 +8,10 @@
 /// their legend) are all written and closed before the first is renamed (commit_together), so that a failure while
 /// writing any of them leaves every old file as it was. A reader loads the whole file, or throws sss::file_error
 /// naming it.
+///
+/// Where the system has POSIX fsync, the temporary's bytes are on the disk before it is renamed, and the rename is
+/// before commit returns (the directory synced too): a machine that loses power meanwhile keeps the old file or the
+/// new one whole, never an empty or cut-short one under the name.
 
 #include <array>
 #include <atomic>
@@ -26,7 +30,39 @@
 
 #include "sss/core/error.hpp"
 
+// POSIX systems (not MinGW, whose unistd.h has no fsync): the bytes and the renames are synced to the disk.
+#if (defined(__unix__) || defined(__APPLE__)) && __has_include(<unistd.h>) && __has_include(<fcntl.h>)
+#include <fcntl.h>
+#include <unistd.h>
+#define SSS_DETAIL_POSIX_SYNC 1
+#endif
+
 namespace sss::detail {
+
+/// Syncs the open file `f` to the disk (POSIX fsync); true where that worked or the system has no fsync.
+[[nodiscard]] inline bool sync_to_disk(std::FILE* f) noexcept {
+#ifdef SSS_DETAIL_POSIX_SYNC
+    return ::fsync(::fileno(f)) == 0 || errno == EINVAL; // EINVAL: a file that cannot be synced (a pipe, /dev/null)
+#else
+    (void)f;
+    return true;
+#endif
+}
+
+/// Syncs the directory holding `path`, so that a rename into it is on the disk (POSIX); best effort.
+inline void sync_directory_of(const std::string& path) noexcept {
+#ifdef SSS_DETAIL_POSIX_SYNC
+    std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    if (dir.empty()) dir = ".";
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    (void)::fsync(fd);
+    (void)::close(fd);
+#else
+    (void)path;
+#endif
+}
+#undef SSS_DETAIL_POSIX_SYNC
 
 /// The whole file as bytes; file_error when it cannot be read.
 [[nodiscard]] inline std::string read_file(const std::string& path) {
@@ -112,7 +148,7 @@ public:
     /// file_error (disk full, ...) naming the file.
     void close() {
         if (!f_) return;
-        const bool ok = std::fflush(f_) == 0 && !std::ferror(f_);
+        const bool ok = std::fflush(f_) == 0 && !std::ferror(f_) && sync_to_disk(f_);
         const int closed = std::fclose(f_);
         f_ = nullptr;
         if (!ok || closed != 0) throw file_error(path_, 0, "write error on '" + tmp_ + "' (disk full?)");
@@ -125,6 +161,7 @@ public:
         std::filesystem::rename(tmp_, path_, ec);
         if (ec) throw file_error(path_, 0, "cannot rename '" + tmp_ + "' over it: " + ec.message());
         committed_ = true;
+        sync_directory_of(path_);
     }
 
 private:
