@@ -194,6 +194,42 @@ TEST_CASE("ping-to-ping correlation follows the co-array overlap and vanishes on
     }
 }
 
+TEST_CASE("in the water column, before the first return, speckle correlates along track as the co-array's overlap says") {
+    // Echo power only in samples 50 to 249, all before the seabed's first return (sample 266 from 10 m up): no
+    // seabed cell lies in their windows. Before, they were keyed by L/3 bins: the same within one, independent
+    // across a boundary (correlation 1 or 0 instead of the overlap).
+    const double L = 0.5;
+    const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = L}, 23);
+    std::vector<double> mean(n, 0.0);
+    for (std::size_t k = 50; k < 250; ++k) mean[k] = 1.0;
+    std::vector<std::complex<double>> z;
+    const auto water_column = [&](double along_m) {
+        sp.amplitudes(mean, context(along_m, 1e-4), z);
+        std::vector<double> out;
+        for (std::size_t k = 50; k < 250; ++k) out.push_back(std::norm(z[k]));
+        return out;
+    };
+    for (double d : {0.03, 0.1, 0.2, 0.3, 0.5, 0.75}) {
+        std::vector<double> a, b;
+        for (std::size_t i = 0; i < 80; ++i) {
+            const double y0 = 3.0 * double(i) + 0.37 * double(i % 7) / 7.0;
+            const auto I0 = water_column(y0), I1 = water_column(y0 + d);
+            a.insert(a.end(), I0.begin(), I0.end());
+            b.insert(b.end(), I1.begin(), I1.end());
+        }
+        // Intensities of a circular Gaussian field correlate as the field's correlation squared.
+        const double r = correlation(a, b);
+        const double expected = sss::coarray_overlap(d, L);
+        MESSAGE("d = " << d << " m: intensity correlation " << r << ", co-array overlap squared " << expected * expected);
+        CHECK(std::abs(r - expected * expected) < 0.04);
+    }
+    // Its mean power is the mean's, and neighbouring samples are independent.
+    const auto I = water_column(1.0);
+    double m = 0;
+    for (double v : I) m += v;
+    CHECK(m / double(I.size()) == doctest::Approx(1.0).epsilon(0.3));
+}
+
 TEST_CASE("speckle belongs to the seabed: same place and seed, same speckle; another seed or aspect, other speckle") {
     const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5}, 42);
     const sss::seabed_speckle other(sss::speckle_params{.transducer_length_m = 0.5}, 43);

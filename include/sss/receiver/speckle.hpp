@@ -40,14 +40,17 @@
 /// track c tau_res / (2 cells_per_pulse), tau_res the pulse's range resolution time (its length; 1/B for a chirp).
 /// Cells within a pulse window are summed by prefix sums for a rectangular pulse (cost per sample independent of
 /// the window), one by one otherwise. Samples with mean power but no seabed cell in their window (an object in
-/// the water column) get an independent Gaussian keyed by the ping's place and the sample.
+/// the water column) get a Gaussian per lattice row and sample, summed over the co-array's rows: they correlate along
+/// track as the seabed's speckle does, and are independent from sample to sample.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sss/core/constants.hpp"
@@ -202,12 +205,15 @@ public:
         // The rows: at most four (the co-array is L cos(delta) long, the rows L/3 apart), counted in an integer.
         const double row_count = j_hi - j_lo + 1.0;
         const std::int64_t rows = row_count > 0.0 ? static_cast<std::int64_t>(std::min(row_count, 8.0)) : 0;
+        std::array<std::pair<std::int64_t, double>, 8> row_weights{}; // each row's index and h, for the fallback below
+        std::size_t weighted_rows = 0;
         for (std::int64_t k = 0; k < rows; ++k) {
             const double j = j_lo + static_cast<double>(k);
             const double u = ((j + 0.5) * s_a - a_p) / cd;
             const double h = std::max(0.0, 1.0 - 2.0 * std::abs(u) / L);
             if (h <= 0.0) continue;
             row_power += h * h;
+            row_weights[weighted_rows++] = {static_cast<std::int64_t>(j), h};
             // The point's bin-frame coordinates in cells, stepped along the row; each cell's hash is one mix of
             // its row's key (kept while the row index stays) and its column index.
             const double xa0 = (a_p + u * cd + g0 * along_per_g) / s_a, dxa = dg * along_per_g / s_a;
@@ -273,12 +279,30 @@ public:
                     power *= row_power;
                 }
             }
-            if (!(power > 0.0)) { // no seabed cell in the window: a Gaussian of its own
-                const std::uint64_t key = sss::detail::mix(sss::detail::mix(sss::detail::mix(base, 0xfa11bac4ULL),
-                                                                            sss::detail::key_word(static_cast<std::int64_t>(std::floor(a_p / s_a)))),
-                                                           (std::uint64_t(k) << 1) | (sigma > 0 ? 1U : 0U));
-                z = sss::detail::complex_gaussian(key, table);
-                power = 1.0;
+            if (!(power > 0.0)) {
+                // No seabed cell in the window (an object in the water column): a Gaussian per lattice row, keyed by
+                // the row, the sample and the side, summed over the co-array's rows as the seabed's cells are, so
+                // that pings correlate along track as the co-array's overlap says (and drift with the survey time).
+                const std::uint64_t side_sample = (std::uint64_t(k) << 1) | (sigma > 0 ? 1U : 0U);
+                const auto row_gaussian = [&](std::uint64_t epoch_base, std::int64_t row) {
+                    return std::complex<double>(sss::detail::complex_gaussian(
+                        sss::detail::mix(sss::detail::mix(sss::detail::mix(epoch_base, 0xfa11bac4ULL),
+                                                          sss::detail::key_word(row)),
+                                         side_sample),
+                        table));
+                };
+                z = {0.0, 0.0};
+                for (std::size_t r = 0; r < weighted_rows; ++r) {
+                    const auto [row, h] = row_weights[r];
+                    std::complex<double> g = row_gaussian(base_now, row);
+                    if (w_next != 0.0) g = w_now * g + w_next * row_gaussian(base_next, row);
+                    z += h * g;
+                }
+                power = row_power;
+                if (!(power > 0.0)) { // no row within the co-array (it cannot happen for a transducer of length > 0)
+                    z = row_gaussian(base_now, static_cast<std::int64_t>(std::floor(a_p / s_a)));
+                    power = 1.0;
+                }
             }
             double tex = 1.0;
             if (textured) {
