@@ -223,7 +223,7 @@ TEST_CASE("in the water column, before the first return, speckle correlates alon
         MESSAGE("d = " << d << " m: intensity correlation " << r << ", co-array overlap squared " << expected * expected);
         CHECK(std::abs(r - expected * expected) < 0.04);
     }
-    // Its mean power is the mean's, and neighbouring samples are independent.
+    // Its mean power is the mean's.
     const auto I = water_column(1.0);
     double m = 0;
     for (double v : I) m += v;
