@@ -7,7 +7,6 @@
 // path must still be found by the other. On an x86 processor without FMA the fused build skips itself (exit
 // code 77, which CTest and Meson count as skipped) before any test runs.
 
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
