@@ -7,13 +7,13 @@ broken         every scene in tests/cli/broken/ fails with exit status 1, one er
 roundtrip      --dry-run output, read again, prints the same resolved scene
 outputs        a valid scene writes exactly the files it asks for (and a changed stem / npy = false changes them);
                a planar-array scene, a trajectory scene and a double scene render, --pings beyond the trajectory
-               is an error
+               is an error; an output that cannot be written is named, and nothing is written
 interrupt      SIGINT or SIGTERM during the render: exit status 130 or 143, one line, no file left (not even a
                temporary one)
 progress_tty   on a pseudo-terminal the progress is a redrawn bar with pings done, pings/s and ETA
 progress_plain without a terminal the progress is plain lines, the last one with every ping done
 """
-import os, pty, re, signal, struct, subprocess, sys, tempfile, time
+import os, pty, re, resource, signal, struct, subprocess, sys, tempfile, time
 
 exe, src, case = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
 cli = os.path.join(src, "tests", "cli")
@@ -104,6 +104,23 @@ elif case == "outputs":
             xtf = open(os.path.join(d, "tvg", "small.xtf"), "rb").read() if r.returncode == 0 else b""
             check(len(xtf) > 1024 + 256 + 26 and struct.unpack_from("<H", xtf, 1024 + 256 + 24)[0] == 4,
                   f"with receiver.tvg the XTF's ProcessingFlags is 4, TVG applied ({r.stderr})")
+        # An output that cannot be written (here a file size limit of 40,000 bytes: the 17 kB PNG passes, the
+        # 128 kB .npy does not) is named by its own name, not the scene's nor a temporary one; nothing is written,
+        # and an earlier run's files stay whole.
+        def limited():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (40000, resource.getrlimit(resource.RLIMIT_FSIZE)[1]))
+        for out_dir in ("limited_new", "e"):
+            before = {f: open(os.path.join(d, out_dir, f), "rb").read() for f in files_in(os.path.join(d, out_dir))}
+            r = subprocess.run([exe, scene3, "-o", os.path.join(d, out_dir)], capture_output=True, text=True, timeout=120,
+                               preexec_fn=limited)
+            errors = [l for l in r.stderr.splitlines() if l.startswith("sss-render: ") and " pings" not in l]
+            named = os.path.join(d, out_dir, "small.npy") + ": cannot be written ("
+            check(r.returncode == 1 and len(errors) == 1 and errors[0].startswith("sss-render: " + named)
+                  and "every.toml" not in errors[0] and errors[0].endswith("): no output written"),
+                  f"{out_dir}: a failed write names the output ({r.returncode}, {errors})")
+            after = {f: open(os.path.join(d, out_dir, f), "rb").read() for f in files_in(os.path.join(d, out_dir))}
+            check(after == before, f"{out_dir}: no file written, the earlier files whole ({sorted(after)} against {sorted(before)})")
         # With ground range, the label images come on the ground-range grid too, pixel for pixel with its PNG.
         open(scene3, "w").write(everything.replace("label_images = true", "label_images = true\nground_range = true"))
         r = run([scene3, "-o", os.path.join(d, "g")])

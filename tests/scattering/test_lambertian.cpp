@@ -42,6 +42,21 @@ TEST_CASE("Lambert's bistatic form is mu sin(theta_i) sin(theta_s): reciprocal, 
     CHECK(lambert_sigma(0.1, 0.5, 0.25) == doctest::Approx(0.1 * std::sin(0.5) * std::sin(0.25)));
 }
 
+TEST_CASE("Lambert's law reads grazing angles as the Scattering concept does: NaN as 0, outside [0, pi/2] clamped") {
+    const lambertian<double> s(-20.0);
+    const lambertian<float> f(-20.0f);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    CHECK(s.backscatter(nan, 0) == 0.0);
+    CHECK(s.bistatic(nan, 0.5, nan, 0) == 0.0);
+    CHECK(s.bistatic(0.5, nan, 1.0, 0) == 0.0);
+    CHECK(f.backscatter(std::numeric_limits<float>::quiet_NaN(), 0) == 0.0f);
+    // A negative grazing angle would make sigma negative, one beyond pi/2 would lower it: both read as the end.
+    CHECK(s.backscatter(-0.3, 0) == 0.0);
+    CHECK(s.bistatic(-0.3, 0.5, sss::pi_v<double>, 0) == 0.0);
+    CHECK(s.backscatter(2.5, 0) == s.backscatter(sss::half_pi_v<double>, 0));
+    CHECK(s.bistatic(0.4, 3.0, 0.0, 0) == s.bistatic(0.4, sss::half_pi_v<double>, 0.0, 0));
+}
+
 TEST_CASE("a Lambertian surface with mu = 1/pi scatters exactly the power it receives") {
     // Scattered power per unit area over incident intensity: integral over the upper hemisphere of sigma dOmega,
     // dOmega = cos(graze) d(graze) d(phi); incident power per unit area: sin(graze_i). Their ratio is mu pi.

@@ -151,6 +151,14 @@ public:
         for (const char* s : suffixes) files_.emplace_back(dir_ / (tmp + s), dir_ / (stem + s));
         return (dir_ / tmp).string();
     }
+    /// The final name of the output a writer's file belongs to: `path` is a temporary name `add` or `add_stem` gave,
+    /// or one of a stem's files; empty if none.
+    [[nodiscard]] std::string final_name_of(const std::string& path) const {
+        const std::filesystem::path p(path);
+        for (const auto& [tmp, final] : files_)
+            if (tmp == p) return final.string();
+        return {};
+    }
     /// Before the render: no final name is an existing directory or names two outputs, and every temporary name
     /// (with the writer's own ".tmp-" and 16 hexadecimal digits) fits the directory's file names.
     void check() const {
@@ -551,78 +559,91 @@ template <Real T> int render_scene(const description& d, const render_request& r
         return altitude;
     };
     const auto ground_cells = [&] { return std::size_t(std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m)); };
-    if (d.out.png || d.out.ground_range) {
-        // With the receiver's TVG the record is already compensated; without it the display compensates.
-        sss::waterfall<double> shown{.pings = image.pings, .samples = image.samples, .dt_s = image.dt_s,
-                                     .values = d.rx.tvg ? std::vector<double>(image.values.begin(), image.values.end())
-                                                        : detail::compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km)};
-        auto grey = [&](const std::vector<double>& v) {
-            if (d.out.png_scale == "quantised") {
-                std::vector<double> sorted(v);
-                const auto at = sorted.begin() + std::ptrdiff_t(double(sorted.size() - 1) * 0.95);
-                std::nth_element(sorted.begin(), at, sorted.end());
-                const double ref = *at > 0 ? *at : 1.0;
-                return sss::quantise<std::uint8_t>(std::span<const double>(v), {.gain = sss::quantise_gain(ref, 100.0)});
-            }
-            return sss::io::to_grey_db<std::uint8_t>(std::span<const double>(v), {.dynamic_range_db = d.out.png_dynamic_range_db,
-                                                                                   .top_db = detail::white_level_db(v)});
-        };
-        if (d.out.png) sss::io::write_png_grey8(tmp.png, image.width(), image.pings, grey(shown.values));
-        if (d.out.ground_range) {
-            const auto ground = sss::to_ground_range(shown, tow_altitudes(), d.sea.sound_speed_mps, d.out.ground_range_cell_m,
-                                                     ground_cells());
-            sss::io::write_png_grey8(tmp.ground, ground.width(), ground.pings, grey(ground.values));
-        }
-    }
-    if (d.out.npy) {
-        sss::io::write_npy(tmp.npy, image);
-        sss::io::write_render_sidecar<T>(tmp.json, image, poses,
-                                         {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps,
-                                          .source_level_db = d.sensor.source_level_db,
-                                          .receiver_stages = receiver_stage_list(d)});
-    }
-    if (d.out.xtf) {
-        const std::vector<double> altitude = tow_altitudes();
-        sss::io::xtf_render_params xp{.start_unix_s = xtf_start_unix_s(d, track, r.first),
-                                      .ping_interval_s = d.tow.ping_interval_s, .first_ping_number = std::uint32_t(r.first + 1),
-                                      .sound_speed_mps = d.sea.sound_speed_mps,
-                                      .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
-                                                 .longitude_deg = d.out.xtf_origin_longitude_deg}};
-        for (std::size_t i = r.first; i < r.last; ++i) xp.row_times_s.push_back(track.time_since_ping0_s(i));
-        if (d.out.xtf_utm_zone > 0)
-            xp.utm = sss::io::utm_zone{.zone = int(d.out.xtf_utm_zone), .south = d.out.xtf_utm_hemisphere == "south"};
-        const auto widths = widths_of(beam_of<T>(d), d.sensor.depression_deg);
-        xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
-                          .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};
-        xp.header.starboard = xp.header.port;
-        xp.header.file_name = stem + ".xtf"; // written under a temporary name, read under this one
-        xp.header.tvg_applied = d.rx.tvg;
-        sss::io::write_xtf(tmp.xtf, sss::io::make_xtf<T>(image, poses, xp, altitude));
-    }
+    // A writer that fails (a full disk, a size limit, a directory made read-only) names its temporary file: the
+    // message names the output it was writing instead, and every temporary is removed (output_set).
+    const auto output_failed = [&](const sss::file_error& e) {
+        const std::string final = files->final_name_of(e.file());
+        std::string_view why = sss::message_body(e); // "FILE: why"
+        if (why.starts_with(e.file())) why.remove_prefix(std::min(why.size(), why.find(": ", e.file().size()) + 2));
+        return scene_error((final.empty() ? e.file() : final) + ": cannot be written (" + std::string(why) +
+                           "): no output written");
+    };
     std::optional<detail::directory_lock> class_list_lock;
-    if (want_labels) {
-        const auto box = sss::io::box_extent::highlight_and_shadow;
-        if (d.out.coco) {
-            const std::vector<sss::io::coco_image> set{{stem + ".png", &labels}};
-            sss::io::write_text(tmp.coco, sss::io::coco_json(set, classes, box));
+    try {
+        if (d.out.png || d.out.ground_range) {
+            // With the receiver's TVG the record is already compensated; without it the display compensates.
+            sss::waterfall<double> shown{.pings = image.pings, .samples = image.samples, .dt_s = image.dt_s,
+                                         .values = d.rx.tvg ? std::vector<double>(image.values.begin(), image.values.end())
+                                                            : detail::compensated(image, d.sea.sound_speed_mps, d.sea.absorption_db_per_km)};
+            auto grey = [&](const std::vector<double>& v) {
+                if (d.out.png_scale == "quantised") {
+                    std::vector<double> sorted(v);
+                    const auto at = sorted.begin() + std::ptrdiff_t(double(sorted.size() - 1) * 0.95);
+                    std::nth_element(sorted.begin(), at, sorted.end());
+                    const double ref = *at > 0 ? *at : 1.0;
+                    return sss::quantise<std::uint8_t>(std::span<const double>(v), {.gain = sss::quantise_gain(ref, 100.0)});
+                }
+                return sss::io::to_grey_db<std::uint8_t>(std::span<const double>(v), {.dynamic_range_db = d.out.png_dynamic_range_db,
+                                                                                       .top_db = detail::white_level_db(v)});
+            };
+            if (d.out.png) sss::io::write_png_grey8(tmp.png, image.width(), image.pings, grey(shown.values));
+            if (d.out.ground_range) {
+                const auto ground = sss::to_ground_range(shown, tow_altitudes(), d.sea.sound_speed_mps, d.out.ground_range_cell_m,
+                                                         ground_cells());
+                sss::io::write_png_grey8(tmp.ground, ground.width(), ground.pings, grey(ground.values));
+            }
         }
-        if (d.out.yolo) {
-            // The directory's class list read, merged and renamed under its lock (released when the run returns).
-            class_list_lock.emplace(r.out_dir);
-            const auto yolo_list = detail::yolo_classes(r.out_dir, classes);
-            const auto relabelled = detail::one_id_per_name(labels, classes);
-            sss::io::write_text(tmp.yolo, sss::io::yolo_txt(relabelled ? *relabelled : labels, yolo_list, box));
-            sss::io::write_text(tmp.classes, sss::io::yolo_classes_txt(yolo_list));
+        if (d.out.npy) {
+            sss::io::write_npy(tmp.npy, image);
+            sss::io::write_render_sidecar<T>(tmp.json, image, poses,
+                                             {.array_file = stem + ".npy", .sound_speed_mps = d.sea.sound_speed_mps,
+                                              .source_level_db = d.sensor.source_level_db,
+                                              .receiver_stages = receiver_stage_list(d)});
         }
-        if (d.out.label_images) {
-            sss::io::write_label_images(tmp.labels, labels, classes);
-            if (d.out.ground_range) // pixel for pixel with stem_ground.png: the same altitudes, cell and width
-                sss::io::write_label_images(tmp.ground_labels,
-                                            sss::ground_range_labels(labels, tow_altitudes(), {.cell_m = d.out.ground_range_cell_m,
-                                                                                                  .cells = ground_cells(),
-                                                                                                  .sound_speed_mps = d.sea.sound_speed_mps}),
-                                            classes);
+        if (d.out.xtf) {
+            const std::vector<double> altitude = tow_altitudes();
+            sss::io::xtf_render_params xp{.start_unix_s = xtf_start_unix_s(d, track, r.first),
+                                          .ping_interval_s = d.tow.ping_interval_s, .first_ping_number = std::uint32_t(r.first + 1),
+                                          .sound_speed_mps = d.sea.sound_speed_mps,
+                                          .origin = {.latitude_deg = d.out.xtf_origin_latitude_deg,
+                                                     .longitude_deg = d.out.xtf_origin_longitude_deg}};
+            for (std::size_t i = r.first; i < r.last; ++i) xp.row_times_s.push_back(track.time_since_ping0_s(i));
+            if (d.out.xtf_utm_zone > 0)
+                xp.utm = sss::io::utm_zone{.zone = int(d.out.xtf_utm_zone), .south = d.out.xtf_utm_hemisphere == "south"};
+            const auto widths = widths_of(beam_of<T>(d), d.sensor.depression_deg);
+            xp.header.port = {.frequency_khz = d.sensor.frequency_hz / 1e3, .horizontal_beam_angle_deg = widths.along_deg,
+                              .beam_width_deg = widths.vertical_deg, .tilt_deg = d.sensor.depression_deg};
+            xp.header.starboard = xp.header.port;
+            xp.header.file_name = stem + ".xtf"; // written under a temporary name, read under this one
+            xp.header.tvg_applied = d.rx.tvg;
+            sss::io::write_xtf(tmp.xtf, sss::io::make_xtf<T>(image, poses, xp, altitude));
         }
+        if (want_labels) {
+            const auto box = sss::io::box_extent::highlight_and_shadow;
+            if (d.out.coco) {
+                const std::vector<sss::io::coco_image> set{{stem + ".png", &labels}};
+                sss::io::write_text(tmp.coco, sss::io::coco_json(set, classes, box));
+            }
+            if (d.out.yolo) {
+                // The directory's class list read, merged and renamed under its lock (released when the run returns).
+                class_list_lock.emplace(r.out_dir);
+                const auto yolo_list = detail::yolo_classes(r.out_dir, classes);
+                const auto relabelled = detail::one_id_per_name(labels, classes);
+                sss::io::write_text(tmp.yolo, sss::io::yolo_txt(relabelled ? *relabelled : labels, yolo_list, box));
+                sss::io::write_text(tmp.classes, sss::io::yolo_classes_txt(yolo_list));
+            }
+            if (d.out.label_images) {
+                sss::io::write_label_images(tmp.labels, labels, classes);
+                if (d.out.ground_range) // pixel for pixel with stem_ground.png: the same altitudes, cell and width
+                    sss::io::write_label_images(tmp.ground_labels,
+                                                sss::ground_range_labels(labels, tow_altitudes(), {.cell_m = d.out.ground_range_cell_m,
+                                                                                                      .cells = ground_cells(),
+                                                                                                      .sound_speed_mps = d.sea.sound_speed_mps}),
+                                                classes);
+            }
+        }
+    } catch (const sss::file_error& e) {
+        throw output_failed(e);
     }
     const auto written = files->commit();
     out_dir->keep();

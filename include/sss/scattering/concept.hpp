@@ -14,12 +14,16 @@
 /// Grazing angles are measured from the local tangent plane, in [0, pi/2] radians. `material` is the id a
 /// scene's hit carries; ids at or beyond `material_count()` use the last material. Both evaluations are
 /// `noexcept`, finite and non-negative for every grazing angle in range, and `bistatic(g, g, pi, m)` equals
-/// `backscatter(g, m)`.
+/// `backscatter(g, m)`. The policies read an angle outside the range as the nearest end and NaN as 0 (`clamp_graze`),
+/// so that sigma stays finite and non-negative whatever the geometry hands them.
 
+#include <algorithm>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
 
+#include "sss/core/constants.hpp"
 #include "sss/core/types.hpp"
 
 namespace sss {
@@ -31,5 +35,14 @@ concept Scattering = Real<typename S::value_type> &&
         { s.bistatic(a, a, a, m) } noexcept -> std::same_as<typename S::value_type>;
         { s.material_count() } -> std::convertible_to<std::size_t>;
     };
+
+namespace scattering {
+
+/// A grazing angle clamped to [0, pi/2] (rad); NaN becomes 0.
+template <Real T> [[nodiscard]] inline T clamp_graze(T graze_rad) noexcept {
+    return std::isnan(graze_rad) ? T(0) : std::clamp(graze_rad, T(0), half_pi_v<T>);
+}
+
+} // namespace scattering
 
 } // namespace sss

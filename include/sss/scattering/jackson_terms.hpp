@@ -20,15 +20,11 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/core/error.hpp"
+#include "sss/scattering/concept.hpp"
 #include "sss/scattering/reflection.hpp"
 #include "sss/scattering/sediments.hpp"
 
 namespace sss::scattering {
-
-/// A grazing angle clamped to [0, pi/2] (rad); NaN becomes 0.
-template <Real T> [[nodiscard]] inline T clamp_graze(T graze_rad) noexcept {
-    return std::isnan(graze_rad) ? T(0) : std::clamp(graze_rad, T(0), half_pi_v<T>);
-}
 
 /// Roughness spectrum W(K) = w2 / (h0 K)^gamma, h0 = 1 cm (TR 9407 Section IV): w2_cm4 (cm^4),
 /// K_radpcm (rad/cm). Returns cm^4.

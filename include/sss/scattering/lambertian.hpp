@@ -25,9 +25,10 @@ namespace sss::scattering {
 /// scatters all it receives (energy conservation).
 inline constexpr double lambert_max_db = -4.971498726941338;
 
-/// Lambert's law for one angle pair: sigma = mu sin(graze_in) sin(graze_out) (linear).
+/// Lambert's law for one angle pair: sigma = mu sin(graze_in) sin(graze_out) (linear). The angles are read as the
+/// Scattering concept says (`clamp_graze`: [0, pi/2], NaN as 0), so sigma is never negative or NaN.
 template <Real T> [[nodiscard]] inline T lambert_sigma(T mu, T graze_in_rad, T graze_out_rad) noexcept {
-    return mu * std::sin(graze_in_rad) * std::sin(graze_out_rad);
+    return mu * std::sin(clamp_graze(graze_in_rad)) * std::sin(clamp_graze(graze_out_rad));
 }
 
 /// Settings of the Lambertian policy.
