@@ -128,9 +128,22 @@ TEST_CASE("a scatterer density makes the K shape follow the resolution cell: spi
     CHECK(far_ratio > 2.0);
 }
 
-TEST_CASE("with a scatterer density a chirp's K shape follows its resolution cell, as a burst's of length 1/B does") {
-    // A 1 ms chirp of 10 kHz resolves c / (2B) = 7.5 cm, as a 0.1 ms burst does; its window holds 8 sidelobes each side
-    // too, which are not its cell. About 71 m out: nu = 20 x (71 m x 0.01) x 0.075 m = 1.1, <I^2>/<I>^2 = 3.9.
+TEST_CASE("a pulse's counting extent (int p)^2 / int p^2: a burst's length, 18/35 of a Hann burst's, about 1.5/B for a chirp") {
+    CHECK(sss::counting_extent_s(sss::pulse{.length_s = 1e-4}, 0.0, 1e-4) == doctest::Approx(1e-4).epsilon(1e-12));
+    // int sin^4 = 3/8 L, int sin^8 = 35/128 L: (3/8)^2 / (35/128) = 18/35.
+    const sss::pulse hann{.length_s = 1e-4, .shape = sss::pulse_shape::hann};
+    CHECK(sss::counting_extent_s(hann, 0.0, 1e-4) / 1e-4 == doctest::Approx(18.0 / 35.0).epsilon(1e-9));
+    // A compressed chirp of large B T is sinc^2(B t): int sinc^2 = 1/B, int sinc^4 = 2/(3B), so 1.5/B.
+    const sss::pulse chirp{.length_s = 2e-2, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 1e4};
+    const double extent = sss::counting_extent_s(chirp, chirp.length_s - 8e-4, chirp.length_s + 8e-4);
+    MESSAGE("chirp: " << extent * 1e4 << " / B over its main lobe and 8 sidelobes each side");
+    CHECK(extent * 1e4 == doctest::Approx(1.5).epsilon(0.03));
+}
+
+TEST_CASE("with a scatterer density, a Hann burst's and a chirp's K shape are a rectangular burst's of their counting extent") {
+    // About 71 m out: nu = 20 x (71 m x 0.01) x (c t_N / 2) = 1.1 for t_N = 0.1 ms: <I^2>/<I>^2 = 3.9. A 1 ms chirp of
+    // 10 kHz and a Hann burst of 0.1 ms / (18/35) count as a 0.1 ms rectangular burst does, though the chirp's window
+    // holds 8 sidelobes each side and the Hann burst's is twice as long.
     const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5, .scatterer_density_per_m2 = 20.0,
                                                      .along_beamwidth_rad = 0.01, .texture_patch_m = 0.05}, 4);
     const auto ratio = [&](const sss::pulse& p) {
@@ -143,11 +156,17 @@ TEST_CASE("with a scatterer density a chirp's K shape follows its resolution cel
         }
         return s2 * 60000.0 / (s1 * s1);
     };
-    const double burst = ratio(sss::pulse{.length_s = 1e-4});
-    const double chirp = ratio(sss::pulse{.length_s = 1e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 1e4});
-    MESSAGE("<I^2>/<I>^2 under the burst " << burst << ", under the chirp " << chirp);
-    CHECK(burst > 3.0);
-    CHECK(std::abs(chirp - burst) < 0.15 * burst);
+    const sss::pulse chirp{.length_s = 1e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 1e4};
+    const double t_n = sss::counting_extent_s(chirp, chirp.length_s - 8e-4, chirp.length_s + 8e-4);
+    const double burst = ratio(sss::pulse{.length_s = t_n});
+    const double compressed = ratio(chirp);
+    const double hann = ratio(sss::pulse{.length_s = 1e-4 * 35.0 / 18.0, .shape = sss::pulse_shape::hann});
+    const double rect = ratio(sss::pulse{.length_s = 1e-4});
+    MESSAGE("<I^2>/<I>^2: burst of the chirp's extent " << burst << ", chirp " << compressed << "; burst " << rect
+            << ", Hann burst of the same extent " << hann);
+    CHECK(rect > 3.0);
+    CHECK(std::abs(compressed - burst) < 0.1 * burst);
+    CHECK(std::abs(hann - rect) < 0.1 * rect);
 }
 
 TEST_CASE("adjacent samples correlate as the pulse's |rho_a(dt)|^2: rectangular 4 samples long gives (3/4)^2") {

@@ -31,8 +31,8 @@
 /// patches (Jakeman & Pusey, IEEE Trans. Antennas Propag. 24, 1976; Abraham & Lyons, IEEE J. Oceanic Eng. 27(4),
 /// 2002): intensity K-distributed with E[I^2]/E[I]^2 = 2 (1 + 1/nu); nu may differ per material (the simulator tells
 /// a stage that asks which material's echo dominates each sample: coarse, patchy beds spikier than fine ones). With a scatterer density the shape follows
-/// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse's resolution:
-/// its length, 1/B for a chirp).
+/// the resolution cell: nu = density x (range x along-track beam width) x (ground extent of the pulse's counting
+/// extent `counting_extent_s`: a burst's length, 18/35 of it for Hann, about 1.5/B for a chirp).
 ///
 /// The lattice is world-fixed in a frame turned to the nearest of 64 headings (5.625 degrees apart): a pass on
 /// the same heading sees the same cells; another aspect sees other speckle, as a real seabed does. Along track it
@@ -54,9 +54,11 @@
 #include <vector>
 
 #include "sss/core/constants.hpp"
+#include "sss/core/detail/gauss_legendre.hpp"
 #include "sss/core/error.hpp"
 #include "sss/receiver/detail/counter_random.hpp"
 #include "sss/receiver/line_stage.hpp"
+#include "sss/receiver/pulse.hpp"
 
 namespace sss {
 
@@ -105,6 +107,32 @@ struct speckle_params {
     return 0.0;
 }
 
+/// The scatterer-counting extent of a pulse's power envelope p over [lo_s, hi_s] (s):
+///
+///     t_N = (int p dt)^2 / int p^2 dt,
+///
+/// the span whose scatterers one sample's intensity counts. With a Poisson number of scatterers of density n in the
+/// cell, <I^2>/<I>^2 - 2 falls as 1 / (n t_N) when each is weighted by p (Jakeman, J. Phys. A 13, 1980): t_N is
+/// the length of a rectangular burst, 18/35 of a Hann burst's and about 1.5/B for a compressed chirp.
+[[nodiscard]] inline double counting_extent_s(const pulse& p, double lo_s, double hi_s) noexcept {
+    if (!(hi_s > lo_s)) return 0.0;
+    if (p.shape == pulse_shape::rectangular) return hi_s - lo_s;
+    // 8-point Gauss-Legendre over pieces of a sixteenth of a burst or a quarter of a chirp's sidelobe.
+    const auto& gx = sss::detail::gauss_legendre8_x;
+    const auto& gw = sss::detail::gauss_legendre8_w;
+    const double piece = p.shape == pulse_shape::lfm ? 0.25 / p.bandwidth_hz : p.length_s / 16.0;
+    double s1 = 0.0, s2 = 0.0;
+    for (double lo = lo_s; lo < hi_s; lo += piece) {
+        const double hi = std::min(hi_s, lo + piece);
+        for (std::size_t g = 0; g < gx.size(); ++g) {
+            const double v = p.power(lo + (hi - lo) * gx[g]);
+            s1 += (hi - lo) * gw[g] * v;
+            s2 += (hi - lo) * gw[g] * v * v;
+        }
+    }
+    return s2 > 0.0 ? s1 * s1 / s2 : 0.0;
+}
+
 /// The seabed's speckle field for one line at a time.
 class seabed_speckle {
 public:
@@ -132,9 +160,11 @@ public:
         const bool chirp = ctx.pulse.shape == pulse_shape::lfm;
         const double lag_lo = chirp ? std::max(0.0, ctx.pulse.length_s - 8.0 / ctx.pulse.bandwidth_hz) : 0.0;
         const double lag_hi = chirp ? std::min(tau, ctx.pulse.length_s + 8.0 / ctx.pulse.bandwidth_hz) : tau;
-        // The resolution cell's share of the window: the cell is the pulse's resolution long (1/B for a chirp, whose
-        // window holds sidelobes too; the whole window for a burst).
-        const double resolution_share = ctx.pulse.resolution_s() / (lag_hi - lag_lo);
+        // The resolution cell's share of the window, for the K shape from a scatterer density: the pulse's counting
+        // extent over the window (its whole length for a rectangular burst, less for a tapered one, about 1.5/B for
+        // a chirp, whose window holds sidelobes too).
+        const bool density_shape = p_.scatterer_density_per_m2 > 0.0;
+        const double resolution_share = density_shape ? counting_extent_s(ctx.pulse, lag_lo, lag_hi) / (lag_hi - lag_lo) : 1.0;
         // The lattice frame: the nearest of 64 headings. delta: the ping's heading from it.
         const double step = 2.0 * pi_v<double> / 64.0;
         const double yaw = double(ctx.pose.yaw_rad);
