@@ -71,14 +71,14 @@ int main(int argc, char** argv) try {
     const receiver_params rx{.sample_rate_hz = 20000, .max_range_m = 50, .pulse = {.length_s = 100e-6},
                              .source_level_db = 210};
     // The receiver: K speckle (nu = 4) anchored to the seabed, sea state 2 noise, volume reverberation of a dense
-    // plankton layer (S_v = -60 dB),
-    // then TVG 30 log r with the water's absorption.
+    // plankton layer (S_v = -60 dB) in the fan's own solid angle (psi_sr = 0) above the seabed, then TVG 30 log r
+    // with the water's absorption.
     using chain = line_chain<echo_statistics, tvg>;
     const echo_statistics statistics(echo_statistics_params{
         .seed = 1,
         .speckle = speckle_params{.transducer_length_m = 0.5, .k_shape = 4.0, .texture_patch_m = 0.5},
         .noise = noise_params{.frequency_hz = 100e3, .sea_state = 2.0, .directivity_index_db = 25.0, .source_level_db = 210.0},
-        .volume = volume_params{.sv_db = -60.0, .psi_sr = 0.01, .absorption_db_per_m = 0.03}});
+        .volume = volume_params{.sv_db = -60.0, .psi_sr = 0.0, .absorption_db_per_m = 0.03}});
     const tvg gain(tvg_params{.spreading_n = 30.0, .absorption_db_per_km = 30.0});
     const simulator<scatter, propagation::straight<T>, beam::ideal_fan<T>, motion::straight_line<T>, chain> sim(
         scattering, water, fan, tow, rx, ray_density{}, chain(statistics, gain));

@@ -38,6 +38,7 @@
 /// noise and the water column (receiver/echo_statistics.hpp). The default stage is never called.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
@@ -312,6 +313,10 @@ public:
                              "pulse.length_s", "spans more than 2^20 samples at receiver.sample_rate_hz");
         source_level_ = db_to_power(receiver_.source_level_db);
         sampler_ = time_sampler(samples_, dt_, receiver_.pulse);
+        if constexpr (LineStageWithBeam<Stage>) {
+            if (stage_.needs_beam())
+                for (side sd : {side::port, side::starboard}) elevation_[sd == side::starboard ? 1 : 0] = elevation_share_of(beam_, sd);
+        }
     }
 
     [[nodiscard]] const S& scattering() const noexcept { return scattering_; }
@@ -933,9 +938,10 @@ private:
     [[nodiscard]] T one_way_limit_s() const noexcept { return static_cast<T>(0.5 * line_reach_s() * (1.0 + 1e-5)); }
 
     template <Scene Sc> [[nodiscard]] line_context<T> line_context_for(const Sc& scene, const pose<T>& p, side sd) const {
+        const elevation_share& e = elevation_[sd == side::starboard ? 1 : 0];
         return line_context<T>{p, sd, dt_, c_ref_,
                                double(p.position.z - scene.seabed_height_m(p.position.x, p.position.y)),
-                               receiver_.pulse, receiver_.source_level_db};
+                               receiver_.pulse, receiver_.source_level_db, {}, e.shallower.empty() ? nullptr : &e};
     }
 
     struct ray_end {
@@ -2159,6 +2165,7 @@ private:
     receiver_params receiver_;
     ray_density density_;
     [[no_unique_address]] Stage stage_;
+    std::array<elevation_share, 2> elevation_{}; ///< port, starboard: tabulated only for a stage that needs the beam
     double c_ref_ = 1500.0;
     std::size_t samples_ = 0;
     double dt_ = 0.0;

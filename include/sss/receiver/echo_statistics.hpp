@@ -11,8 +11,10 @@
 /// sqrt(mean)), V_k the volume reverberation's mean power and N the noise power per sample, v_k and n_k unit
 /// circular complex Gaussians. The noise is keyed by (seed, the ping's pose, side, sample), the volume's
 /// scatterers likewise (the water column moves between pings); the seabed's by where they lie on the seabed.
-/// Its expectation is mean + V + N; every draw is a function of the seed and what it belongs to, so a render
-/// gives the same bytes on any number of threads and for any split of its pings.
+/// Volume reverberation fills the beam's shell before the seabed's range and the part of it above the seabed beyond
+/// (receiver/volume_reverberation.hpp: the simulator gives the beam). Its expectation is mean + V + N; every draw
+/// is a function of the seed and what it belongs to, so a render gives the same bytes on any number of threads and
+/// for any split of its pings.
 
 #include <bit>
 #include <complex>
@@ -51,6 +53,8 @@ public:
 
     /// True when the simulator must say which material dominates each sample (a K shape per material).
     [[nodiscard]] bool needs_materials() const noexcept { return p_.speckle && !p_.speckle->k_shape_by_material.empty(); }
+    /// True when the simulator must give its beam's elevation share: volume reverberation is cut by the seabed.
+    [[nodiscard]] bool needs_beam() const noexcept { return p_.volume.has_value(); }
 
     /// Mean noise power per sample on the render's reference (0 without noise), in a line received with `received`
     /// (a compressed chirp's matched filter passes less: noise.hpp).
@@ -78,12 +82,21 @@ public:
             const std::uint64_t volume_key = sss::detail::mix(ping, 0x7011eULL);
             const double sl = std::pow(10.0, ctx.source_level_db / 10.0);
             const double pulse_energy_s = p_.volume ? ctx.pulse.energy_s() : 0.0; // tau of c tau / 2
+            // Psi: the parameter, or the beam's own; cut by the seabed beyond its range where the beam is known.
+            double psi_sr = 0.0;
+            if (p_.volume) {
+                psi_sr = p_.volume->psi_sr > 0.0 ? p_.volume->psi_sr : ctx.beam ? ctx.beam->psi_sr : 0.0;
+                sss::require(psi_sr > 0.0, "volume.psi_sr",
+                             "is 0 (the beam's own) but the line comes without a beam: give Psi, or render with a simulator");
+            }
+            const double H = ctx.altitude_m, roll = double(ctx.pose.roll_rad);
             for (std::size_t k = 0; k < n; ++k) {
                 if (p_.noise)
                     s[k] += sqrt_noise * std::complex<double>(sss::detail::complex_gaussian(sss::detail::mix(noise_key, k), table));
                 if (p_.volume) {
                     const double r = 0.5 * ctx.c_mps * (double(k) + 0.5) * ctx.dt_s;
-                    const double v = sl * volume_reverberation(*p_.volume, r, ctx.c_mps, pulse_energy_s);
+                    const double share = ctx.beam ? water_share(*ctx.beam, ctx.line_side, r, H, roll) : 1.0;
+                    const double v = sl * volume_reverberation(*p_.volume, r, ctx.c_mps, pulse_energy_s, psi_sr * share);
                     s[k] += std::sqrt(v) * std::complex<double>(sss::detail::complex_gaussian(sss::detail::mix(volume_key, k), table));
                 }
             }

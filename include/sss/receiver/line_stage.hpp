@@ -11,6 +11,7 @@
 ///   |-------------------------------------|------------------------------------------------------------|
 ///   | `st.process(line, ctx)` (const)     | rewrite `line` (std::vector<T>&, sample k over [k dt, (k+1) dt)) |
 ///   | `st.needs_materials()` (optional)   | true: `ctx.materials` names each sample's dominant material  |
+///   | `st.needs_beam()` (optional)        | true: `ctx.beam` holds the line's side of the beam's elevation share |
 ///
 /// A stage must give the same result for the same inputs whatever thread calls it (render runs pings in
 /// parallel): randomness is keyed by what it belongs to (the seabed, the ping's pose), never drawn from a
@@ -23,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "sss/beam/elevation_share.hpp"
 #include "sss/core/pose.hpp"
 #include "sss/core/types.hpp"
 #include "sss/receiver/pulse.hpp"
@@ -40,6 +42,8 @@ template <Real T> struct line_context {
     double source_level_db = 0.0; ///< the render's source level reference (receiver_params::source_level_db)
     std::span<const std::uint32_t> materials{}; ///< per sample, the material of its strongest echo: filled only
                                                 ///< for a stage whose `needs_materials()` is true (else empty)
+    const elevation_share* beam = nullptr; ///< the beam's Psi and its share in depression on this side (body frame):
+                                           ///< given to a stage whose `needs_beam()` is true (else null)
 };
 
 /// A line stage (table above).
@@ -56,6 +60,14 @@ concept LineStageWithMaterials = requires(const St& st) {
     { st.needs_materials() } -> std::convertible_to<bool>;
 };
 
+/// A stage that may ask the simulator for its beam's elevation share (`line_context::beam`), e.g. for the volume
+/// reverberation of the water above the seabed: `needs_beam()` says whether it does (the simulator tabulates it
+/// once, when it is built).
+template <class St>
+concept LineStageWithBeam = requires(const St& st) {
+    { st.needs_beam() } -> std::convertible_to<bool>;
+};
+
 /// The stage that does nothing, and is never called.
 struct no_line_stage {
     template <Real T> void process(std::vector<T>&, const line_context<T>&) const noexcept {}
@@ -68,6 +80,10 @@ public:
     /// Asks for the materials when any of its stages does.
     [[nodiscard]] bool needs_materials() const {
         return std::apply([](const Stages&... st) { return (needs(st) || ...); }, stages_);
+    }
+    /// Asks for the beam when any of its stages does.
+    [[nodiscard]] bool needs_beam() const {
+        return std::apply([](const Stages&... st) { return (needs_beam_of(st) || ...); }, stages_);
     }
 
     line_chain() = default;
@@ -82,6 +98,10 @@ public:
 private:
     template <class St> [[nodiscard]] static bool needs(const St& st) {
         if constexpr (LineStageWithMaterials<St>) return bool(st.needs_materials());
+        else return false;
+    }
+    template <class St> [[nodiscard]] static bool needs_beam_of(const St& st) {
+        if constexpr (LineStageWithBeam<St>) return bool(st.needs_beam());
         else return false;
     }
 

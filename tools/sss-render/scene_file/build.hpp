@@ -349,7 +349,8 @@ template <Real T> [[nodiscard]] double xtf_start_unix_s(const description& d, co
                                     detail::fmt(r.noise_source_level_db) + " dB" + seed});
     if (r.volume)
         out.push_back({"volume_reverberation", "Sv " + detail::fmt(r.sv_db) + " dB, equivalent beam angle " +
-                                                   detail::fmt(r.psi_sr) + " sr" + seed});
+                                                   (r.psi_sr > 0 ? detail::fmt(r.psi_sr) + " sr" : std::string("the beam's own")) +
+                                                   ", above the seabed" + seed});
     if (r.tvg)
         out.push_back({"tvg", "gain " + detail::fmt(r.tvg_spreading_n) + " log10(r) + 2 alpha r + " + detail::fmt(r.tvg_gain_db) +
                                   " dB, alpha " + detail::fmt(d.sea.absorption_db_per_km) + " dB/km"});
@@ -381,6 +382,7 @@ public:
                                           .gain_db = r.tvg_gain_db});
     }
     [[nodiscard]] bool needs_materials() const noexcept { return statistics_ && statistics_->needs_materials(); }
+    [[nodiscard]] bool needs_beam() const noexcept { return statistics_ && statistics_->needs_beam(); }
     template <Real T> void process(std::vector<T>& line, const sss::line_context<T>& ctx) const {
         if (statistics_) statistics_->process(line, ctx);
         if (gain_) gain_->process(line, ctx);

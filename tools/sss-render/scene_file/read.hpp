@@ -838,7 +838,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.in_range("noise_source_level_db", o.noise_source_level_db, -300, 300);
         r.boolean("volume", o.volume);
         r.in_range("sv_db", o.sv_db, -300, 300);
-        r.positive("psi_sr", o.psi_sr);
+        r.non_negative("psi_sr", o.psi_sr); // 0: the beam's own
         if (!(o.psi_sr <= 4 * sss::pi_v<double>)) r.fail("psi_sr", "must be at most 4 pi sr (the whole sphere)");
         // The ambient noise curves hold for sonar frequencies.
         if (o.noise && !(d.sensor.frequency_hz >= 1 && d.sensor.frequency_hz <= 1e7))

@@ -213,7 +213,7 @@ struct receiver {
     bool noise = false;
     double sea_state = 2, directivity_index_db = 20, noise_source_level_db = 210;
     bool volume = false;
-    double sv_db = -80, psi_sr = 0.05;
+    double sv_db = -80, psi_sr = 0; // psi_sr 0: the beam's own equivalent two-way solid angle
     bool tvg = false;
     double tvg_spreading_n = 30, tvg_gain_db = 0;
 };
