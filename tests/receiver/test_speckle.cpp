@@ -249,6 +249,36 @@ TEST_CASE("in the water column, before the first return, speckle correlates alon
     CHECK(m / double(I.size()) == doctest::Approx(1.0).epsilon(0.3));
 }
 
+TEST_CASE("in the water column speckle correlates across track as the pulse says and belongs to a place across track") {
+    // Samples 50 to 249 again, with a rectangular pulse 4 samples long: adjacent samples correlate as (3/4)^2, as the
+    // seabed's do; a line 7.3 m to starboard of it, at the same place along track, sees other scatterers (before,
+    // every line saw the same there).
+    const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5}, 29);
+    std::vector<double> mean(n, 0.0);
+    for (std::size_t k = 50; k < 250; ++k) mean[k] = 1.0;
+    std::vector<std::complex<double>> z;
+    const auto water_column = [&](double along_m, double across_m) {
+        auto ctx = context(along_m, 4.0 * dt);
+        ctx.pose.position.x += across_m;
+        sp.amplitudes(mean, ctx, z);
+        std::vector<double> out;
+        for (std::size_t k = 50; k < 250; ++k) out.push_back(std::norm(z[k]));
+        return out;
+    };
+    std::vector<double> a, b, here, beside;
+    for (std::size_t i = 0; i < 100; ++i) {
+        const auto I = water_column(1.3 * double(i), 0.0), J = water_column(1.3 * double(i), 7.3);
+        a.insert(a.end(), I.begin(), I.end() - 1);
+        b.insert(b.end(), I.begin() + 1, I.end());
+        here.insert(here.end(), I.begin(), I.end());
+        beside.insert(beside.end(), J.begin(), J.end());
+    }
+    const double adjacent = correlation(a, b), across = correlation(here, beside);
+    MESSAGE("adjacent samples " << adjacent << " (0.5625), lines 7.3 m apart " << across);
+    CHECK(std::abs(adjacent - 0.5625) < 0.05);
+    CHECK(std::abs(across) < 0.05);
+}
+
 TEST_CASE("speckle belongs to the seabed: same place and seed, same speckle; another seed or aspect, other speckle") {
     const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5}, 42);
     const sss::seabed_speckle other(sss::speckle_params{.transducer_length_m = 0.5}, 43);
@@ -280,6 +310,33 @@ TEST_CASE("survey time decorrelates speckle slowly: nearly the same after a tent
     // Field correlation cos(pi/2 x 0.1) = 0.988: intensity correlation 0.976.
     CHECK(correlation(now, soon) > 0.9);
     CHECK(std::abs(correlation(now, later)) < 0.05);
+}
+
+TEST_CASE("survey time decorrelates speckle alike wherever in an epoch a lag starts: rho(s) = (1 - s/2) cos(pi s/2) + sin(pi s/2)/pi") {
+    CHECK(sss::drift_correlation(0.0) == doctest::Approx(1.0));
+    CHECK(sss::drift_correlation(1.0) == doctest::Approx(1.0 / sss::pi_v<double>));
+    CHECK(sss::drift_correlation(2.0) == 0.0);
+    constexpr double day = 86400.0;
+    const auto at = [&](double epochs) { // four lines 1 m apart
+        const sss::seabed_speckle sp(sss::speckle_params{.transducer_length_m = 0.5, .survey_time_s = epochs * day,
+                                                         .decorrelation_time_s = day}, 8);
+        std::vector<double> all;
+        for (double along_m : {5.0, 6.0, 7.0, 8.0}) {
+            const auto I = intensities(sp, context(along_m, 1e-4), 0);
+            all.insert(all.end(), I.begin(), I.end());
+        }
+        return all;
+    };
+    // One phase for the whole seabed gave 0.50 for a half-epoch lag from the start of an epoch and 0.73 from its
+    // third quarter; each cell's own phase gives rho(1/2)^2 = 0.571 from anywhere.
+    for (double lag : {0.25, 0.5, 1.0, 1.5}) {
+        const double expected = sss::drift_correlation(lag) * sss::drift_correlation(lag);
+        for (double start : {3.0, 3.25, 3.5, 3.75}) {
+            const double r = correlation(at(start), at(start + lag));
+            MESSAGE("lag " << lag << " epochs from " << start << ": intensity correlation " << r << ", rho^2 " << expected);
+            CHECK(std::abs(r - expected) < 0.03);
+        }
+    }
 }
 
 TEST_CASE("a K shape per material: each material's samples follow their own <I^2>/<I>^2") {

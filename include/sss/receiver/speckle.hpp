@@ -23,8 +23,12 @@
 ///   (the translated-aperture principle of the van Cittert-Zernike theorem, as used for synthetic aperture sonar
 ///   micronavigation: Bellettini & Pinto, IEEE J. Oceanic Eng. 27(4), 2002);
 /// - the same ground seen again from the same place gives the same speckle, whatever the ping's index, thread
-///   or pass; `survey_time_s` moves the scatterers slowly: within an epoch of `decorrelation_time_s` the field is
-///   cos(theta) a_e + sin(theta) a_(e+1), theta = (pi/2) (t / T - e), continuous in time and of unit power.
+///   or pass; `survey_time_s` moves the scatterers slowly: each cell's amplitude is cos(theta) a_e + sin(theta)
+///   a_(e+1), e and theta = (pi/2) (t / T + phi - e) from the survey time t over `decorrelation_time_s` T and
+///   the cell's own phase phi (uniform in [0, 1), keyed by the cell): continuous in time, of unit power, and
+///   over the cells its field correlation between times t and t + s T depends on s alone (`drift_correlation`),
+///       rho(s) = (1 - s/2) cos(pi s / 2) + sin(pi s / 2) / pi  (0 <= s <= 2),  0 beyond;
+///   with one phase for every cell it would hold only on average over where in an epoch t lies.
 ///
 /// The received intensity is mean_k tex_k |z_k|^2 / E|z_k|^2: its expectation is the ray tracer's mean power
 /// exactly. With a K shape nu, tex is a Gamma(nu) texture of unit mean attached to the seabed in square
@@ -40,8 +44,9 @@
 /// track c tau_res / (2 cells_per_pulse), tau_res the pulse's range resolution time (its length; 1/B for a chirp).
 /// Cells within a pulse window are summed by prefix sums for a rectangular pulse (cost per sample independent of
 /// the window), one by one otherwise. Samples with mean power but no seabed cell in their window (an object in
-/// the water column) get a Gaussian per lattice row and sample, summed over the co-array's rows: they correlate along
-/// track as the seabed's speckle does, and are independent from sample to sample.
+/// the water column, before the first return) take cells of a lattice of their own (other keys) at the towfish's
+/// depth and the sample's range, summed in the same way: they correlate along track and across it as the seabed's
+/// speckle does, and belong to a place (another line across track sees other cells).
 
 #include <algorithm>
 #include <array>
@@ -107,12 +112,21 @@ struct speckle_params {
     return 0.0;
 }
 
+/// Field correlation of the seabed's speckle between survey times s decorrelation times apart (see the file
+/// comment): (1 - s/2) cos(pi s / 2) + sin(pi s / 2) / pi for |s| <= 2, 0 beyond. Intensities correlate as its square.
+[[nodiscard]] inline double drift_correlation(double s) noexcept {
+    const double a = std::abs(s);
+    if (!(a < 2.0)) return 0.0;
+    const double x = 0.5 * pi_v<double> * a;
+    return (1.0 - 0.5 * a) * std::cos(x) + std::sin(x) / pi_v<double>;
+}
+
 /// The scatterer-counting extent of a pulse's power envelope p over [lo_s, hi_s] (s):
 ///
 ///     t_N = (int p dt)^2 / int p^2 dt,
 ///
 /// the span whose scatterers one sample's intensity counts. With a Poisson number of scatterers of density n in the
-/// cell, <I^2>/<I>^2 - 2 falls as 1 / (n t_N) when each is weighted by p (Jakeman, J. Phys. A 13, 1980): t_N is
+/// cell, E[I^2] / E[I]^2 - 2 falls as 1 / (n t_N) when each is weighted by p (Jakeman, J. Phys. A 13, 1980): t_N is
 /// the length of a rectangular burst, 18/35 of a Hann burst's and about 1.5/B for a compressed chirp.
 [[nodiscard]] inline double counting_extent_s(const pulse& p, double lo_s, double hi_s) noexcept {
     if (!(hi_s > lo_s)) return 0.0;
@@ -180,33 +194,111 @@ public:
         // Bin-frame coordinates of the ground point at along offset u and ground range g on this side.
         const double along_per_g = -sigma * sd, cross_per_u = sd, cross_per_g = sigma * cd;
 
-        // Survey epoch and the weights of its two scatterer sets.
-        std::int64_t epoch = 0;
-        double w_now = 1.0, w_next = 0.0;
-        if (p_.decorrelation_time_s > 0.0) {
+        // The survey's drift (file comment): whole epochs and the fraction of one; each cell adds its own phase.
+        const bool drifting = p_.decorrelation_time_s > 0.0;
+        std::int64_t epoch0 = 0;
+        double epoch_frac = 0.0;
+        if (drifting) {
             const double e = p_.survey_time_s / p_.decorrelation_time_s;
             const double fl = std::floor(e);
-            epoch = static_cast<std::int64_t>(fl);
-            const double theta = 0.5 * pi_v<double> * (e - fl);
-            w_now = std::cos(theta);
-            w_next = std::sin(theta);
+            epoch0 = static_cast<std::int64_t>(fl);
+            epoch_frac = e - fl;
         }
         const std::uint64_t base = sss::detail::mix(sss::detail::mix(seed_, 0x5bec1eULL), heading_key);
-        const std::uint64_t base_now = sss::detail::mix(base, sss::detail::key_word(epoch));
-        const std::uint64_t base_next = sss::detail::mix(base, sss::detail::key_word(epoch + 1));
 
-        // Ground points: rows along track at the lattice's cell centres within the co-array, columns across at
-        // its cell centres from nadir out to the line's last range.
+        // Points: rows along track at the lattice's cell centres within the co-array, columns across at its cell
+        // centres from nadir out, at horizontal distance g0 + m dg on this side.
         const double r_max = 0.5 * c * (dt * double(n) + delay);
-        const double g_max = std::sqrt(std::max(0.0, r_max * r_max - H * H));
         const double dg = s_c / cd;
         const double i_first = sigma > 0 ? std::ceil(c_p / s_c - 0.5) : std::floor(c_p / s_c - 0.5);
         const double g0 = sigma * ((i_first + 0.5) * s_c - c_p) / cd;
-        const auto points = static_cast<std::size_t>(std::max(0.0, std::ceil((g_max - g0) / dg))) + 1;
+        const auto points_to = [&](double g) { return static_cast<std::size_t>(std::max(0.0, std::ceil((g - g0) / dg))) + 1; };
         const double j_lo = std::ceil((a_p - 0.5 * L * cd) / s_a - 0.5), j_hi = std::floor((a_p + 0.5 * L * cd) / s_a - 0.5);
-        std::vector<std::complex<double>> b(points, {0.0, 0.0});
-        const auto index_of = [&](double g) { // first point index at or beyond ground range g
+        const auto index_in = [&](double g, std::size_t points) { // first point index at or beyond distance g
             return static_cast<std::size_t>(std::clamp(std::ceil((g - g0) / dg), 0.0, double(points)));
+        };
+        // The rows: at most four (the co-array is L cos(delta) long, the rows L/3 apart), counted in an integer.
+        struct lattice_row {
+            std::int64_t j;
+            double u, h;
+        };
+        std::array<lattice_row, 8> rows{};
+        std::size_t row_count = 0;
+        double row_power = 0.0; // sum over rows of h^2
+        {
+            const double count = j_hi - j_lo + 1.0;
+            const std::int64_t span = count > 0.0 ? static_cast<std::int64_t>(std::min(count, 8.0)) : 0;
+            for (std::int64_t k = 0; k < span; ++k) {
+                const double j = j_lo + static_cast<double>(k);
+                const double u = ((j + 0.5) * s_a - a_p) / cd;
+                const double h = std::max(0.0, 1.0 - 2.0 * std::abs(u) / L);
+                if (h <= 0.0) continue;
+                row_power += h * h;
+                rows[row_count++] = {static_cast<std::int64_t>(j), u, h};
+            }
+        }
+        // bb[m] for m in [from, to): the sum over rows of h times the cell under point m, cells keyed from key_base
+        // (the seabed's, or the water column's). A cell holds one unit complex Gaussian; while the survey drifts,
+        // cos(theta) a_e + sin(theta) a_(e+1) with its own phase in the epoch (a uniform offset keyed by the cell),
+        // so that the correlation over a lag of survey time is the same wherever in an epoch it starts.
+        const auto fill = [&](std::vector<std::complex<double>>& bb, std::size_t from, std::size_t to, std::uint64_t key_base) {
+            const auto epoch_key = [&](std::int64_t e) { return sss::detail::mix(key_base, sss::detail::key_word(e)); };
+            const std::uint64_t base_e0 = epoch_key(drifting ? epoch0 : 0);
+            const std::uint64_t base_e1 = drifting ? epoch_key(epoch0 + 1) : 0, base_e2 = drifting ? epoch_key(epoch0 + 2) : 0;
+            const std::uint64_t phase_base = sss::detail::mix(key_base, 0x9a5e0ffULL);
+            for (std::size_t r = 0; r < row_count; ++r) {
+                const auto [j, u, h] = rows[r];
+                // The point's bin-frame coordinates in cells, stepped along the row; each cell's hash is one mix of
+                // its row's key (kept while the row index stays) and its column index.
+                const double xa0 = (a_p + u * cd + g0 * along_per_g) / s_a, dxa = dg * along_per_g / s_a;
+                const double xc0 = (c_p + u * cross_per_u + g0 * cross_per_g) / s_c, dxc = dg * cross_per_g / s_c;
+                std::int64_t row = sss::detail::floor_to_int(xa0 + double(from) * dxa);
+                std::uint64_t k0 = 0, k1 = 0, k2 = 0, kp = 0;
+                const auto row_keys = [&] {
+                    k0 = sss::detail::mix(base_e0, sss::detail::key_word(row));
+                    if (drifting) {
+                        k1 = sss::detail::mix(base_e1, sss::detail::key_word(row));
+                        k2 = sss::detail::mix(base_e2, sss::detail::key_word(row));
+                        kp = sss::detail::mix(phase_base, sss::detail::key_word(row));
+                    }
+                };
+                row_keys();
+                for (std::size_t m = from; m < to; ++m) {
+                    const double fm = double(m);
+                    const std::int64_t cj = sss::detail::floor_to_int(xa0 + fm * dxa);
+                    const std::int64_t ci = sss::detail::floor_to_int(xc0 + fm * dxc);
+                    if (cj != row) {
+                        row = cj;
+                        row_keys();
+                    }
+                    const std::uint64_t col = sss::detail::key_word(ci);
+                    if (!drifting) {
+                        const std::complex<float> a = sss::detail::complex_gaussian(sss::detail::mix_fast(k0, col), table);
+                        bb[m] = {bb[m].real() + h * double(a.real()), bb[m].imag() + h * double(a.imag())};
+                        continue;
+                    }
+                    double e = epoch_frac + sss::detail::uniform_open(sss::detail::mix_fast(kp, col));
+                    const bool later = e >= 1.0; // the cell's phase carries it into the next epoch
+                    if (later) e -= 1.0;
+                    const double theta = 0.5 * pi_v<double> * e;
+                    const std::complex<float> a = sss::detail::complex_gaussian(sss::detail::mix_fast(later ? k1 : k0, col), table);
+                    const std::complex<float> a2 = sss::detail::complex_gaussian(sss::detail::mix_fast(later ? k2 : k1, col), table);
+                    const double wn = std::cos(theta), wx = std::sin(theta);
+                    const double re = wn * double(a.real()) + wx * double(a2.real());
+                    const double im = wn * double(a.imag()) + wx * double(a2.imag());
+                    bb[m] = {bb[m].real() + h * re, bb[m].imag() + h * im};
+                }
+            }
+        };
+        const bool rect = ctx.pulse.shape == pulse_shape::rectangular;
+        const auto prefix_sums = [&](std::vector<std::complex<double>>& bb) { // bb[m] becomes the sum of points [0, m)
+            std::complex<double> acc{0.0, 0.0};
+            for (auto& v : bb) {
+                const std::complex<double> x = v;
+                v = acc;
+                acc += x;
+            }
+            bb.push_back(acc);
         };
         // Ground range of the delays a sample's window holds: sample k sees scatterers at two-way times
         // [t_k - lag_hi, t_k - lag_lo], t_k its centre on the envelope's clock (the receiver's, plus its delay).
@@ -217,8 +309,31 @@ public:
             g_hi = std::sqrt(std::max(0.0, r_hi * r_hi - H * H));
             g_lo = std::sqrt(std::max(0.0, r_lo * r_lo - H * H));
         };
-        // Only the points some sample with echo power can see need their cells.
-        std::size_t m_begin = points, m_end = 0;
+        // The field of sample k from points [m_lo, m_hi) of bb at distance g with two-way time 2 sqrt(g^2 + h^2) / c,
+        // and its expected power.
+        const auto field = [&](const std::vector<std::complex<double>>& bb, std::size_t k, std::size_t m_lo, std::size_t m_hi,
+                               double height, std::complex<double>& z, double& power) {
+            z = {0.0, 0.0};
+            power = 0.0;
+            if (!(m_hi > m_lo) || !(row_power > 0.0)) return;
+            if (rect) {
+                z = bb[m_hi] - bb[m_lo];
+                power = row_power * double(m_hi - m_lo);
+                return;
+            }
+            const double t_k = (double(k) + 0.5) * dt + delay;
+            for (std::size_t m = m_lo; m < m_hi; ++m) {
+                const double g = g0 + double(m) * dg;
+                const double w = ctx.pulse.amplitude(t_k - 2.0 * std::sqrt(g * g + height * height) / c);
+                z += w * bb[m];
+                power += w * w;
+            }
+            power *= row_power;
+        };
+
+        // The seabed's points, out to the line's last range; only those some sample with echo power sees get cells.
+        const std::size_t points = points_to(std::sqrt(std::max(0.0, r_max * r_max - H * H)));
+        std::vector<std::complex<double>> b(points, {0.0, 0.0});
         {
             std::size_t k0 = 0, k1 = n;
             while (k0 < n && !(double(mean[k0]) > 0.0)) ++k0;
@@ -226,114 +341,21 @@ public:
             if (k0 < k1) {
                 double gl = 0, gh = 0, rl = 0, rh = 0;
                 window(k0, gl, gh, rl, rh);
-                m_begin = index_of(gl);
+                const std::size_t m_begin = index_in(gl, points);
                 window(k1 - 1, gl, gh, rl, rh);
-                m_end = index_of(gh);
+                fill(b, m_begin, index_in(gh, points), base);
             }
         }
-        double row_power = 0.0; // sum over rows of h^2
-        // The rows: at most four (the co-array is L cos(delta) long, the rows L/3 apart), counted in an integer.
-        const double row_count = j_hi - j_lo + 1.0;
-        const std::int64_t rows = row_count > 0.0 ? static_cast<std::int64_t>(std::min(row_count, 8.0)) : 0;
-        std::array<std::pair<std::int64_t, double>, 8> row_weights{}; // each row's index and h, for the fallback below
-        std::size_t weighted_rows = 0;
-        for (std::int64_t k = 0; k < rows; ++k) {
-            const double j = j_lo + static_cast<double>(k);
-            const double u = ((j + 0.5) * s_a - a_p) / cd;
-            const double h = std::max(0.0, 1.0 - 2.0 * std::abs(u) / L);
-            if (h <= 0.0) continue;
-            row_power += h * h;
-            row_weights[weighted_rows++] = {static_cast<std::int64_t>(j), h};
-            // The point's bin-frame coordinates in cells, stepped along the row; each cell's hash is one mix of
-            // its row's key (kept while the row index stays) and its column index.
-            const double xa0 = (a_p + u * cd + g0 * along_per_g) / s_a, dxa = dg * along_per_g / s_a;
-            const double xc0 = (c_p + u * cross_per_u + g0 * cross_per_g) / s_c, dxc = dg * cross_per_g / s_c;
-            std::int64_t row = sss::detail::floor_to_int(xa0 + double(m_begin) * dxa);
-            std::uint64_t row_now = sss::detail::mix(base_now, sss::detail::key_word(row));
-            std::uint64_t row_next = sss::detail::mix(base_next, sss::detail::key_word(row));
-            for (std::size_t m = m_begin; m < m_end; ++m) {
-                const double fm = double(m);
-                const std::int64_t cj = sss::detail::floor_to_int(xa0 + fm * dxa);
-                const std::int64_t ci = sss::detail::floor_to_int(xc0 + fm * dxc);
-                if (cj != row) {
-                    row = cj;
-                    row_now = sss::detail::mix(base_now, sss::detail::key_word(row));
-                    row_next = sss::detail::mix(base_next, sss::detail::key_word(row));
-                }
-                const std::complex<float> a = sss::detail::complex_gaussian(sss::detail::mix_fast(row_now, sss::detail::key_word(ci)), table);
-                double re = double(a.real()), im = double(a.imag());
-                if (w_next != 0.0) {
-                    const std::complex<float> a2 = sss::detail::complex_gaussian(sss::detail::mix_fast(row_next, sss::detail::key_word(ci)), table);
-                    re = w_now * re + w_next * double(a2.real());
-                    im = w_now * im + w_next * double(a2.imag());
-                }
-                b[m] = {b[m].real() + h * re, b[m].imag() + h * im};
-            }
-        }
-        const bool rect = ctx.pulse.shape == pulse_shape::rectangular;
-        if (rect) { // prefix sums: b[m] becomes the sum of points [0, m)
-            std::complex<double> acc{0.0, 0.0};
-            for (std::size_t m = 0; m < points; ++m) {
-                const std::complex<double> v = b[m];
-                b[m] = acc;
-                acc += v;
-            }
-            b.push_back(acc);
-        }
+        if (rect) prefix_sums(b);
+
         const std::uint64_t texture_base = sss::detail::mix(sss::detail::mix(seed_, 0x7e4757eULL), heading_key);
         const bool by_material = !p_.k_shape_by_material.empty() && ctx.materials.size() == n;
         const bool textured = p_.k_shape > 0.0 || p_.scatterer_density_per_m2 > 0.0 ||
                               std::any_of(p_.k_shape_by_material.begin(), p_.k_shape_by_material.end(), [](double v) { return v > 0.0; });
         std::int64_t last_pj = 0, last_pi = 0;
         double last_nu = -1.0, last_tex = 1.0;
-        for (std::size_t k = 0; k < n; ++k) {
-            const double y = double(mean[k]);
-            if (!(y > 0.0)) continue;
-            const double t_k = (double(k) + 0.5) * dt + delay;
-            double g_lo = 0, g_hi = 0, r_lo = 0, r_hi = 0;
-            window(k, g_lo, g_hi, r_lo, r_hi);
-            const std::size_t m_lo = index_of(g_lo), m_hi = index_of(g_hi);
-            std::complex<double> z{0.0, 0.0};
-            double power = 0.0;
-            if (m_hi > m_lo && row_power > 0.0) {
-                if (rect) {
-                    z = b[m_hi] - b[m_lo];
-                    power = row_power * double(m_hi - m_lo);
-                } else {
-                    for (std::size_t m = m_lo; m < m_hi; ++m) {
-                        const double g = g0 + double(m) * dg;
-                        const double w = ctx.pulse.amplitude(t_k - 2.0 * std::sqrt(g * g + H * H) / c);
-                        z += w * b[m];
-                        power += w * w;
-                    }
-                    power *= row_power;
-                }
-            }
-            if (!(power > 0.0)) {
-                // No seabed cell in the window (an object in the water column): a Gaussian per lattice row, keyed by
-                // the row, the sample and the side, summed over the co-array's rows as the seabed's cells are, so
-                // that pings correlate along track as the co-array's overlap says (and drift with the survey time).
-                const std::uint64_t side_sample = (std::uint64_t(k) << 1) | (sigma > 0 ? 1U : 0U);
-                const auto row_gaussian = [&](std::uint64_t epoch_base, std::int64_t row) {
-                    return std::complex<double>(sss::detail::complex_gaussian(
-                        sss::detail::mix(sss::detail::mix(sss::detail::mix(epoch_base, 0xfa11bac4ULL),
-                                                          sss::detail::key_word(row)),
-                                         side_sample),
-                        table));
-                };
-                z = {0.0, 0.0};
-                for (std::size_t r = 0; r < weighted_rows; ++r) {
-                    const auto [row, h] = row_weights[r];
-                    std::complex<double> g = row_gaussian(base_now, row);
-                    if (w_next != 0.0) g = w_now * g + w_next * row_gaussian(base_next, row);
-                    z += h * g;
-                }
-                power = row_power;
-                if (!(power > 0.0)) { // no row within the co-array (it cannot happen for a transducer of length > 0)
-                    z = row_gaussian(base_now, static_cast<std::int64_t>(std::floor(a_p / s_a)));
-                    power = 1.0;
-                }
-            }
+        const auto finish = [&](std::size_t k, std::complex<double> z, double power, double g_lo, double g_hi, double r_lo,
+                                double r_hi) {
             double tex = 1.0;
             if (textured) {
                 const double g_mid = 0.5 * (g_lo + g_hi);
@@ -356,7 +378,53 @@ public:
                 }
                 tex = nu > 0.0 ? last_tex : 1.0;
             }
-            out[k] = z * std::sqrt(y * tex / power);
+            out[k] = z * std::sqrt(double(mean[k]) * tex / power);
+        };
+        std::vector<std::size_t> water; // samples whose window holds no seabed cell
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!(double(mean[k]) > 0.0)) continue;
+            double g_lo = 0, g_hi = 0, r_lo = 0, r_hi = 0;
+            window(k, g_lo, g_hi, r_lo, r_hi);
+            const std::size_t m_lo = index_in(g_lo, points), m_hi = index_in(g_hi, points);
+            std::complex<double> z;
+            double power = 0.0;
+            if (rect && m_hi > m_lo && row_power > 0.0) { // the common case, inline
+                z = b[m_hi] - b[m_lo];
+                power = row_power * double(m_hi - m_lo);
+            } else {
+                field(b, k, m_lo, m_hi, H, z, power);
+            }
+            if (power > 0.0) finish(k, z, power, g_lo, g_hi, r_lo, r_hi);
+            else water.push_back(k);
+        }
+        if (water.empty()) return;
+
+        // No seabed cell in the window (an object in the water column, before the first return): scatterers on a
+        // lattice of their own (other keys), at the towfish's depth and the sample's range, summed over the
+        // co-array's rows and the pulse's window as the seabed's are, so that they correlate along track as the
+        // co-array's overlap says, across track as the pulse's envelope does, and belong to a place across track.
+        const std::size_t points_w = points_to(r_max);
+        std::vector<std::complex<double>> bw(points_w, {0.0, 0.0});
+        {
+            double gl = 0, gh = 0, rl = 0, rh = 0;
+            window(water.front(), gl, gh, rl, rh);
+            const std::size_t m_begin = index_in(rl, points_w);
+            window(water.back(), gl, gh, rl, rh);
+            fill(bw, m_begin, index_in(rh, points_w), sss::detail::mix(base, 0xfa11bac4ULL));
+        }
+        if (rect) prefix_sums(bw);
+        for (const std::size_t k : water) {
+            double g_lo = 0, g_hi = 0, r_lo = 0, r_hi = 0;
+            window(k, g_lo, g_hi, r_lo, r_hi);
+            std::complex<double> z;
+            double power = 0.0;
+            field(bw, k, index_in(r_lo, points_w), index_in(r_hi, points_w), 0.0, z, power);
+            if (!(power > 0.0)) { // no row within the co-array, or a window that holds no point: one Gaussian
+                z = std::complex<double>(sss::detail::complex_gaussian(
+                    sss::detail::mix(sss::detail::mix(base, 0xfa11bac5ULL), (std::uint64_t(k) << 1) | (sigma > 0 ? 1U : 0U)), table));
+                power = 1.0;
+            }
+            finish(k, z, power, g_lo, g_hi, r_lo, r_hi);
         }
     }
 
