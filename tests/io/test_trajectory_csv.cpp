@@ -10,6 +10,7 @@
 
 #include "sss/core/constants.hpp"
 #include "sss/io/trajectory_csv.hpp"
+#include "sss/motion/trajectory.hpp"
 
 namespace {
 
@@ -102,7 +103,11 @@ TEST_CASE("A bad row fails with sss::file_error naming the file and its line") {
     // Angles that wrap to within 90 deg of level load: a roll of 359 deg is -1 deg, a pitch of 6 rad about -16 deg.
     std::istringstream wrapped("time,x,y,z,roll,pitch_rad\n0,0,0,5,359,6\n1,0,1,5,-270.5,0\n");
     const auto w = sss::io::read_trajectory_csv<double>(wrapped, "wrapped.csv");
-    CHECK(w.roll_rad.size() == 2);
+    REQUIRE(w.roll_rad.size() == 2);
+    const sss::motion::trajectory<double> wt(w, sss::motion::trajectory_params<double>{});
+    CHECK(wt.pose_at(0).roll_rad == doctest::Approx(-sss::pi_v<double> / 180.0).epsilon(1e-12));
+    CHECK(wt.pose_at(0).pitch_rad == doctest::Approx(6.0 - 2.0 * sss::pi_v<double>).epsilon(1e-12));
+    CHECK(wt.pose_at(10).roll_rad == doctest::Approx(89.5 * sss::pi_v<double> / 180.0).epsilon(1e-12));
     // Faults not tied to one line: line 0.
     CHECK(error_of("# nothing here\n").line() == 0);
     CHECK(std::string(error_of("time,x,y,z\n0,0,0,5\n").what()).find("at least 2 samples") != std::string::npos);
@@ -117,6 +122,17 @@ TEST_CASE("A value beyond the scalar type's range, or an angle beyond 10^6 degre
         CHECK(e.line() == 3);
         CHECK(std::string(e.what()).find("survey.csv:3: column 3: column 'x': '1e39' is out of range") != std::string::npos);
     }
+    // A UTM northing in float would move in half-metre steps: refused, naming where; a double holds it.
+    std::istringstream utm("time,x,y,z\n0,500000.5,6543210.12,5\n1,500001,6543211.37,5\n");
+    try {
+        (void)sss::io::read_trajectory_csv<float>(utm, "utm.csv");
+        FAIL("no error");
+    } catch (const sss::file_error& e) {
+        CHECK(e.line() == 2);
+        CHECK(std::string(e.what()).find("utm.csv:2: column 3: column 'x': '500000.5' lies 131 km or more") != std::string::npos);
+    }
+    std::istringstream utm_double("time,x,y,z\n0,500000.5,6543210.12,5\n1,500001,6543211.37,5\n");
+    CHECK(sss::io::read_trajectory_csv<double>(utm_double, "utm.csv").position_m[0].y == 6543210.12);
     std::istringstream same("time,x,y,z\n0,0,0,5\n1,1e39,1,5\n");
     CHECK(sss::io::read_trajectory_csv<double>(same, "survey.csv").position_m[1].x == 1e39); // a double holds it
     const sss::file_error yaw = error_of("time,x,y,z,yaw\n0,0,0,5,0\n1,0,1,5,3.6e300\n");

@@ -360,6 +360,15 @@ TEST_CASE("The geodetic mapping has the published lengths of a degree on WGS 84 
     io::from_geodetic({57.1, 11.9}, g, e, n);
     CHECK(e == doctest::Approx(1234.5).epsilon(1e-12));
     CHECK(n == doctest::Approx(-678.9).epsilon(1e-12));
+    // Across the antimeridian: 0.02 deg of longitude at 10 N is about 2.19 km east, not 40,000 km west; the way
+    // back gives a longitude in (-180, 180].
+    io::from_geodetic({10.0, 179.99}, {10.0, -179.99}, e, n);
+    CHECK(e == doctest::Approx(2192.0).epsilon(2e-3));
+    CHECK(n == doctest::Approx(0.0).scale(1.0));
+    const auto across = io::to_geodetic({10.0, 179.99}, 5000.0, 0.0);
+    CHECK(across.longitude_deg < -179.9);
+    CHECK(across.longitude_deg > -180.0);
+    CHECK_THROWS_AS(io::from_geodetic({10.0, 0.0}, {std::nan(""), 1.0}, e, n), sss::invalid_parameter);
 }
 
 TEST_CASE("Corrupted XTF bytes read as a file or give a file_error, never anything else") {

@@ -225,7 +225,10 @@ TEST_CASE_TEMPLATE("The perturbed path is deterministic and agrees in float and 
         CHECK(static_cast<double>(a.position.z) == doctest::Approx(b.position.z).epsilon(1e-6));
         CHECK(static_cast<double>(a.yaw_rad) == doctest::Approx(b.yaw_rad).epsilon(1e-6));
     }
-    CHECK(path.pose_at(3000).position == path.pose_at(3000).position);
+    // Another instance from the same parameters, asked in another order, gives the same bits.
+    const perturbed<T> again(p);
+    CHECK(again.pose_at(3000).position == path.pose_at(3000).position);
+    CHECK(again.pose_at(3000).yaw_rad == path.pose_at(3000).yaw_rad);
 }
 
 TEST_CASE("Invalid perturbed-path parameters are rejected, naming the parameter") {
@@ -254,4 +257,25 @@ TEST_CASE("Invalid perturbed-path parameters are rejected, naming the parameter"
     p = {};
     p.heave_m.phase_deg = std::nan("");
     CHECK(name_of(p) == "perturbed.heave_m.phase_deg");
+    // A heave that takes the towfish to z <= 0; a towfish that points along a track it does not have (at rest, or
+    // swaying beyond its turn's radius, where the heading would turn round); a climb that pitches it past 90 deg.
+    p = {};
+    p.heave_m = {15.0, 4.0, 0.0};
+    CHECK(name_of(p) == "perturbed.heave_m.amplitude");
+    p = {};
+    p.speed_mps = 0.0;
+    p.yaw_follows_sway = true;
+    CHECK(name_of(p) == "perturbed.yaw_follows_sway");
+    p = {};
+    p.turn = constant_turn<double>{sss::side::starboard, 5.0, 0.0};
+    p.sway_m = {6.0, 20.0, 0.0};
+    p.yaw_follows_sway = true;
+    CHECK(name_of(p) == "perturbed.yaw_follows_sway");
+    p = {};
+    p.pitch_deg = {80.0, 10.0, 90.0};
+    p.heave_m = {2.0, 4.0, 0.0};
+    p.pitch_follows_heave = true;
+    CHECK(name_of(p) == "perturbed.pitch_follows_heave");
+    p.pitch_deg.amplitude = 10.0; // 10 deg and a climb of atan(3.14 / 2) = 57.5 deg: accepted
+    CHECK(name_of(p) == "(none)");
 }

@@ -269,6 +269,54 @@ TEST_CASE("Pings map to time through the ping interval, from the first sample or
     CHECK(static_cast<double>(tf.pose_at(100).position.y) == doctest::Approx(10.0));
 }
 
+TEST_CASE("Keyed by ping, the interpolated time increases across a gap in the record as at the samples") {
+    // Samples every 10 pings, 0.1 s per ping, then a 98 s gap: the parabola's slope at ping 20 (4.95 s per ping)
+    // made the cubic run back to -5.4 s between pings 10 and 20.
+    trajectory_samples<double> s;
+    s.ping = {0.0, 10.0, 20.0, 30.0};
+    s.time_s = {0.0, 1.0, 2.0, 100.0};
+    s.position_m = {{0, 0, 5}, {0, 1, 5}, {0, 2, 5}, {0, 100, 5}};
+    const trajectory<double> traj(s, trajectory_params<double>{});
+    REQUIRE(traj.ping_count() == 31);
+    double worst_step = 1e300;
+    for (std::size_t i = 1; i < traj.ping_count(); ++i)
+        worst_step = std::min(worst_step, traj.time_since_ping0_s(i) - traj.time_since_ping0_s(i - 1));
+    CHECK(worst_step > 0.0);
+    CHECK(traj.time_since_ping0_s(20) == 2.0);
+    CHECK(traj.time_since_ping0_s(30) == 100.0);
+    for (std::size_t i = 10; i <= 20; ++i) { // between the samples' times, as the samples are
+        CHECK(traj.time_since_ping0_s(i) >= 1.0);
+        CHECK(traj.time_since_ping0_s(i) <= 2.0);
+    }
+}
+
+TEST_CASE("A long float trajectory holds exactly the pings its samples span, none beyond their end") {
+    // A tolerance relative to the span added a ping past 2^20 pings (9.7 hours at 30 pings per second).
+    trajectory_samples<float> by_ping;
+    by_ping.ping = {0.0, 1048575.0};
+    by_ping.position_m = {{0, 0, 5}, {0, 1000, 5}};
+    CHECK(trajectory<float>(by_ping, trajectory_params<float>{}).ping_count() == 1048576);
+    trajectory_samples<float> by_time;
+    by_time.time_s = {0.0, 250000.0};
+    by_time.position_m = {{0, 0, 5}, {0, 1000, 5}};
+    trajectory_params<float> p;
+    p.ping_interval_s = 0.125f;
+    CHECK(trajectory<float>(by_time, p).ping_count() == 2000001);
+}
+
+TEST_CASE("A float heading just short of 2 pi stays within [0, 2 pi) in float") {
+    trajectory_samples<float> s;
+    s.time_s = {0.0, 1.0, 2.0};
+    s.position_m = {{0, 0, 5}, {0, 1, 5}, {0, 2, 5}};
+    s.yaw_rad = {-1e-8f, -1e-8f, -1e-8f};
+    const trajectory<float> traj(s, trajectory_params<float>{});
+    for (std::size_t i = 0; i < traj.ping_count(); i += 5) {
+        const float yaw = traj.pose_at(i).yaw_rad;
+        CHECK(yaw >= 0.0f);
+        CHECK(yaw < static_cast<float>(2.0 * pi));
+    }
+}
+
 TEST_CASE("Malformed samples are rejected, naming the field") {
     const auto name_of = [](const trajectory_samples<double>& s, trajectory_params<double> p = {}) {
         try {

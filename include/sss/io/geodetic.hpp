@@ -11,8 +11,10 @@
 /// (Snyder, 1987, "Map Projections: A Working Manual", USGS Professional Paper 1395, eqs. 4-18 and 4-20), on the
 /// WGS 84 ellipsoid, a = 6378137 m, 1/f = 298.257223563 (NIMA, 2000, Technical Report 8350.2, 3rd ed.). Angles in
 /// radians above, degrees at the interface. The plane departs from the ellipsoid by about d^2 / (2 R): 8 cm at
-/// d = 1 km, 2 m at 5 km from the origin, so it serves a survey area of a few kilometres; the inverse is exact
-/// (the map is linear).
+/// d = 1 km, 2 m at 5 km from the origin; away from the equator the longitude scale's change with latitude adds
+/// about x y tan(lat0) / R (7 m at 5 km east and 5 km north of an origin at 60 degrees), so it serves a survey area
+/// of a few kilometres; the inverse is exact (the map is linear). Longitudes are given in (-180, 180], and a
+/// difference of longitudes is taken the short way round, so that an area across the antimeridian maps whole.
 
 #include <cmath>
 
@@ -33,22 +35,35 @@ struct geodetic_position {
     double longitude_deg = 0.0; ///< (deg), east positive
 };
 
-/// Latitude and longitude of the world point (east_m, north_m) (see the file comment).
+/// A longitude (deg) in (-180, 180].
+[[nodiscard]] inline double normalised_longitude_deg(double longitude_deg) noexcept {
+    const double l = std::remainder(longitude_deg, 360.0);
+    return l <= -180.0 ? l + 360.0 : l;
+}
+
+/// Latitude and longitude of the world point (east_m, north_m) (see the file comment); the longitude in (-180, 180].
 [[nodiscard]] inline geodetic_position to_geodetic(const geodetic_origin& o, double east_m, double north_m) {
     sss::require_in_range(o.latitude_deg, -89.0, 89.0, "geodetic_origin.latitude_deg");
     sss::require_in_range(o.longitude_deg, -180.0, 180.0, "geodetic_origin.longitude_deg");
+    sss::require_finite(east_m, "east_m");
+    sss::require_finite(north_m, "north_m");
     double m_lat = 0, m_lon = 0;
     sss::detail::geodetic_metres_per_radian(o.latitude_deg * pi_v<double> / 180.0, m_lat, m_lon);
-    return {o.latitude_deg + north_m / m_lat * 180.0 / pi_v<double>, o.longitude_deg + east_m / m_lon * 180.0 / pi_v<double>};
+    return {o.latitude_deg + north_m / m_lat * 180.0 / pi_v<double>,
+            normalised_longitude_deg(o.longitude_deg + east_m / m_lon * 180.0 / pi_v<double>)};
 }
 
-/// The inverse: world (east_m, north_m) of a geodetic position, written into `east_m`, `north_m`.
+/// The inverse: world (east_m, north_m) of a geodetic position, written into `east_m`, `north_m`; the difference of
+/// longitudes is taken the short way round (across the antimeridian where that is shorter).
 inline void from_geodetic(const geodetic_origin& o, const geodetic_position& p, double& east_m, double& north_m) {
     sss::require_in_range(o.latitude_deg, -89.0, 89.0, "geodetic_origin.latitude_deg");
+    sss::require_in_range(o.longitude_deg, -180.0, 180.0, "geodetic_origin.longitude_deg");
+    sss::require_finite(p.latitude_deg, "geodetic_position.latitude_deg");
+    sss::require_finite(p.longitude_deg, "geodetic_position.longitude_deg");
     double m_lat = 0, m_lon = 0;
     sss::detail::geodetic_metres_per_radian(o.latitude_deg * pi_v<double> / 180.0, m_lat, m_lon);
     north_m = (p.latitude_deg - o.latitude_deg) * pi_v<double> / 180.0 * m_lat;
-    east_m = (p.longitude_deg - o.longitude_deg) * pi_v<double> / 180.0 * m_lon;
+    east_m = std::remainder(p.longitude_deg - o.longitude_deg, 360.0) * pi_v<double> / 180.0 * m_lon;
 }
 
 } // namespace sss::io

@@ -13,10 +13,11 @@
 /// interval (s), the sound speed (m/s), the range of the last sample (m), the column layout, what the values are
 /// (`values`; the source level, dB, they are relative to; the receiver's stages applied to them in order, each
 /// {stage, parameters}: speckle, noise, a TVG's gain, none for the mean echo power), and the pose of every ping
-/// (time_s, x_m, y_m, z_m world metres; heading_deg clockwise from north, pitch_deg nose up, roll_deg starboard
-/// down).
+/// (time_s, x_m, y_m, z_m world metres; heading_deg clockwise from north in [0, 360), pitch_deg nose up, roll_deg
+/// starboard down).
 
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -101,7 +102,9 @@ template <Real T>
     for (const pose<T>& q : poses) {
         j.newline().begin_object();
         j.member("time_s", double(q.time_s)).member("x_m", double(q.position.x)).member("y_m", double(q.position.y));
-        j.member("z_m", double(q.position.z)).member("heading_deg", double(q.yaw_rad) * deg);
+        double heading = std::fmod(double(q.yaw_rad) * deg, 360.0); // in [0, 360): a turning towfish's yaw grows on
+        if (heading < 0.0) heading += 360.0;
+        j.member("z_m", double(q.position.z)).member("heading_deg", heading >= 360.0 ? 0.0 : heading);
         j.member("pitch_deg", double(q.pitch_rad) * deg).member("roll_deg", double(q.roll_rad) * deg);
         j.end_object();
     }

@@ -24,7 +24,8 @@
 /// x, y, z and at least one of time and ping are required; angles are in degrees unless the name ends in
 /// `_rad`. Unknown or repeated columns are errors (a misspelt column would otherwise be silently dropped).
 /// Every data row holds one finite number per column (finite in the scalar type read into: 1e39 is not a float;
-/// angles within 10^6 degrees), roll and pitch lie within 90 degrees of level (after wrapping
+/// angles within 10^6 degrees; in float, x and y within 131 km of the origin, where it holds them to 1.6 cm), roll
+/// and pitch lie within 90 degrees of level (after wrapping
 /// to (-180, 180] degrees), and the key (ping if present, else time) and the time strictly increase. Any fault throws sss::file_error naming the file and the line; nothing is returned
 /// partially loaded.
 
@@ -40,6 +41,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
 #include <vector>
 
 #include "sss/core/constants.hpp"
@@ -121,6 +123,17 @@ template <Real T>
                                                 (is_angle ? std::string("angles lie within 10^6 degrees")
                                                           : std::string("beyond the scalar type's range")) +
                                                 ")");
+            // Positions a float holds to a centimetre: within 2^17 m (131 km) of the world origin, where its spacing
+            // is 1.6 cm (at a UTM northing of 6.5e6 m it is 0.5 m, and a towfish would move in half-metre steps).
+            if constexpr (std::is_same_v<T, float>) {
+                if ((columns[i].which == d::column::x || columns[i].which == d::column::y) && !(std::abs(*v) < 131072.0))
+                    throw sss::detail::error_at(name, line_no, fields[i].column,
+                                                "column '" + std::string(d::column_name(columns[i].which)) + "': '" +
+                                                    std::string(fields[i].text) +
+                                                    "' lies 131 km or more from the world origin, where float holds "
+                                                    "positions to no better than 1.6 cm: read the trajectory in double, or "
+                                                    "give it from an origin near the survey");
+            }
             // Roll and pitch within 90 degrees of level once wrapped to (-180, 180] (a roll of 359 is -1): past that
             // the towfish would fly on its side or nose down, and its heading would lose its meaning.
             if (columns[i].which == d::column::roll || columns[i].which == d::column::pitch) {

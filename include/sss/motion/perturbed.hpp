@@ -101,6 +101,27 @@ public:
                 omega_ = sign * deg_to_rad(static_cast<double>(c.rate_deg_s));
             }
         }
+        // The towfish stays above z = 0 (as the motion concept asks) however it heaves.
+        sss::require(std::abs(static_cast<double>(p.heave_m.amplitude)) < static_cast<double>(p.altitude_m),
+                     "perturbed.heave_m.amplitude", "must be smaller than altitude_m: the towfish would heave to z <= 0");
+        if (p.yaw_follows_sway || p.pitch_follows_heave) {
+            // Pointing along the track needs a track: the swayed path's forward speed V - omega s stays positive
+            // (a sway beyond the turn's radius would reverse it and turn the heading round).
+            const double v = static_cast<double>(p.speed_mps);
+            const double slowest = v - std::abs(omega_) * std::abs(static_cast<double>(p.sway_m.amplitude));
+            sss::require(slowest > 0.0, p.yaw_follows_sway ? "perturbed.yaw_follows_sway" : "perturbed.pitch_follows_heave",
+                         "needs a forward speed: speed_mps > 0 and, in a turn, |sway_m.amplitude| below the turn's radius");
+            if (p.pitch_follows_heave) {
+                // The climb angle at most atan(max |dh/dt| / slowest) on top of the pitch oscillation stays short of 90.
+                const double climb = std::atan2(2.0 * pi_v<double> * std::abs(static_cast<double>(p.heave_m.amplitude)) /
+                                                    static_cast<double>(p.heave_m.period_s),
+                                                slowest);
+                sss::require(std::abs(static_cast<double>(p.pitch_deg.amplitude)) + climb * 180.0 / pi_v<double> < 90.0,
+                             "perturbed.pitch_follows_heave",
+                             "with pitch_deg.amplitude the climb of the heave (heave_m amplitude and period against the "
+                             "speed) would pitch the towfish 90 deg or more");
+            }
+        }
     }
 
     [[nodiscard]] const perturbed_params<T>& params() const noexcept { return p_; }

@@ -24,7 +24,9 @@
 /// - linear: piecewise linear;
 /// - cubic (default): piecewise cubic Hermite whose slope at each sample is that of the parabola through the
 ///   sample and its two neighbours (one-sided parabola at the ends; the chord with two samples). It passes
-///   through the samples, is C1, and reproduces quadratics exactly.
+///   through the samples, is C1, and reproduces quadratics exactly. The time's slopes are limited so that it
+///   increases between samples as at them (Fritsch & Carlson 1980), where a gap in the record would make the
+///   cubic run backwards.
 /// Output angles: yaw in [0, 2 pi), pitch and roll within 90 degrees of level, as the samples are (each taken
 /// modulo 2 pi): where a cubic between samples near 90 degrees overshoots (samples 0, 89, 89, 0 degrees reach 100),
 /// the angle is held just short of 90 degrees.
@@ -112,13 +114,16 @@ public:
         sss::require(std::isfinite(k0_) && k0_ >= key.front() && k0_ <= key.back(), "trajectory.ping_zero_at",
                              "must lie within the samples' keys");
         const double step = by_ping_ ? 1.0 : static_cast<double>(p.ping_interval_s);
-        // The tolerance absorbs the rounding of a ping interval given in T (e.g. 0.1f).
         const double span = (key.back() - k0_) / step;
-        const double tolerance = 8.0 * static_cast<double>(std::numeric_limits<T>::epsilon());
         // 2^53 pings: beyond it ping numbers are no longer exact in double (and the count would overflow).
         sss::require(span < 9007199254740992.0, by_ping_ ? "trajectory.ping" : "trajectory.time_s",
                              "the samples span more than 2^53 pings");
-        count_ = static_cast<std::size_t>(std::floor(span * (1.0 + tolerance) + tolerance)) + 1;
+        // Keyed by ping the count is exact. Keyed by time, two epsilons of T (relative) absorb the rounding of an
+        // interval given in T (0.1f lies 1.5e-8 above 0.1: 10 s of samples still hold ping 100) and of the division;
+        // an absolute tolerance would add pings beyond the samples to long surveys (up to 2^22 pings in float, 2^51
+        // in double, the last ping's key lies within a fraction of an interval of the samples' end).
+        const double tolerance = by_ping_ ? 0.0 : 2.0 * static_cast<double>(std::numeric_limits<T>::epsilon());
+        count_ = static_cast<std::size_t>(std::floor(span * (1.0 + tolerance))) + 1;
 
         // Position channels and their slopes (d/dkey).
         for (int c = 0; c < 3; ++c) {
@@ -147,7 +152,10 @@ public:
         std::vector<double> t(n);
         for (std::size_t i = 0; i < n; ++i)
             t[i] = by_ping_ ? (has_time_ ? s.time_s[i] : key[i] * static_cast<double>(p.ping_interval_s)) : key[i];
-        if (has_time_) time_ = make_channel(t, "trajectory.time_s");
+        if (has_time_) {
+            time_ = make_channel(t, "trajectory.time_s");
+            limit_to_increasing(time_);
+        }
 
         std::vector<double> roll(n, 0.0);
         if (!s.roll_rad.empty()) {
@@ -199,8 +207,11 @@ public:
             y -= sw * std::sin(yaw);
         }
         const vec3<T> position{static_cast<T>(x), static_cast<T>(y), static_cast<T>(z)};
+        // The heading in [0, 2 pi) in T too: a yaw just below 2 pi rounds up to it in float.
+        const T heading = static_cast<T>(wrap_two_pi(yaw));
         return make_pose(static_cast<T>(t), position, static_cast<T>(held_near_level(eval(roll_, k))),
-                         static_cast<T>(held_near_level(eval(pitch_, k))), static_cast<T>(wrap_two_pi(yaw)));
+                         static_cast<T>(held_near_level(eval(pitch_, k))),
+                         heading >= static_cast<T>(2.0 * pi_v<double>) ? T(0) : heading);
     }
 
 private:
@@ -288,6 +299,20 @@ private:
             m[n - 1] = (d1 * (2.0 * h1 + h0) - d0 * h1) / (h0 + h1);
         }
         return m;
+    }
+
+    /// Slopes of an increasing channel (the sample times) limited to [0, 3 min(d_left, d_right)], d the secants beside
+    /// each sample, so that the cubic between samples increases too (Fritsch & Carlson, SIAM J. Numer. Anal. 17(2),
+    /// 1980): the parabola's slope overshoots where the samples' spacing in time jumps (a gap in a record), and the
+    /// interpolated time would run backwards.
+    void limit_to_increasing(channel& c) const {
+        const std::size_t n = c.value.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            double bound = std::numeric_limits<double>::infinity();
+            if (i > 0) bound = std::min(bound, 3.0 * (c.value[i] - c.value[i - 1]) / (key_[i] - key_[i - 1]));
+            if (i + 1 < n) bound = std::min(bound, 3.0 * (c.value[i + 1] - c.value[i]) / (key_[i + 1] - key_[i]));
+            c.slope[i] = std::clamp(c.slope[i], 0.0, bound);
+        }
     }
 
     /// The largest magnitude of a sample value (m, rad or s): beyond it interpolation could overflow.
