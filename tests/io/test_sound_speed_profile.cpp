@@ -128,6 +128,17 @@ TEST_CASE("A bad CSV line raises file_error naming the file and the line") {
     CHECK(contains(e.what, "positive"));
     e = error_for("0,0\n");
     CHECK(e.line == 1);
+    // A column in km/s (or ft/s) is not a sound speed in water; knots a float's step apart overflow the gradient.
+    e = error_for("depth,speed\n0,1.500\n100,1.520\n");
+    CHECK(e.line == 2);
+    CHECK(contains(e.what, "in m/s?"));
+    CHECK(error_for("0,1500\n10,4921.3\n").line == 2);
+    const auto close = file_error_of([] {
+        std::istringstream in("0,1500\n1e-37,1600\n");
+        (void)read_sound_speed_csv<float>(in, "f.csv");
+    });
+    CHECK(close.line == 2);
+    CHECK(contains(close.what, "too close"));
     // Nothing to read.
     e = error_for("# nothing here\n\n");
     CHECK(e.file == "cast.csv");

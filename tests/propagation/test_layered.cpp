@@ -1122,3 +1122,62 @@ TEST_CASE("invalid layered parameters are rejected, naming the field") {
     p.reference_speed_mps = -3;
     CHECK(throws_naming(p, "layered.reference_speed_mps"));
 }
+
+TEST_CASE("a ray launched horizontally on a knot where the gradient does not change spreads as with no knot there") {
+    // 0.2 1/s from 0 to 100 m, given with and without a knot at 50 m; the ray leaves 50 m horizontally and bends up
+    // to a ceiling at 20 m. The knot made a piece of no length first, and the next piece's lead 0/0: spreading 0.
+    const layered<double> split(sound_speed_profile<double>({0, 50, 100}, {1500, 1510, 1520}), exact(100.0));
+    const layered<double> whole(sound_speed_profile<double>({0, 100}, {1500, 1520}), exact(100.0));
+    plane_scene<double> ceiling;
+    ceiling.d = 80; // world z of 20 m depth
+    for (double graze : {0.0, 1e-9, -1e-9}) {
+        CAPTURE(graze);
+        const ray<double> r{vec3<double>{0, 0, 50}, vec3<double>{std::cos(graze), 0, -std::sin(graze)}};
+        const auto a = split.trace_path(r, ceiling, 1.0), b = whole.trace_path(r, ceiling, 1.0);
+        REQUIRE(a);
+        REQUIRE(b);
+        CHECK(a->outgoing_spreading > 0.0);
+        CHECK(rel(a->outgoing_spreading, b->outgoing_spreading) < 1e-9);
+        CHECK(rel(a->result.spreading, b->result.spreading) < 1e-9);
+    }
+}
+
+TEST_CASE("at a caustic the tube is held to 30 dB of focusing: spreading bounded and rising towards it, never 0") {
+    // A tube with Q = 1300 m^2/s whose w = |sin_hit K + q lead| crosses 0: ray theory gives c^2 / (Q w), unbounded,
+    // and gave 0 where w is exactly 0. Held at w >= Q / 1000: at most 1000 c^2 / Q^2.
+    const ray_tube<double> tube{1500.0, 0.3, 1000.0, -1500.0, true};
+    const double cap = 1000.0 * 1500.0 * 1500.0 / (1300.0 * 1300.0);
+    CHECK(tube.outgoing_spreading(300.0, 0.3, 0.2) == doctest::Approx(cap).epsilon(1e-12));
+    double last = 0.0;
+    for (double off : {1e-2, 1e-4, 1e-6, 1e-9, 1e-12, 0.0}) {
+        const double s = tube.outgoing_spreading(300.0, 0.3, 0.2 + off);
+        CAPTURE(off);
+        CHECK(s <= cap * (1.0 + 1e-12));
+        CHECK(s >= last);
+        CHECK(1500.0 * 1500.0 * tube.inverse_qw(300.0, 0.3, 0.2 + off) == doctest::Approx(s).epsilon(1e-12));
+        last = s;
+    }
+    // Away from it, nothing changes: 1e-2 off is 22 dB below the hold.
+    CHECK(tube.outgoing_spreading(300.0, 0.3, 0.21) == doctest::Approx(1500.0 * 1500.0 / (1300.0 * 15.0)).epsilon(1e-12));
+}
+
+TEST_CASE("layered trace_many refuses too few slots, and a ray from no finite point, naming them") {
+    const layered<double> water(thermocline(), exact(60.0));
+    const scene::flat_seabed<double> seabed(0);
+    const std::vector<ray<double>> rays(3, launch<double>(60, 50, 20 * deg, 0.3));
+    std::vector<std::optional<path<double>>> paths(2);
+    try {
+        water.trace_many(std::span<const ray<double>>(rays), seabed, 1.0, std::span<std::optional<path<double>>>(paths));
+        FAIL("no exception");
+    } catch (const sss::invalid_parameter& e) {
+        CHECK(e.parameter() == "layered.trace_many.paths");
+    }
+    ray<double> bad = rays[0];
+    bad.origin.z = std::nan("");
+    try {
+        (void)water.trace(bad, seabed, 1.0);
+        FAIL("no exception");
+    } catch (const sss::invalid_parameter& e) {
+        CHECK(std::string(e.what()).find("must be finite") != std::string::npos);
+    }
+}

@@ -17,7 +17,8 @@
 /// UTF-8 byte order mark and Windows line ends are accepted, and a number may carry a leading '+'.
 ///
 /// Every data line must hold exactly two finite numbers; depths must increase strictly (within a
-/// section) and speeds be positive. Anything else throws sss::file_error naming the file (or the name
+/// section, and far enough apart for the gradient to be finite) and speeds lie within 1000 to 2500 m/s (sound in
+/// water; a column in km/s or ft/s is refused). Anything else throws sss::file_error naming the file (or the name
 /// given for a stream) and the 1-based line, and nothing is returned: a profile is only built once
 /// the whole input has been read and checked.
 ///

@@ -150,7 +150,8 @@ public:
     }
 
     /// The ray followed through the water until it meets the scene within one-way time t_max_s (s).
-    /// Throws sss::invalid_parameter ("ray.origin") for a ray starting above the sea surface.
+    /// Throws sss::invalid_parameter ("ray.origin") for a ray starting above the sea surface or not at a finite
+    /// point. A ray without a direction (zero or not finite) meets nothing.
     template <Scene S>
     [[nodiscard]] std::optional<path<T>> trace(const ray<T>& r, const S& scene, T t_max_s) const {
         std::optional<path<T>> out;
@@ -204,6 +205,8 @@ public:
     /// slots.
     template <Scene S>
     void trace_many(std::span<const ray<T>> rays, const S& scene, T t_max_s, std::span<std::optional<path<T>>> paths) const {
+        sss::require(paths.size() >= rays.size(), "layered.trace_many.paths",
+                     [&] { return "must hold a slot per ray (" + std::to_string(rays.size()) + "), got " + std::to_string(paths.size()); });
         constexpr std::size_t block = 16;
         const std::size_t n = rays.size();
         // From the steeper end (a column comes ordered by depression either way).
@@ -356,6 +359,8 @@ private:
         trace_start st;
         st.origin_z = origin_z;
         st.depth0 = p_.surface_z_m - origin_z;
+        if (!std::isfinite(origin_z))
+            throw invalid_parameter("ray.origin", "must be finite (world z " + std::to_string(origin_z) + ")");
         if (!(st.depth0 >= T(0)))
             throw invalid_parameter("ray.origin", "lies above the sea surface (world z " + std::to_string(origin_z) +
                                                       " > layered.surface_z_m " + std::to_string(p_.surface_z_m) + ")");
@@ -924,7 +929,7 @@ private:
             if (!(b > a)) continue;
             const T ca = l.speed_mps(a);
             const T e = l.gradient_per_s * (b - a) / ca; // c(b)/c(a) - 1
-            slowness += (b - a) / ca * (std::abs(e) < T(1e-4) ? T(1) - e / T(2) + e * e / T(3) : std::log1p(e) / e);
+            slowness += (b - a) / ca * detail::log1p_ratio(e);
         }
         return bottom / slowness;
     }

@@ -28,7 +28,12 @@
 /// so w stays finite for a horizontal launch and for a hit at a turning point. For a vertical ray (xi = 0)
 /// q is the limit integral of c dz over the piece. Isovelocity: q = c s per piece, so S_AB = 1/s^2 for path
 /// length s. A piece that starts horizontally on a layer boundary (a ray grazing a change of gradient: a shadow
-/// boundary, where neighbouring rays part) gives an infinitely wide tube: S_AB = 0. (ray_tube_q computes q.)
+/// boundary, where neighbouring rays part) gives an infinitely wide tube: S_AB = 0. A piece of no length (a ray
+/// launched horizontally on a knot, or crossing one) adds nothing and is not counted as the first. At a caustic
+/// (neighbouring rays crossing, w -> 0) ray theory's intensity grows without bound where the wave's stays finite
+/// (an Airy-function correction would need the frequency): the tube is held no narrower than 1/1000 of the
+/// spherical tube of the same Q, so that S_AB is at most 30 dB above c_A^2 / Q^2 (spherical spreading over the
+/// path in uniform water). (ray_tube_q computes q.)
 ///
 /// The echo needs the return leg's spreading S_BA, from 1 m off the hit back to the transducer. The tube
 /// formula for the reversed ray and xi c_A = cos(theta0), xi c_B = cos(theta_hit) give reciprocity
@@ -37,6 +42,7 @@
 ///
 /// which is also what pressure reciprocity says: the pressure-squared loss (c_B/c_A) S_AB is the same both ways.
 
+#include <algorithm>
 #include <cmath>
 
 #include "sss/core/types.hpp"
@@ -60,34 +66,41 @@ template <Real T> struct ray_tube {
     T sin_launch{};       ///< sin phi0 of the launch (signed, + down)
     T q_sum{};            ///< Q over the completed pieces (m^2/s)
     T k_sum{};            ///< sum of q_i sin phi0 / (sin phi_a,i sin phi_b,i) over the completed pieces (m^2/s)
-    bool started{false};  ///< a piece has been completed
+    bool started{false};  ///< a piece of some length has been completed
 
-    /// Adds a completed piece: its q and the signed sines of its inclination at start and end.
+    /// The most a tube may focus: w >= Q / max_focusing (see the file comment; 30 dB).
+    static constexpr T max_focusing = T(1000);
+
+    /// Adds a completed piece: its q and the signed sines of its inclination at start and end. A piece of no length
+    /// (q = 0) adds nothing: the next piece starts where the ray started, as the first.
     void add_piece(T q, T sin_start, T sin_end) noexcept {
-        if (q != T(0)) {
-            const T lead = started ? sin_launch / sin_start : T(1);
-            q_sum += q;
-            k_sum += q * lead / sin_end;
-        }
+        if (q == T(0)) return;
+        const T lead = started ? sin_launch / sin_start : T(1);
+        q_sum += q;
+        k_sum += q * lead / sin_end;
         started = true;
     }
 
     /// 1/(Q w) at a hit inside the current piece (arguments as for outgoing_spreading): S_AB = c_A^2/(Q w) and, by
     /// reciprocity, S_BA = c_B^2/(Q w) with c_B the speed at the hit; one division for both. Not finite where Q w
-    /// vanishes or is undefined, where outgoing_spreading gives 0 (callers do the same).
+    /// is undefined, where outgoing_spreading gives 0 (callers do the same); w held at least Q / max_focusing.
     [[nodiscard]] T inverse_qw(T q_last, T sin_start, T sin_hit) const noexcept {
-        // w = |sin_hit K + q_last sin_launch / sin_start|, the division folded into the one that inverts Q w.
-        if (!started) return T(1) / ((q_sum + q_last) * std::abs(sin_hit * k_sum + q_last));
-        return std::abs(sin_start) / ((q_sum + q_last) * std::abs(sin_hit * k_sum * sin_start + q_last * sin_launch));
+        // w = den / num, den = |sin_hit K sin_start + q_last sin_launch| and num = |sin_start| once started: the
+        // division by sin_start folded into the one that inverts Q w.
+        const T q = q_sum + q_last;
+        const T num = started ? std::abs(sin_start) : T(1);
+        T den = started ? std::abs(sin_hit * k_sum * sin_start + q_last * sin_launch) : std::abs(sin_hit * k_sum + q_last);
+        den = std::max(den, num * q / max_focusing);
+        return num / (q * den);
     }
 
     /// S_AB at a hit inside the current piece, which has q = q_last so far, started at sin phi = sin_start and
     /// reaches the hit at sin phi = sin_hit: intensity relative to that at 1 m from the source. 0 where the tube
-    /// is infinitely wide (see the file comment).
+    /// is infinitely wide, at most max_focusing c_A^2 / Q^2 at a caustic (see the file comment).
     [[nodiscard]] T outgoing_spreading(T q_last, T sin_start, T sin_hit) const noexcept {
         const T lead = started ? sin_launch / sin_start : T(1);
-        const T w = std::abs(sin_hit * k_sum + q_last * lead);
         const T q = q_sum + q_last;
+        const T w = std::max(std::abs(sin_hit * k_sum + q_last * lead), q / max_focusing);
         const T s = source_speed_mps * source_speed_mps / (q * w);
         return std::isfinite(s) ? s : T(0);
     }

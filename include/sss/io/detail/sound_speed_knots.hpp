@@ -66,11 +66,21 @@ template <Real T> struct knot_list {
         if (!(speed_mps > T(0))) // a positive double that underflows T
             throw sss::detail::error_at(name, line.number, fields[1].column,
                                         "speed " + quote(fields[1].text) + " must be a positive number of m/s");
+        // Sound in water travels at 1400 to 1600 m/s; outside 1000 to 2500 the column is in other units (km/s, ft/s).
+        if (!(*c >= 1000.0 && *c <= 2500.0))
+            throw sss::detail::error_at(name, line.number, fields[1].column,
+                                        "speed " + quote(fields[1].text) +
+                                            " m/s is not a sound speed in water (1000 to 2500 m/s): is the column in m/s?");
         if (!depth.empty() && !(depth_m > depth.back())) {
             throw sss::detail::error_at(name, line.number, fields[0].column,
                              "depth " + quote(fields[0].text) + " does not increase: the previous depth is " +
                                  shortest(depth.back()) + " m (depths must increase strictly)");
         }
+        // The gradient to the previous knot must be finite in T (knots a float's step apart overflow it).
+        if (!depth.empty() && !std::isfinite((speed_mps - speed.back()) / (depth_m - depth.back())))
+            throw sss::detail::error_at(name, line.number, fields[0].column,
+                                        "depth " + quote(fields[0].text) + " lies too close to the previous depth (" +
+                                            shortest(depth.back()) + " m): the speed gradient between them overflows");
         if (depth.empty()) first_line = line.number;
         depth.push_back(depth_m);
         speed.push_back(speed_mps);
