@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,10 @@ namespace {
 using sss_test::scratch_dir;
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 std::string read_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -150,6 +156,33 @@ TEST_CASE("NODATA in an ESRI ASCII grid is an error naming its line, unless a fi
     sss::io::esri_ascii_options<double> fill;
     fill.nodata_fill_m = -50.0;
     CHECK(sss::io::read_esri_ascii<double>(path, fill).height_m(1, 1) == -50.0);
+    // NaN as the NODATA value (GDAL's for a grid whose no-data cells are NaN): the same, the cell named or filled.
+    write_text(path, "ncols 2\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value nan\n1 2\n3 nan\n5 6\n");
+    CHECK(error_of([&] { (void)sss::io::read_esri_ascii<double>(path); }).line() == 8);
+    CHECK(sss::io::read_esri_ascii<double>(path, fill).height_m(1, 1) == -50.0);
+    CHECK(sss::io::read_esri_ascii<double>(path, fill).height_m(0, 0) == 5.0);
+}
+
+TEST_CASE("A raw height file whose size differs from its sidecar's grid is named before it is read") {
+    scratch_dir d;
+    const std::string path = d.file("big.raw");
+    sss::io::write_raw_f32(path, sss::scene::height_field<float>({.nx = 2, .ny = 2, .cell_m = 1.0f, .heights_m = {1, 2, 3, 4}}));
+    // A sparse 4 GiB file in its place: its size names it at once (it was read whole first, 4 GiB of memory).
+    std::filesystem::resize_file(path, std::uintmax_t(1) << 32);
+    const auto e = error_of([&] { (void)sss::io::read_raw_f32<float>(path); });
+    CHECK(e.file() == path);
+    CHECK(e.byte_offset() == 16);
+    CHECK(contains(e.what(), "4294967296 bytes"));
+    std::filesystem::remove(path);
+    // The banded writer asks of its grid what the reader will: a NaN origin leaves the old files as they were.
+    sss::io::write_raw_f32(path, sss::scene::height_field<float>({.nx = 2, .ny = 2, .cell_m = 1.0f, .heights_m = {1, 2, 3, 4}}));
+    const std::string before = read_text(path);
+    sss::io::raw_grid g{.nx = 2, .ny = 2, .cell_m = 1.0, .origin_x_m = std::nan("")};
+    CHECK_THROWS_AS(sss::io::write_raw_f32_by_rows(path, g, 1, [](std::size_t, std::size_t, std::span<float> out) {
+                        for (float& v : out) v = 0.0f;
+                    }),
+                    sss::invalid_parameter);
+    CHECK(read_text(path) == before);
 }
 
 TEST_CASE("Malformed ESRI ASCII grids are rejected naming the file and line") {

@@ -66,6 +66,21 @@ TEST_CASE("a seabed written band by band has the same bytes whatever the band he
     CHECK(ms < 3.0 * s.variance_m2());
 }
 
+TEST_CASE("a wave-sum row gives each vertex the same bits whatever its width (columns a block at a time)") {
+    // 2500 vertices a row spans three blocks of 1024 columns; each vertex alone (a row of one, at its own x) must
+    // hold the same float, so rows of any width, and any split of a wide seabed, agree.
+    const auto s = surface();
+    constexpr std::size_t nx = 2500;
+    std::vector<float> wide(2 * nx), one(2);
+    s.fill_rows(nx, 7, 2, 0.25, -20.0, 5.0, std::span<float>(wide));
+    std::size_t differ = 0;
+    for (std::size_t ix : {std::size_t(0), std::size_t(1023), std::size_t(1024), std::size_t(2047), std::size_t(2048), nx - 1}) {
+        s.fill_rows(1, 7, 2, 0.25, -20.0 + static_cast<double>(ix) * 0.25, 5.0, std::span<float>(one));
+        differ += (one[0] != wide[ix]) + (one[1] != wide[nx + ix]);
+    }
+    CHECK(differ == 0);
+}
+
 TEST_CASE("a memory-mapped seabed renders the same pings as the same seabed in memory") {
     write("seabed.raw", 32);
     const auto mapped = sss::io::map_raw_f32("seabed.raw");

@@ -321,3 +321,24 @@ TEST_CASE("ripples are reproducible from their seed and reject bad parameters by
     q.height_m = -1;
     expect(q, "add_ripples.params.height_m");
 }
+
+TEST_CASE("a phase of pi/2 moves the crests a quarter wavelength against n; a 1 x 1 grid stays finite") {
+    // Crests running east: n points south (-y), so the crests move north (+y) by lambda / 4 = 10 cells of 1.25 cm.
+    ripple_params<double> p;
+    p.wavelength_m = 0.5;
+    p.crest_heading_deg = 90.0;
+    const auto base = ripple_field<double>(4, 200, 0.0125, p, 3);
+    p.phase_rad = sss::pi_v<double> / 2.0;
+    const auto moved = ripple_field<double>(4, 200, 0.0125, p, 3);
+    double worst = 0.0;
+    for (std::size_t iy = 10; iy < 200; ++iy)
+        for (std::size_t ix = 0; ix < 4; ++ix)
+            worst = std::max(worst, std::abs(moved.values[iy * 4 + ix] - base.values[(iy - 10) * 4 + ix]));
+    CHECK(worst < 1e-12);
+    // One cell holds no mode of the crests' fractal displacement but the mean: a flat field, not 0 x infinity.
+    ripple_params<double> q;
+    q.perturbation_m = 0.01;
+    q.height_variation = 0.3;
+    const auto one = ripple_field<double>(1, 1, 0.1, q, 1);
+    CHECK(std::isfinite(one.values[0]));
+}

@@ -5,8 +5,8 @@
 /// - ESRI ASCII grid (.asc): a text header (ncols, nrows, xllcorner or xllcenter, yllcorner or yllcenter,
 ///   cellsize, optional NODATA_value; keywords in any case) and nrows x ncols values, rows from north to
 ///   south. Each value is taken as the height of one vertex at its cell's centre, so vertex (0, 0) lies at
-///   (xllcenter, yllcenter) = (xllcorner + cellsize/2, yllcorner + cellsize/2). A NODATA value is an error
-///   unless a fill height is given. The writer writes xllcenter/yllcenter (exact, no half-cell arithmetic)
+///   (xllcenter, yllcenter) = (xllcorner + cellsize/2, yllcorner + cellsize/2). A NODATA value (NaN too, as
+///   GDAL writes it) is an error unless a fill height is given. The writer writes xllcenter/yllcenter (exact, no half-cell arithmetic)
 ///   and the shortest decimal form that reads back to the same value.
 /// - Raw float32: `file` holds nx * ny IEEE-754 binary32 values, little-endian, row-major with row 0 the
 ///   southern row (heights[iy * nx + ix]), nothing else; `file + ".txt"` is a text sidecar, one `key value`
@@ -112,7 +112,9 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
             continue;
         }
         const auto v = sss::detail::parse_double(val.text);
-        if (!v || !std::isfinite(*v))
+        // NODATA_value may be NaN (GDAL writes "nan" for a grid whose no-data cells are NaN); the rest are finite.
+        const bool nan_nodata = k == "nodata_value" && v && std::isnan(*v);
+        if (!v || (!std::isfinite(*v) && !nan_nodata))
             throw fail(val.line,
                        "'" + std::string(key.text) + "' must be a finite number, got '" + std::string(val.text) + "'");
         if (k == "xllcorner" || k == "xllcenter") {
@@ -163,7 +165,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
                 throw fail(t.line, "'" + std::string(t.text) + "' is not a number (row " + std::to_string(row) +
                                        ", column " + std::to_string(ix) + ")");
             std::optional<T> h;
-            if (nodata && *v == *nodata) {
+            if (nodata && (*v == *nodata || (std::isnan(*nodata) && std::isnan(*v)))) {
                 if (!options.nodata_fill_m)
                     throw fail(t.line, "NODATA at row " + std::to_string(row) + ", column " + std::to_string(ix) +
                                            " (a height field needs every vertex)");
@@ -363,8 +365,15 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_raw_f32(const std::s
     const raw_grid& g = sidecar.grid;
     if (checked_mul(g.nx, g.ny, "nx * ny") > max_elements)
         throw file_error(side_path, 0, "grid too large: nx * ny exceeds sss::max_elements");
-    const std::string data = sss::detail::read_file(path);
     const std::size_t n = g.nx * g.ny;
+    // The size first: a wrong file beside the sidecar (a survey's 50 GB instead of its tile) is named, not read.
+    std::error_code size_error;
+    if (const auto size = std::filesystem::file_size(path, size_error); !size_error && size != 4 * n)
+        throw file_error(path, 0,
+                         "holds " + std::to_string(size) + " bytes, the sidecar's " + std::to_string(g.nx) + " x " +
+                             std::to_string(g.ny) + " grid needs " + std::to_string(4 * n),
+                         static_cast<std::size_t>(std::min<std::uintmax_t>(size, 4 * n)));
+    const std::string data = sss::detail::read_file(path);
     if (data.size() != 4 * n)
         throw file_error(path, 0,
                          "holds " + std::to_string(data.size()) + " bytes, the sidecar's " + std::to_string(g.nx) +

@@ -135,8 +135,13 @@ private:
 /// fills rows [iy0, iy0 + rows) row-major (nx * rows values). band_rows >= 1.
 template <class Fill>
 void write_raw_f32_by_rows(const std::string& path, const raw_grid& g, std::size_t band_rows, Fill&& fill) {
+    // What read_raw_sidecar will ask of the sidecar, before either file is touched.
     sss::require(g.nx >= 2 && g.ny >= 2, "write_raw_f32_by_rows.grid", "needs nx, ny >= 2");
+    sss::require(g.nx <= (std::size_t(1) << 30) && g.ny <= (std::size_t(1) << 30), "write_raw_f32_by_rows.grid",
+                 "needs nx, ny <= 2^30");
     sss::require(g.cell_m > 0 && std::isfinite(g.cell_m), "write_raw_f32_by_rows.grid.cell_m", "must be > 0");
+    sss::require_finite(g.origin_x_m, "write_raw_f32_by_rows.grid.origin_x_m");
+    sss::require_finite(g.origin_y_m, "write_raw_f32_by_rows.grid.origin_y_m");
     sss::require(band_rows >= 1, "write_raw_f32_by_rows.band_rows", "must be >= 1");
     sss::detail::atomic_file out(path);
     sss::detail::atomic_file side(raw_sidecar_path(path));

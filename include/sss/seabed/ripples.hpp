@@ -50,7 +50,7 @@ template <Real T> struct ripple_params {
     T height_m = T(0.05);            ///< crest-to-trough height H (m), >= 0
     T crest_heading_deg = T(90);     ///< direction along the crests, clockwise from north (deg); 90: crests run east
     T symmetry_index = T(1);         ///< RSI = stoss length / lee length, > 0 (1: symmetric)
-    T phase_rad = T(0);              ///< shift of the crests along n, as a phase (rad)
+    T phase_rad = T(0);              ///< phase added to s (rad): the crests move by lambda phase / (2 pi) against n
     T sinuosity_m = T(0);            ///< amplitude of the regular crest meander along n (m), >= 0
     T sinuosity_wavelength_m = T(0); ///< along-crest wavelength of the meander (m), > 0 if sinuosity_m > 0
     T perturbation_m = T(0);         ///< RMS fractal displacement of the crests along n (m), >= 0

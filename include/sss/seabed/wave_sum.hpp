@@ -90,28 +90,36 @@ public:
                    std::span<T> out) const {
         sss::require(out.size() == nx * rows, "wave_sum_surface.fill_rows.out", "must hold nx * rows values");
         const std::size_t n = waves_.size();
-        std::vector<double> cx(n * nx), sx(n * nx), cy(n), sy(n), row(nx);
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t ix = 0; ix < nx; ++ix) {
-                const double a = waves_[i].kx * (x0_m + static_cast<double>(ix) * cell_m);
-                cx[i * nx + ix] = waves_[i].amplitude * std::cos(a);
-                sx[i * nx + ix] = waves_[i].amplitude * std::sin(a);
+        // Columns a block at a time, so that the waves' x factors take 2 n block doubles (16 MiB at 1024 waves)
+        // whatever the row's width; each vertex's sum runs over the waves in the same order, so the bits are the
+        // same for any block.
+        constexpr std::size_t block = 1024;
+        const std::size_t width = std::min(nx, block);
+        std::vector<double> cx(n * width), sx(n * width), cy(n), sy(n), row(width);
+        for (std::size_t x0 = 0; x0 < nx; x0 += block) {
+            const std::size_t w = std::min(block, nx - x0);
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t ix = 0; ix < w; ++ix) {
+                    const double a = waves_[i].kx * (x0_m + static_cast<double>(x0 + ix) * cell_m);
+                    cx[i * w + ix] = waves_[i].amplitude * std::cos(a);
+                    sx[i * w + ix] = waves_[i].amplitude * std::sin(a);
+                }
+            for (std::size_t r = 0; r < rows; ++r) {
+                const double y = y0_m + static_cast<double>(iy0 + r) * cell_m;
+                for (std::size_t i = 0; i < n; ++i) {
+                    const double b = waves_[i].ky * y + waves_[i].phase;
+                    cy[i] = std::cos(b);
+                    sy[i] = std::sin(b);
+                }
+                std::fill(row.begin(), row.begin() + static_cast<std::ptrdiff_t>(w), 0.0);
+                for (std::size_t i = 0; i < n; ++i) {
+                    const double* c = cx.data() + i * w;
+                    const double* s = sx.data() + i * w;
+                    const double ci = cy[i], si = sy[i];
+                    for (std::size_t ix = 0; ix < w; ++ix) row[ix] += c[ix] * ci - s[ix] * si;
+                }
+                for (std::size_t ix = 0; ix < w; ++ix) out[r * nx + x0 + ix] = static_cast<T>(row[ix]);
             }
-        for (std::size_t r = 0; r < rows; ++r) {
-            const double y = y0_m + static_cast<double>(iy0 + r) * cell_m;
-            for (std::size_t i = 0; i < n; ++i) {
-                const double b = waves_[i].ky * y + waves_[i].phase;
-                cy[i] = std::cos(b);
-                sy[i] = std::sin(b);
-            }
-            std::fill(row.begin(), row.end(), 0.0);
-            for (std::size_t i = 0; i < n; ++i) {
-                const double* c = cx.data() + i * nx;
-                const double* s = sx.data() + i * nx;
-                const double ci = cy[i], si = sy[i];
-                for (std::size_t ix = 0; ix < nx; ++ix) row[ix] += c[ix] * ci - s[ix] * si;
-            }
-            for (std::size_t ix = 0; ix < nx; ++ix) out[r * nx + ix] = static_cast<T>(row[ix]);
         }
     }
 

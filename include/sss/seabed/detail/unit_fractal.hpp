@@ -22,6 +22,10 @@
 
 namespace sss::seabed::detail {
 
+/// The factor that gives a field of band variance `band` unit RMS; 0 where the grid holds no mode but the mean (a
+/// 1 x 1 grid: its band is empty, and the field is flat).
+[[nodiscard]] inline double unit_scale(double band) noexcept { return band > 0.0 ? 1.0 / std::sqrt(band) : 0.0; }
+
 /// A fractal field of unit expected RMS (power law of exponent gamma, outer scale l0_m; w2 scaled so
 /// that the band variance is 1), in double: the shape of perturbation, warp and partition fields.
 template <Real T> [[nodiscard]] raster<double> unit_fractal_field(std::size_t nx, std::size_t ny, T cell_m, T gamma,
@@ -29,7 +33,7 @@ template <Real T> [[nodiscard]] raster<double> unit_fractal_field(std::size_t nx
     fractal_params<double> f;
     f.spectrum = power_law_spectrum<double>{1.0, static_cast<double>(gamma), static_cast<double>(l0_m)};
     raster<double> g = fractal_surface<double>(nx, ny, static_cast<double>(cell_m), f, seed);
-    const double scale = 1.0 / std::sqrt(band_variance_m2(f, nx, ny, static_cast<double>(cell_m)));
+    const double scale = unit_scale(band_variance_m2(f, nx, ny, static_cast<double>(cell_m)));
     for (double& v : g.values) v *= scale;
     return g;
 }
@@ -66,14 +70,14 @@ template <Real S, Real T>
                                      sa.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
                                      sb.set_pair(m.i, m.j, m.pi, m.pj, v[1]);
                                  });
-        inverse_half_spectrum(sb, 1.0 / std::sqrt(band));
+        inverse_half_spectrum(sb, unit_scale(band));
     } else {
         band = draw_coefficients(nx, ny, dx, f, std::array<rng*, 1>{&ga},
                                  [&](const mode_pair& m, const std::array<std::complex<double>, 1>& v) {
                                      sa.set_pair(m.i, m.j, m.pi, m.pj, v[0]);
                                  });
     }
-    inverse_half_spectrum(sa, 1.0 / std::sqrt(band));
+    inverse_half_spectrum(sa, unit_scale(band));
     return out;
 }
 
