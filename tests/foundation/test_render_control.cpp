@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -211,4 +212,41 @@ TEST_CASE("under an array whose columns are all traced before any is divided, a 
     } catch (const sss::render_cancelled& e) {
         CHECK(e.done() == 2);
     }
+}
+
+TEST_CASE("a loop nested through another pool's loop back into the first pool runs on its thread, not deadlocked") {
+    // A's loop starts B's, whose workers start A's again: A's loop lock is held by A's own loop up the chain.
+    sss::thread_pool a(2), b(2);
+    std::vector<std::atomic<int>> calls(4 * 4 * 4);
+    a.for_each(4, [&](std::size_t i) {
+        b.for_each(4, [&](std::size_t j) {
+            a.for_each(4, [&](std::size_t k) { calls[(i * 4 + j) * 4 + k].fetch_add(1); });
+        });
+    });
+    for (const auto& c : calls) CHECK(c.load() == 1);
+}
+
+TEST_CASE("a progress callback that throws ends the render with its error and is not called again") {
+    const sim_t sim = make_sim();
+    const sss::scene::flat_seabed<float> seabed;
+    sss::thread_pool pool(2);
+    std::atomic<int> calls_after{0};
+    std::atomic<bool> thrown{false};
+    try {
+        (void)sim.render(seabed, 0, 24,
+                         sss::render_control{.threads = 2, .pool = &pool, .progress = [&](const sss::render_progress& p) {
+                                                 if (thrown.load()) calls_after.fetch_add(1);
+                                                 if (p.done == 3) {
+                                                     thrown.store(true);
+                                                     throw std::runtime_error("display closed");
+                                                 }
+                                                 return true;
+                                             }});
+        FAIL("no exception");
+    } catch (const std::runtime_error& e) {
+        CHECK(std::string(e.what()) == "display closed");
+    }
+    CHECK(calls_after.load() == 0);
+    // The pool and the simulator render whole afterwards.
+    CHECK(sim.render(seabed, 0, 6, sss::render_control{.threads = 2, .pool = &pool}).values == sim.render(seabed, 0, 6, 1).values);
 }

@@ -104,7 +104,8 @@ private:
 
 /// Calls work(i) for every i in [0, count) as simulator::render calls its pings (the file comment): on control's
 /// pool and threads, one i at a time per thread, with control's progress, cancellation and stop; throws
-/// render_cancelled when the callback cancels or the stop flag is set, and rethrows the first exception work throws.
+/// render_cancelled when the callback cancels or the stop flag is set, and rethrows the first exception work or the
+/// callback throws (then the pings under way stop at their next column, and the callback is not called again).
 /// work(i) must write only what belongs to i (calls for different i overlap); a simulator's traces within it stop
 /// between columns when the render is stopped, by throwing detail::ping_stopped, which work must let pass (a
 /// catch (...) in it that does not rethrow would count a stopped ping as done).
@@ -133,13 +134,30 @@ template <class Work> void run_pings(std::size_t count, const render_control& co
                 const detail::ping_stop_scope scope({&cancel_flag, control.stop});
                 work(i);
             } catch (const detail::ping_stopped&) {
-                if (cancel_flag.load(std::memory_order_relaxed)) return; // cancelled by progress: dropped
+                if (cancel_flag.load(std::memory_order_relaxed)) return; // cancelled or failed elsewhere: dropped
                 throw stopped(); // stopped by the flag (even if it was cleared since)
+            } catch (...) { // a failed ping: the render fails with its error, the pings under way stop, none reports
+                {
+                    const std::lock_guard<std::mutex> hold(report_lock);
+                    cancelled = true;
+                }
+                cancel_flag.store(true, std::memory_order_relaxed);
+                throw;
             }
             const std::lock_guard<std::mutex> hold(report_lock);
             if (cancelled) return; // finished after the cancellation: dropped
             ++done;
-            if (progress && !progress(render_progress{done, count})) {
+            bool go_on = true;
+            if (progress) {
+                try {
+                    go_on = progress(render_progress{done, count});
+                } catch (...) { // a callback that throws ends the render as one that returns false, with its error
+                    cancelled = true;
+                    cancel_flag.store(true, std::memory_order_relaxed);
+                    throw;
+                }
+            }
+            if (!go_on) {
                 cancelled = true;
                 cancel_flag.store(true, std::memory_order_relaxed);
                 throw render_cancelled(done, count); // for_each hands out no further ping

@@ -9,8 +9,9 @@
 ///
 /// Errors: the first exception thrown by f is rethrown by for_each once every thread has stopped; the other
 /// threads take no new index after it. One loop runs at a time per pool (concurrent calls wait their turn); a loop
-/// started from inside a loop of the same pool (f calling for_each, directly or through a library call) runs on
-/// the calling thread alone, rather than waiting for itself.
+/// started from inside a loop of the same pool (f calling for_each, directly or through a library call, or through
+/// a loop of another pool that f started: A's loop calling B's calling A's) runs on the calling thread alone,
+/// rather than waiting for itself.
 
 #include <algorithm>
 #include <atomic>
@@ -54,12 +55,13 @@ public:
         if (count == 0) return;
         unsigned want = threads == 0 ? size_ : threads;
         want = static_cast<unsigned>(std::min<std::size_t>(want, count));
-        if (want <= 1 || inside() == this) {
+        if (want <= 1 || within(this)) {
             for (std::size_t i = 0; i < count; ++i) f(i);
             return;
         }
         const std::lock_guard<std::mutex> one_loop(loop_lock_);
         job j;
+        j.caller = current(); // the loops the caller runs in, for the workers to know too
         j.count = count;
         j.context = &f;
         j.call = [](void* ctx, std::size_t i) { (*static_cast<std::remove_reference_t<F>*>(ctx))(i); };
@@ -84,7 +86,14 @@ public:
     }
 
 private:
+    /// A loop a thread runs in, and the loops its caller ran in (a chain on the threads' stacks).
+    struct loop_chain {
+        const thread_pool* pool;
+        const loop_chain* caller;
+    };
+
     struct job {
+        const loop_chain* caller = nullptr;
         std::size_t count = 0;
         void* context = nullptr;
         void (*call)(void*, std::size_t) = nullptr;
@@ -97,18 +106,25 @@ private:
         return threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
     }
 
-    /// The pool whose loop the calling thread is running, if any.
-    static const thread_pool*& inside() noexcept {
-        thread_local const thread_pool* pool = nullptr;
-        return pool;
+    /// The loops the calling thread runs in (innermost first), through the threads that started them; null outside.
+    static const loop_chain*& current() noexcept {
+        thread_local const loop_chain* chain = nullptr;
+        return chain;
+    }
+    /// True when the calling thread runs, directly or through the loops that started its own, in a loop of `pool`.
+    static bool within(const thread_pool* pool) noexcept {
+        for (const loop_chain* c = current(); c != nullptr; c = c->caller)
+            if (c->pool == pool) return true;
+        return false;
     }
 
     void run(job& j) const noexcept {
-        const thread_pool* const outer = inside();
-        inside() = this;
+        const loop_chain* const outer = current();
+        const loop_chain here{this, j.caller};
+        current() = &here;
         struct restore {
-            const thread_pool* outer;
-            ~restore() { inside() = outer; }
+            const loop_chain* outer;
+            ~restore() { current() = outer; }
         } const back{outer};
         for (;;) {
             const std::size_t i = j.next.fetch_add(1, std::memory_order_relaxed);

@@ -39,11 +39,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <optional>
-#include <thread>
 #include <vector>
 
 #include "sss/core/checked_size.hpp"
@@ -282,34 +279,18 @@ template <class Sim, class Seabed>
 template <class Sim, class Seabed>
 [[nodiscard]] label_image label_render(const Sim& sim, const scene::scene<Seabed>& sc, std::size_t first, std::size_t count,
                                        const label_params& lp = {}) {
+    detail::check_label_params(lp);
+    sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first", "first + count overflows the ping index");
     label_image img;
     img.pings = count;
     img.samples = sim.samples_per_line();
     img.dt_s = sim.dt_s();
-    img.values.resize(count * img.width());
-    auto work = [&](std::size_t i) {
+    img.values.resize(checked_elements(count, img.width(), "render.count"));
+    // On the shared pool, one ping at a time per thread, as render (the rows do not depend on the threads).
+    run_pings(count, render_control{.threads = lp.threads}, [&](std::size_t i) {
         const auto p = sim.motion().pose_at(first + i);
         detail::set_label_row(img, i, label_line(sim, sc, p, side::port, lp), label_line(sim, sc, p, side::starboard, lp));
-    };
-    unsigned threads = lp.threads != 0 ? lp.threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-    if (threads <= 1) {
-        for (std::size_t i = 0; i < count; ++i) work(i);
-        return img;
-    }
-    std::vector<std::thread> pool;
-    std::exception_ptr failure;
-    std::mutex failure_lock;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back([&, t] {
-        try {
-            for (std::size_t i = t; i < count; i += threads) work(i);
-        } catch (...) {
-            const std::lock_guard<std::mutex> hold(failure_lock);
-            if (!failure) failure = std::current_exception();
-        }
     });
-    for (auto& th : pool) th.join();
-    if (failure) std::rethrow_exception(failure);
     return img;
 }
 
@@ -318,6 +299,26 @@ template <Real T> struct labelled_waterfall {
     waterfall<T> image;
     label_image labels;
 };
+
+namespace detail {
+
+/// Ping `ping`'s image and labels, into row `row` of `out` (sized for it): render_labelled's work for one ping, one
+/// trace per side for both.
+template <class Sim, class Seabed>
+void labelled_ping(const Sim& sim, const scene::scene<Seabed>& sc, std::size_t ping, std::size_t row,
+                   labelled_waterfall<typename Sim::value_type>& out, const label_params& lp) {
+    using T = typename Sim::value_type;
+    const std::size_t n = sim.samples_per_line();
+    label_accumulator port(n, sim.dt_s()), starboard(n, sim.dt_s());
+    out.image.set_row(row, sim.ping(sc, ping, [&](side sd, const tube_echo<T>& e) {
+        label_scene_echo(sd == side::port ? port : starboard, e);
+    }));
+    const auto p = sim.motion().pose_at(ping);
+    set_label_row(out.labels, row, finish_labels(sim, sc, p, side::port, port, lp),
+                  finish_labels(sim, sc, p, side::starboard, starboard, lp));
+}
+
+} // namespace detail
 
 /// simulator::render and label_render of pings [first, first + count) in one pass: each side of each ping is
 /// traced once through the scene, and its echoes make both the line and the labels' first pass (file comment);
@@ -340,15 +341,7 @@ template <class Sim, class Seabed>
     out.image.dt_s = out.labels.dt_s = sim.dt_s();
     out.image.values.assign(checked_elements(count, out.image.width(), "render.count"), T(0));
     out.labels.values.resize(out.image.values.size());
-    run_pings(count, control, [&](std::size_t i) {
-        detail::label_accumulator port(n, sim.dt_s()), starboard(n, sim.dt_s());
-        out.image.set_row(i, sim.ping(sc, first + i, [&](side sd, const tube_echo<T>& e) {
-            detail::label_scene_echo(sd == side::port ? port : starboard, e);
-        }));
-        const auto p = sim.motion().pose_at(first + i);
-        detail::set_label_row(out.labels, i, detail::finish_labels(sim, sc, p, side::port, port, lp),
-                              detail::finish_labels(sim, sc, p, side::starboard, starboard, lp));
-    });
+    run_pings(count, control, [&](std::size_t i) { detail::labelled_ping(sim, sc, first + i, i, out, lp); });
     return out;
 }
 

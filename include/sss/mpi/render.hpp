@@ -5,8 +5,10 @@
 ///
 /// Work split. The pings [first, first + count) are cut into chunks of `chunk_pings` consecutive pings, and chunk k
 /// goes to rank k mod size: interleaved, so that slow stretches of a line (rough ground, objects, turns) are shared
-/// among all ranks rather than falling to one. Each rank renders its chunks with simulator::render on its own
-/// threads (its pool), then the root gathers every rank's rows (MPI_Gatherv) and puts them in ping order. A ping
+/// among all ranks rather than falling to one. Each rank renders all its pings as one job on its own threads (its
+/// pool, one ping at a time per thread, as simulator::render), then the root gathers every rank's rows
+/// (MPI_Gatherv) and puts them in ping order. A rank that fails (a bad ping, memory) does not leave the others
+/// waiting: the ranks agree on failure before the gather, and every rank throws (the failed one its own error). A ping
 /// depends only on its index, never on which process renders it or with what, so the root's waterfall has the same
 /// bytes as one process's simulator::render of the whole range. render_labelled does the same for the waterfall
 /// and its ground-truth labels (labels/ground_truth.hpp), gathered side by side; XTF and the other products are
@@ -24,11 +26,15 @@
 #include <climits>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
+#include "sss/core/render_control.hpp"
 #include "sss/labels/ground_truth.hpp"
 #include "sss/receiver/image.hpp"
 
@@ -56,7 +62,34 @@ struct chunking {
     MPI_Comm_rank(p.comm, &rank);
     MPI_Comm_size(p.comm, &size);
     sss::require(p.root >= 0 && p.root < size, "mpi::render_params.root", "must be a rank of the communicator");
-    return {count, p.chunk_pings, (count + p.chunk_pings - 1) / p.chunk_pings, static_cast<std::size_t>(size)};
+    // count / chunk rounded up, without the overflow of count + chunk - 1 (chunk_pings = SIZE_MAX: one chunk).
+    return {count, p.chunk_pings, count / p.chunk_pings + (count % p.chunk_pings != 0 ? 1 : 0), static_cast<std::size_t>(size)};
+}
+
+/// The rank's pings, as offsets from the range's first, its chunks in order.
+[[nodiscard]] inline std::vector<std::size_t> pings_of(const chunking& c, int rank) {
+    std::vector<std::size_t> out;
+    for (std::size_t k = static_cast<std::size_t>(rank); k < c.chunks; k += c.ranks)
+        for (std::size_t i = 0; i < c.pings_in(k); ++i) out.push_back(k * c.chunk + i);
+    return out;
+}
+
+/// Runs `work` (this rank's share) and has every rank agree whether all succeeded: a rank whose work threw rethrows
+/// its error, the others throw one naming the lowest failed rank. None is left in a collective call the failed
+/// one never makes.
+template <class Work> void agree(const render_params& p, int rank, Work&& work) {
+    std::exception_ptr failure;
+    try {
+        work();
+    } catch (...) {
+        failure = std::current_exception();
+    }
+    int failed = failure ? rank : INT_MAX, lowest = INT_MAX;
+    MPI_Allreduce(&failed, &lowest, 1, MPI_INT, MPI_MIN, p.comm);
+    if (failure) std::rethrow_exception(failure);
+    if (lowest != INT_MAX)
+        throw sss::error("sss: mpi::render: rank " + std::to_string(lowest) +
+                         " failed to render its pings (its error is reported there); nothing was gathered");
 }
 
 /// Every rank's rows (`width` values of type V per ping, its chunks in order in `mine`) gathered on the root in
@@ -112,10 +145,21 @@ template <class Sim, class Sc>
     const detail::chunking c = detail::chunks_of(count, p, rank, size);
     const std::size_t width = 2 * sim.samples_per_line();
     std::vector<T> mine;
-    for (std::size_t k = static_cast<std::size_t>(rank); k < c.chunks; k += c.ranks) {
-        const waterfall<T> w = sim.render(scene, first + k * c.chunk, c.pings_in(k), p.threads);
-        mine.insert(mine.end(), w.values.begin(), w.values.end());
-    }
+    detail::agree(p, rank, [&] {
+        // Every rank checks the whole range as one process's render would, so that all refuse it together.
+        sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first",
+                     "first + count overflows the ping index");
+        (void)checked_elements(count, width, "render.count");
+        const std::vector<std::size_t> pings = detail::pings_of(c, rank);
+        waterfall<T> w;
+        w.pings = pings.size();
+        w.samples = sim.samples_per_line();
+        w.dt_s = sim.dt_s();
+        w.values.assign(pings.size() * width, T(0));
+        run_pings(pings.size(), render_control{.threads = p.threads},
+                  [&](std::size_t j) { w.set_row(j, sim.ping(scene, first + pings[j])); });
+        mine = std::move(w.values);
+    });
     waterfall<T> out;
     out.samples = sim.samples_per_line();
     out.dt_s = sim.dt_s();
@@ -138,12 +182,24 @@ template <class Sim, class Seabed>
     const std::size_t width = 2 * sim.samples_per_line();
     std::vector<T> mine;
     std::vector<std::uint32_t> mine_labels; // four words per label: class, object, label, material
-    for (std::size_t k = static_cast<std::size_t>(rank); k < c.chunks; k += c.ranks) {
-        const auto both = sss::render_labelled(sim, sc, first + k * c.chunk, c.pings_in(k), {.threads = p.threads}, lp);
-        mine.insert(mine.end(), both.image.values.begin(), both.image.values.end());
+    detail::agree(p, rank, [&] {
+        sss::detail::check_label_params(lp);
+        sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first",
+                     "first + count overflows the ping index");
+        (void)checked_elements(count, width, "render.count");
+        const std::vector<std::size_t> pings = detail::pings_of(c, rank);
+        labelled_waterfall<T> both;
+        both.image.pings = both.labels.pings = pings.size();
+        both.image.samples = both.labels.samples = sim.samples_per_line();
+        both.image.dt_s = both.labels.dt_s = sim.dt_s();
+        both.image.values.assign(pings.size() * width, T(0));
+        both.labels.values.resize(both.image.values.size());
+        run_pings(pings.size(), render_control{.threads = p.threads},
+                  [&](std::size_t j) { sss::detail::labelled_ping(sim, sc, first + pings[j], j, both, lp); });
+        mine = std::move(both.image.values);
         for (const sample_label& l : both.labels.values)
             mine_labels.insert(mine_labels.end(), {static_cast<std::uint32_t>(l.kind), l.object, l.label, l.material});
-    }
+    });
     labelled_waterfall<T> out;
     out.image.samples = out.labels.samples = sim.samples_per_line();
     out.image.dt_s = out.labels.dt_s = sim.dt_s();

@@ -9,8 +9,11 @@
 #include <mpi.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <sss/labels/ground_truth.hpp>
@@ -110,6 +113,48 @@ TEST_CASE("waterfall and labels rendered on two ranks and gathered are one proce
     }
     CHECK(first_object > 10u);
     CHECK(second_object > 10u);
+}
+
+namespace {
+
+/// The seabed, but a ray from the towfish at ping 9 (y = 21.8 m) fails: a ping that only one rank renders.
+struct failing_at_ping_9 {
+    using value_type = float;
+    const sss::scene::height_field<float>* seabed;
+    [[nodiscard]] std::optional<sss::hit<float>> intersect(const sss::ray<float>& r, float t_max_m) const {
+        if (r.origin.y > 21.75f && r.origin.y < 21.85f) throw sss::invalid_parameter("test.ping", "fails at ping 9");
+        return seabed->intersect(r, t_max_m);
+    }
+    [[nodiscard]] float seabed_height_m(float x, float y) const { return seabed->seabed_height_m(x, y); }
+    [[nodiscard]] float top_m() const { return seabed->top_m(); }
+};
+
+} // namespace
+
+TEST_CASE("a ping that fails on one rank fails the render on every rank, none left waiting; one chunk for SIZE_MAX") {
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    const auto hf = seabed();
+    const auto sim = towed_simulator();
+    // Pings 5 to 15 in chunks of 3: pings 8 to 10 go to rank 1, which fails at ping 9; rank 0 renders its share and
+    // would wait in the gather for rank 1's rows.
+    try {
+        (void)sss::mpi::render(sim, failing_at_ping_9{&hf}, 5, 11, sss::mpi::render_params{.chunk_pings = 3, .threads = 1});
+        FAIL("no exception");
+    } catch (const sss::invalid_parameter& e) {
+        CHECK(rank == 1);
+        CHECK(e.parameter() == "test.ping");
+    } catch (const sss::error& e) {
+        CHECK(rank == 0);
+        CHECK(std::string(e.what()).find("rank 1 failed") != std::string::npos);
+    }
+    // chunk_pings = SIZE_MAX asks for one chunk: it overflowed to none, and an empty image came back as whole.
+    const auto w = sss::mpi::render(sim, hf, 5, 4, sss::mpi::render_params{.chunk_pings = SIZE_MAX, .threads = 1});
+    if (rank == 0) {
+        const auto one = sim.render(hf, 5, 4, 1);
+        REQUIRE(w.values.size() == one.values.size());
+        CHECK(std::memcmp(w.values.data(), one.values.data(), w.values.size() * sizeof(float)) == 0);
+    }
 }
 
 int main(int argc, char** argv) {
