@@ -233,6 +233,10 @@ TEST_CASE("A cylinder on a slope lies along it at distance r, and one over a hol
     CHECK(dist(c.end0_m()) == doctest::Approx(0.5));
     CHECK(dist(c.end1_m()) == doctest::Approx(0.5));
     CHECK(c.length_m() == doctest::Approx(5.0));
+    // The middle of its axis lies over center_m, as its parameters say (it lay r sin(a) = 0.098 m downslope of it).
+    const vec3<double> middle = 0.5 * (c.end0_m() + c.end1_m());
+    CHECK(middle.x == doctest::Approx(0.0).scale(1.0).epsilon(1e-12));
+    CHECK(middle.y == doctest::Approx(0.0).scale(1.0).epsilon(1e-12));
     // A 2 m wide, 0.5 m deep hollow under the middle: the cylinder bridges it, level at z = r.
     p.heading_deg = 90; // east
     const auto hollow = [](double x, double) { return std::abs(x) < 1 ? -0.5 * (1 - x * x) : 0.0; };
@@ -292,8 +296,21 @@ TEST_CASE("A cylindrical mine case clears its anchor by its true downward extent
     const auto h = mine.intersect(ray<double>{vec3<double>{0, 0, 2.0}, vec3<double>{0, 0, -1}}, 10.0);
     REQUIRE(h);
     CHECK(h->distance_m == doctest::Approx(0.3 / std::cos(0.5)));
-    p.case_height_m = 0.6; // case bottom at 0.26 m, anchor top at 0.3 m
+    // Its lowest point is the lower end's rim, (L/2) sin(tilt) + r cos(tilt) = 0.743 m below the centre: a case
+    // centred 1 m up reaches 0.257 m, below the anchor's top at 0.3 m (straight down it would have cleared it).
+    p.case_height_m = 1.0;
     CHECK(param_of<double>([&] { return sb::tethered_mine(p, flat); }) == "tethered_mine.case_height_m");
+    p.case_height_m = 1.1;
+    CHECK(sb::tethered_mine(p, flat).cylinders()[0].bounds().lo.z == doctest::Approx(1.1 - std::sin(0.5) - 0.3 * std::cos(0.5)).epsilon(1e-4));
+    // A lying case reaching over a rise beside the anchor: clear of the anchor, not of the seabed.
+    p.case_tilt_deg = 0.0;
+    p.case_heading_deg = 90.0; // along +x
+    p.case_length_m = 4.0;
+    p.case_height_m = 1.0; // underside 0.7 m up
+    const auto rise = [](double x, double) { return x > 1.5 ? 0.8 : 0.0; };
+    CHECK(param_of<double>([&] { return sb::tethered_mine(p, rise); }) == "tethered_mine.case_height_m");
+    CHECK_NOTHROW((void)sb::tethered_mine(p, flat));
+    p.case_tilt_deg = sss::rad_to_deg(0.5);
     p.case_height_m = 2.0;
     p.tether_radius_m = 0.5;
     CHECK(param_of<double>([&] { return sb::tethered_mine(p, flat); }) == "tethered_mine.tether_radius_m");

@@ -9,9 +9,11 @@
 ///   (an intersection of intervals for a capped cylinder), so a ray can never slip between two faces.
 /// - A ray that starts inside the solid hits the inside of its surface where it leaves (t_out), and the
 ///   hit's normals point inwards: `hit.normal` always faces the ray (dot(normal, direction) <= 0), which is
-///   what the simulator expects. A ray that starts on the surface and leaves it does not hit (t = 0 is
-///   excluded). Sonar rays start in the water, so this only matters for rays handed over by propagation
-///   models, whose pieces start where the previous piece ended.
+///   what the simulator expects. A ray that starts exactly on the surface and leaves it does not hit (t = 0 is
+///   excluded); one that starts on it to rounding (a hit point as computed, half of them just inside) may hit it
+///   again a rounding's distance away, as from inside. Sonar rays start in the water, and a ray leaving a surface
+///   (the simulator's specular bounce) starts a millimetre-scale offset off it; propagation models' pieces start
+///   where the previous piece ended, in the water.
 /// - A tangent ray (it touches the surface without entering, to rounding) hits at the touching point,
 ///   with a normal perpendicular to the ray; the simulator gives such a hit no energy (zero projected area).
 

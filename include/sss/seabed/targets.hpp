@@ -75,7 +75,7 @@ template <Real T, HeightFunction<T> F>
     require_positive(p.anchor_height_m, "tethered_mine.anchor_height_m");
     require(p.tether_radius_m < p.case_radius_m && p.tether_radius_m < p.anchor_radius_m, "tethered_mine.tether_radius_m",
             "must be smaller than the case and anchor radii");
-    T down_m = p.case_radius_m; // from the case's centre straight down to its surface
+    T down_m = p.case_radius_m; // from the case's centre down to its lowest point
     vec3<T> axis{T(0), T(0), T(1)};
     if (p.shape == mine_case::cylinder) {
         require_positive(p.case_length_m, "tethered_mine.case_length_m");
@@ -84,9 +84,8 @@ template <Real T, HeightFunction<T> F>
         const T tilt = deg_to_rad(p.case_tilt_deg), az = heading_to_ccw_from_east_rad(p.case_heading_deg);
         const T ct = std::cos(tilt), st = std::sin(tilt);
         axis = vec3<T>{ct * std::cos(az), ct * std::sin(az), st};
-        down_m = std::numeric_limits<T>::infinity();
-        if (ct > T(0)) down_m = p.case_radius_m / ct;
-        if (st > T(0)) down_m = std::min(down_m, p.case_length_m / (T(2) * st));
+        // The lowest point: the lower end's rim, (L/2) sin(tilt) + r cos(tilt) below the centre.
+        down_m = p.case_length_m / T(2) * st + p.case_radius_m * ct;
     }
     const T x = p.anchor_m.x, y = p.anchor_m.y;
     const T ground = static_cast<T>(seabed_height_m(x, y));
@@ -102,6 +101,23 @@ template <Real T, HeightFunction<T> F>
     require(center_z - down_m > anchor_top, "tethered_mine.case_height_m",
             [&] { return "the case must clear the anchor: its lowest point " + std::to_string(center_z - down_m) +
                 " m is not above the anchor's top " + std::to_string(anchor_top) + " m"; });
+    if (p.shape == mine_case::cylinder) {
+        // A tilted or lying case reaches out beside the anchor: its underside (the generator line under its axis,
+        // from end to end) must clear the seabed there too.
+        const vec3<T> centre{x, y, center_z};
+        const T ct = std::sqrt(std::max(T(0), T(1) - axis.z * axis.z));
+        const vec3<T> under = ct > T(0) ? (vec3<T>{T(0), T(0), -T(1)} + axis * axis.z) / ct : vec3<T>{T(1), T(0), T(0)};
+        for (int k = 0; k <= 8; ++k) {
+            const T s = p.case_length_m * (static_cast<T>(k) / T(8) - T(0.5));
+            const vec3<T> q = centre + axis * s + under * p.case_radius_m;
+            const T floor_z = static_cast<T>(seabed_height_m(q.x, q.y));
+            sss::require_finite(floor_z, "tethered_mine.seabed_height_m(case)");
+            require(q.z > floor_z, "tethered_mine.case_height_m", [&] {
+                return "the case must clear the seabed: its underside at (" + std::to_string(q.x) + ", " + std::to_string(q.y) +
+                       ") lies at " + std::to_string(q.z) + " m, not above the seabed's " + std::to_string(floor_z) + " m";
+            });
+        }
+    }
     const scene::surface_ids case_ids{p.case_material, p.object_id, p.class_id};
     const scene::surface_ids tether_ids{p.tether_material, p.object_id, p.class_id};
     const scene::surface_ids anchor_ids{p.anchor_material, p.object_id, p.class_id};

@@ -19,9 +19,11 @@
 namespace sss::seabed::detail {
 
 /// lying_cylinder with its axis along the unit plan vector `dir` (p.heading_deg unused). A rigid cylinder resting on
-/// the seabed: in the vertical plane of its axis its lower edge lies on the
-/// edge of the profile's upper hull (the taut string) under its middle, the lowest position of its middle
-/// that keeps it above the seabed; its axis is that edge lifted by the radius, perpendicular to it.
+/// the seabed: in the vertical plane of its axis its lower edge lies on an edge of the profile's upper hull (the
+/// taut string), the lowest position that keeps it above the seabed, and its axis is that edge lifted by the radius,
+/// perpendicular to it. On a slope a the axis's middle lies r sin(a) downslope of the point where the cylinder
+/// touches the edge: the contact is taken r sin(a) upslope of center_m, on the edge under it, so that the middle
+/// of the axis lies over center_m.
 template <Real T, HeightFunction<T> F>
 [[nodiscard]] scene::object<T> lying_cylinder_along(const lying_cylinder_params<T>& p, const vec2<T>& dir,
                                                     const F& seabed_height_m) {
@@ -40,15 +42,29 @@ template <Real T, HeightFunction<T> F>
         sss::require_finite(z[i], "lying_cylinder.seabed_height_m(axis)");
     }
     const std::vector<std::size_t> hull = taut_string<T>(s, z);
-    std::size_t k = 0; // the hull edge [hull[k], hull[k+1]] under the middle (s = 0)
-    while (k + 2 < hull.size() && s[hull[k + 1]] <= T(0)) ++k;
-    const std::size_t a = hull[k], b = hull[k + 1];
-    const T slope = (z[b] - z[a]) / (s[b] - s[a]);
-    const T bottom0 = z[a] + slope * (T(0) - s[a]); // lower edge under the middle
+    const auto edge_at = [&](T at) { // the hull edge [hull[k], hull[k+1]] under s = at
+        std::size_t k = 0;
+        while (k + 2 < hull.size() && s[hull[k + 1]] <= at) ++k;
+        return k;
+    };
+    const auto slope_of = [&](std::size_t k) { return (z[hull[k + 1]] - z[hull[k]]) / (s[hull[k + 1]] - s[hull[k]]); };
+    // The contact r sin(a) upslope of the middle, on the edge under it (a the edge's slope angle): the edge under the
+    // middle first, then the one under its contact; at a hull vertex between two edges either one's line bears on it.
+    std::size_t k = edge_at(T(0));
+    for (int pass = 0; pass < 2; ++pass) {
+        const T m = slope_of(k);
+        const std::size_t next = edge_at(p.radius_m * m / std::sqrt(T(1) + m * m));
+        if (next == k) break;
+        k = next;
+    }
+    const std::size_t a = hull[k];
+    const T slope = slope_of(k);
     const T inv = T(1) / std::sqrt(T(1) + slope * slope);
     const T cos_a = inv, sin_a = slope * inv;
-    // Middle of the axis: the lower edge's point lifted by r along the edge's upward normal (-sin, cos).
-    const T sc = -p.radius_m * sin_a, zc = bottom0 + p.radius_m * cos_a;
+    const T contact = p.radius_m * sin_a;                  // along the axis from center_m (m)
+    const T bottom = z[a] + slope * (contact - s[a]);      // the lower edge at the contact
+    // Middle of the axis: the contact lifted by r along the edge's upward normal (-sin, cos): over center_m.
+    const T sc = contact - p.radius_m * sin_a, zc = bottom + p.radius_m * cos_a;
     const T half = p.length_m / T(2);
     const vec2<T> q0 = p.center_m + dir * (sc - half * cos_a), q1 = p.center_m + dir * (sc + half * cos_a);
     const vec3<T> e0{q0.x, q0.y, zc - half * sin_a}, e1{q1.x, q1.y, zc + half * sin_a};
