@@ -220,6 +220,16 @@ TEST_CASE("Malformed ESRI ASCII grids are rejected naming the file and line") {
     write_text(path, head + "1 2 3\n4 1e39 6\n");
     CHECK(error_of([&] { (void)sss::io::read_esri_ascii<float>(path); }).line() == 7);
     CHECK(sss::io::read_esri_ascii<double>(path).height_m(1, 0) == 1e39);
+    // Header values a double holds and a float does not: named by their own lines (they were line 0).
+    write_text(path, "ncols 3\nnrows 2\nxllcorner 1e39\nyllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n");
+    CHECK(error_of([&] { (void)sss::io::read_esri_ascii<float>(path); }).line() == 3);
+    write_text(path, "ncols 3\nnrows 2\nxllcorner 0\nyllcenter -1e40\ncellsize 1\n1 2 3\n4 5 6\n");
+    CHECK(error_of([&] { (void)sss::io::read_esri_ascii<float>(path); }).line() == 4);
+    write_text(path, "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1e-60\n1 2 3\n4 5 6\n");
+    const auto tiny = error_of([&] { (void)sss::io::read_esri_ascii<float>(path); });
+    CHECK(tiny.line() == 5);
+    CHECK(contains(tiny.what(), "cellsize"));
+    CHECK(sss::io::read_esri_ascii<double>(path).cell_m() == 1e-60);
     // A missing file.
     const auto e = error_of([&] { (void)sss::io::read_esri_ascii<double>(d.file("missing.asc")); });
     CHECK(contains(e.what(), "missing.asc"));
@@ -394,10 +404,11 @@ TEST_CASE("Every reader refuses a directory by naming it, and a grid whose cell 
     says_directory(error_of([&] { (void)sss::io::read_raw_f32<float>(d.file("raw.raw")); }), d.file("raw.raw"));
     says_directory(error_of([&] { (void)sss::io::read_sound_speed_csv<float>(dir); }), dir);
     says_directory(error_of([&] { (void)sss::io::read_trajectory_csv<float>(dir); }), dir);
-    // A cell size that underflows float: the grid's own check, inside the file's message, with one "sss: ".
+    // A cell size that underflows float: named by its line, with one "sss: ".
     write_text(d.file("tiny.asc"), "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1e-300\n1 2\n3 4\n");
     const auto e = error_of([&] { (void)sss::io::read_esri_ascii<float>(d.file("tiny.asc")); });
     INFO(e.what());
-    CHECK(contains(e.what(), "height_field.cell_m"));
+    CHECK(e.line() == 5);
+    CHECK(contains(e.what(), "'cellsize' 1e-300"));
     CHECK(std::string(e.what()).find("sss: ", 1) == std::string::npos);
 }

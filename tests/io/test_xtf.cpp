@@ -369,6 +369,13 @@ TEST_CASE("The geodetic mapping has the published lengths of a degree on WGS 84 
     CHECK(across.longitude_deg < -179.9);
     CHECK(across.longitude_deg > -180.0);
     CHECK_THROWS_AS(io::from_geodetic({10.0, 0.0}, {std::nan(""), 1.0}, e, n), sss::invalid_parameter);
+    // 300 km north of 89 N is beyond the pole: refused, not written as latitude 91.7.
+    try {
+        (void)io::to_geodetic({89.0, 0.0}, 0.0, 300000.0);
+        FAIL("no exception");
+    } catch (const sss::invalid_parameter& bad) {
+        CHECK(bad.parameter() == "north_m");
+    }
 }
 
 TEST_CASE("Corrupted XTF bytes read as a file or give a file_error, never anything else") {

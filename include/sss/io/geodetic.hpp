@@ -49,8 +49,12 @@ struct geodetic_position {
     sss::require_finite(north_m, "north_m");
     double m_lat = 0, m_lon = 0;
     sss::detail::geodetic_metres_per_radian(o.latitude_deg * pi_v<double> / 180.0, m_lat, m_lon);
-    return {o.latitude_deg + north_m / m_lat * 180.0 / pi_v<double>,
-            normalised_longitude_deg(o.longitude_deg + east_m / m_lon * 180.0 / pi_v<double>)};
+    const double latitude = o.latitude_deg + north_m / m_lat * 180.0 / pi_v<double>;
+    sss::require(std::abs(latitude) <= 90.0, "north_m", [&] {
+        return "lies beyond the pole from the origin: latitude " + std::to_string(latitude) + " deg (the local plane "
+               "serves a few kilometres about it)";
+    });
+    return {latitude, normalised_longitude_deg(o.longitude_deg + east_m / m_lon * 180.0 / pi_v<double>)};
 }
 
 /// The inverse: world (east_m, north_m) of a geodetic position, written into `east_m`, `north_m`; the difference of

@@ -6,8 +6,8 @@
 ///   cellsize, optional NODATA_value; keywords in any case) and nrows x ncols values, rows from north to
 ///   south. Each value is taken as the height of one vertex at its cell's centre, so vertex (0, 0) lies at
 ///   (xllcenter, yllcenter) = (xllcorner + cellsize/2, yllcorner + cellsize/2). A NODATA value (NaN too, as
-///   GDAL writes it) is an error unless a fill height is given. The writer writes xllcenter/yllcenter (exact, no half-cell arithmetic)
-///   and the shortest decimal form that reads back to the same value.
+///   GDAL writes it) is an error unless a fill height is given. The writer writes xllcenter/yllcenter (exact, no
+///   half-cell arithmetic) and the shortest decimal form that reads back to the same value.
 /// - Raw float32: `file` holds nx * ny IEEE-754 binary32 values, little-endian, row-major with row 0 the
 ///   southern row (heights[iy * nx + ix]), nothing else; `file + ".txt"` is a text sidecar, one `key value`
 ///   per line, `#` starting a comment:
@@ -77,6 +77,7 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     std::size_t first_data_line = 0;
     std::optional<double> x_ll, y_ll, cellsize, nodata;
     std::string_view x_text, y_text, cell_text; // their texts, rounded once to T where taken as they are
+    std::size_t x_line = 0, y_line = 0, cell_line = 0;
     bool x_center = false, y_center = false;
     // Header: keyword/value pairs until the first token that is not a keyword.
     for (;;) {
@@ -121,17 +122,20 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
             dup(x_ll.has_value());
             x_ll = v;
             x_text = val.text;
+            x_line = val.line;
             x_center = k == "xllcenter";
         } else if (k == "yllcorner" || k == "yllcenter") {
             dup(y_ll.has_value());
             y_ll = v;
             y_text = val.text;
+            y_line = val.line;
             y_center = k == "yllcenter";
         } else if (k == "cellsize") {
             dup(cellsize.has_value());
             if (!(*v > 0)) throw fail(val.line, "'cellsize' must be > 0, got '" + std::string(val.text) + "'");
             cellsize = v;
             cell_text = val.text;
+            cell_line = val.line;
         } else {
             dup(nodata.has_value());
             nodata = v;
@@ -190,8 +194,15 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     const auto as_t = [](std::string_view text, double v) { return sss::detail::parse_as<T>(text).value_or(static_cast<T>(v)); };
     const vec2<T> origin{x_center ? as_t(x_text, *x_ll) : static_cast<T>(*x_ll + half),
                          y_center ? as_t(y_text, *y_ll) : static_cast<T>(*y_ll + half)};
+    const T cell = as_t(cell_text, *cellsize);
+    // Values a double holds but T does not (a float's range ends at 3.4e38, its least positive value is 1.4e-45):
+    // named by their lines, as the rest of the header is.
+    if (!std::isfinite(origin.x)) throw fail(x_line, "the grid's x origin '" + std::string(x_text) + "' is beyond the height type's range");
+    if (!std::isfinite(origin.y)) throw fail(y_line, "the grid's y origin '" + std::string(y_text) + "' is beyond the height type's range");
+    if (!(cell > T(0)) || !std::isfinite(cell))
+        throw fail(cell_line, "'cellsize' " + std::string(cell_text) + " is not a positive number in the height type");
     try {
-        return scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = as_t(cell_text, *cellsize), .origin_m = origin, .heights_m = std::move(heights)});
+        return scene::height_field<T>({.nx = nx, .ny = ny, .cell_m = cell, .origin_m = origin, .heights_m = std::move(heights)});
     } catch (const invalid_parameter& e) {
         throw fail(0, std::string(message_body(e)));
     }
