@@ -478,6 +478,28 @@ template <Real T> int render_scene(const description& d, const render_request& r
             throw scene_error(r.scene_path + ": output.xtf_start_unix_s: ping " + std::to_string(r.last - 1) + " would be stamped " +
                               stamped + " s, past the end of the year 9999 that XTF's dates hold (" +
                               r.pings_asked + ", motion.ping_interval_s = " + detail::fmt(d.tow.ping_interval_s) + " s)");
+        // Its navigation: every ping's place as latitude and longitude, from the UTM zone or the local plane about the
+        // origin. Checked here on the first and last pings and a thousand between, so that a track beyond the zone
+        // or the pole is refused before the render (and by --dry-run), not after it.
+        const std::size_t pings = r.last - r.first, every = std::max<std::size_t>(1, pings / 1000);
+        for (std::size_t i = r.first;; i = std::min(r.last - 1, i + every)) {
+            const auto q = track.pose_at(i);
+            try {
+                if (d.out.xtf_utm_zone > 0)
+                    (void)sss::io::utm_to_geodetic({.zone = int(d.out.xtf_utm_zone), .south = d.out.xtf_utm_hemisphere == "south"},
+                                                   double(q.position.x), double(q.position.y));
+                else
+                    (void)sss::io::to_geodetic({.latitude_deg = d.out.xtf_origin_latitude_deg,
+                                                .longitude_deg = d.out.xtf_origin_longitude_deg},
+                                               double(q.position.x), double(q.position.y));
+            } catch (const sss::error& failed) {
+                throw scene_error(r.scene_path + (d.out.xtf_utm_zone > 0 ? ": output.xtf_utm_zone: " : ": output.xtf_origin_latitude_deg: ") +
+                                  "ping " + std::to_string(i) + " at world (" + detail::fmt(double(q.position.x)) + ", " +
+                                  detail::fmt(double(q.position.y)) + ") m has no place in XTF's navigation (" +
+                                  std::string(sss::message_body(failed)) + ")");
+            }
+            if (i == r.last - 1) break;
+        }
     }
     const auto problems = swath_problems(d, e, track, r.first, count);
     check_sound_speed_file(d);

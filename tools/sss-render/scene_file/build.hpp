@@ -302,7 +302,18 @@ template <Real T> [[nodiscard]] scene_motion<T> motion_of(const description& d, 
     if (m.turn != "none")
         p.turn = sss::motion::constant_turn<T>{.toward = m.turn == "port" ? sss::side::port : sss::side::starboard,
                                                .radius_m = T(m.turn_radius_m), .rate_deg_s = T(m.turn_rate_deg_s)};
-    return scene_motion<T>(sss::motion::perturbed<T>(p));
+    try {
+        return scene_motion<T>(sss::motion::perturbed<T>(p));
+    } catch (const sss::invalid_parameter& e) {
+        // The policy's names as the scene's keys: perturbed.heave_m.amplitude is motion.heave_m.
+        std::string key = e.parameter();
+        if (key.rfind("perturbed.", 0) == 0) key = "motion." + key.substr(10);
+        if (const auto dot = key.find('.', 7); dot != std::string::npos && key.rfind("motion.turn.", 0) != 0) key.resize(dot);
+        if (key.rfind("motion.turn.", 0) == 0) key = "motion.turn_" + key.substr(12);
+        std::string why = std::string(sss::message_body(e));
+        if (const auto colon = why.find("': "); colon != std::string::npos) why = why.substr(colon + 3);
+        throw scene_error(d.path + ": " + key + ": " + why);
+    }
 }
 
 /// World z of the towfish at ping 0, where the layered water's surface is placed from: tow_z, or with a

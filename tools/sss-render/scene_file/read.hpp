@@ -236,7 +236,7 @@ public:
     /// A finite number, within the bound its unit allows (unit_bound).
     void number(std::string_view key, double& v) {
         if (const auto* n = node(key)) {
-            if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
+            if (auto d = number_of(*n)) {
                 if (!std::isfinite(*d)) fail(key, "must be a finite number");
                 if (const auto b = unit_bound(key); b.limit > 0 && !(std::abs(*d) <= b.limit))
                     fail(key, "must lie within +-" + fmt(b.limit) + unit_text(b) + ", got " + fmt(*d));
@@ -327,7 +327,7 @@ public:
         const auto* a = n.as_array();
         if (!a || a->size() != 2 || !all_numbers(*a))
             fail_at(n.source(), key, "must be a pair of numbers [x_m, y_m]");
-        const xy v{a->get(0)->value<double>().value(), a->get(1)->value<double>().value()};
+        const xy v{*number_of(*a->get(0)), *number_of(*a->get(1))};
         if (!std::isfinite(v[0]) || !std::isfinite(v[1])) fail_at(n.source(), key, "must be a pair of finite numbers");
         if (const auto b = unit_bound(key); b.limit > 0 && !(std::abs(v[0]) <= b.limit && std::abs(v[1]) <= b.limit))
             fail_at(n.source(), key, "must lie within +-" + fmt(b.limit) + unit_text(b));
@@ -389,6 +389,14 @@ public:
         return s.str();
     }
 
+    /// A number node's value as a double: an integer rounded to the nearest double (toml++ gives none for an integer
+    /// a double cannot hold exactly, beyond 2^53); empty for any other node.
+    [[nodiscard]] static std::optional<double> number_of(const toml::node& n) {
+        if (n.is_floating_point()) return n.value<double>();
+        if (const auto i = n.value<std::int64_t>(); i && n.is_integer()) return static_cast<double>(*i);
+        return std::nullopt;
+    }
+
 private:
     static bool all_numbers(const toml::array& a) {
         for (const auto& e : a)
@@ -430,8 +438,8 @@ inline void read_array_axis(table_reader& t, const std::string& axis, array_axis
         a.shading.clear();
         double sum = 0;
         for (const auto& e : *list) {
-            const auto v = e.value<double>();
-            if (!e.is_number() || !v || !std::isfinite(*v) || *v < 0 || *v > 1e30)
+            const auto v = table_reader::number_of(e);
+            if (!v || !std::isfinite(*v) || *v < 0 || *v > 1e30)
                 t.fail(shading, "each weight must be a number in [0, 1e30]");
             a.shading.push_back(*v);
             sum += *v;
@@ -539,7 +547,11 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         s.point("origin_m", b.origin_m);
         s.integer("seed", b.seed, 0);
         s.non_negative("blend_m", b.blend_m);
-        if (!(b.blend_m <= sss::seabed::max_blend_cells * b.cell_m))
+        // Held to the blend's reach only where it blends (two or more regions): a seabed that does not use it keeps
+        // the default, whatever its cell (at cell_m = 1 mm the default 0.5 m is 500 cells).
+        const auto unused = unused_seabed_keys(b.file, regions);
+        const bool blends = std::none_of(unused.begin(), unused.end(), [](const auto& u) { return u.key == std::string_view("blend_m"); });
+        if (blends && !(b.blend_m <= sss::seabed::max_blend_cells * b.cell_m))
             s.fail("blend_m", "must be at most " + detail::table_reader::fmt(sss::seabed::max_blend_cells) + " cells (" +
                                   detail::table_reader::fmt(sss::seabed::max_blend_cells * b.cell_m) +
                                   " m at cell_m = " + detail::table_reader::fmt(b.cell_m) + " m): the blend is smoothed cell by cell");
@@ -712,7 +724,7 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                     if (!a || a->empty()) w.fail(key, "must be a non-empty array of numbers");
                     v.clear();
                     for (const auto& e : *a) {
-                        const double x = e.is_number() ? e.value<double>().value() : 0.0;
+                        const double x = detail::table_reader::number_of(e).value_or(0.0);
                         if (!e.is_number() || !std::isfinite(x)) w.fail(key, "must be a non-empty array of finite numbers");
                         if (const auto b = detail::table_reader::unit_bound(key); b.limit > 0 && !(std::abs(x) <= b.limit))
                             w.fail(key, "each value must lie within +-" + detail::table_reader::fmt(b.limit) +
@@ -889,6 +901,10 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                                        std::to_string(d.objects.size()) + ": leave it out, or split the objects over scenes");
         if (d.out.yolo && d.out.stem == "classes")
             o.fail("stem", "'classes' would write both the boxes and the class list of yolo = true to classes.txt: choose another");
+        // A render that writes nothing would spend its time for no file: at least one product.
+        if (!d.out.png && !d.out.ground_range && !d.out.npy && !d.out.xtf && !d.out.coco && !d.out.yolo && !d.out.label_images)
+            o.fail("png", "is false and so is every other product (ground_range, npy, xtf, coco, yolo, label_images): "
+                          "the render would write nothing");
         o.finish();
     }
     top.finish();

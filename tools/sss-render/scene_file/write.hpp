@@ -39,7 +39,15 @@ inline std::string quoted(const std::string& s) {
     }
     return out + "\"";
 }
-inline std::string pt(const xy& p) { return "[" + num(p[0]) + ", " + num(p[1]) + "]"; }
+inline std::string pt(const xy& p) {
+    // Appended piece by piece: GCC 12 at -O3 warns (falsely) of an overflow in "[" + std::string.
+    std::string s = "[";
+    s += num(p[0]);
+    s += ", ";
+    s += num(p[1]);
+    s += ']';
+    return s;
+}
 
 struct toml_out {
     std::string text;
