@@ -110,8 +110,8 @@ template <Real T, HeightFunction<T> F>
         for (int k = 0; k <= 8; ++k) {
             const T s = p.case_length_m * (static_cast<T>(k) / T(8) - T(0.5));
             const vec3<T> q = centre + axis * s + under * p.case_radius_m;
-            const T floor_z = static_cast<T>(seabed_height_m(q.x, q.y));
-            sss::require_finite(floor_z, "tethered_mine.seabed_height_m(case)");
+            const T floor_z = static_cast<T>(seabed_height_m(q.x, q.y)); // -infinity beyond the seabed: nothing to clear
+            sss::require(!std::isnan(floor_z), "tethered_mine.seabed_height_m(case)", "is not a number under the case");
             require(q.z > floor_z, "tethered_mine.case_height_m", [&] {
                 return "the case must clear the seabed: its underside at (" + std::to_string(q.x) + ", " + std::to_string(q.y) +
                        ") lies at " + std::to_string(q.z) + " m, not above the seabed's " + std::to_string(floor_z) + " m";
