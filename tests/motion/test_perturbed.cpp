@@ -251,6 +251,8 @@ TEST_CASE("Invalid perturbed-path parameters are rejected, naming the parameter"
     CHECK(name_of(p) == "perturbed.turn.rate_deg_s");
     p.turn = constant_turn<double>{sss::side::port, -5.0, 0.0};
     CHECK(name_of(p) == "perturbed.turn.radius_m");
+    p.turn = constant_turn<double>{sss::side::port, 50.0, 3.0}; // both: the rate would be ignored
+    CHECK(name_of(p) == "perturbed.turn.rate_deg_s");
     p = {};
     p.speed_mps = -1.0;
     CHECK(name_of(p) == "perturbed.speed_mps");

@@ -55,7 +55,7 @@ template <Real T> [[nodiscard]] inline double oscillation_rate(const oscillation
 template <Real T> struct constant_turn {
     side toward = side::starboard; ///< the side the towfish turns to
     T radius_m = T(0);             ///< radius of the nominal path (m), > 0; or 0 to use rate_deg_s
-    T rate_deg_s = T(0);           ///< turn rate (deg/s), > 0, used when radius_m is 0
+    T rate_deg_s = T(0);           ///< turn rate (deg/s), > 0, given when radius_m is 0 (not both)
 };
 
 template <Real T> struct perturbed_params {
@@ -93,6 +93,8 @@ public:
         if (p.turn) {
             const constant_turn<T>& c = *p.turn;
             const double sign = c.toward == side::starboard ? 1.0 : -1.0;
+            sss::require(c.radius_m == T(0) || c.rate_deg_s == T(0), "perturbed.turn.rate_deg_s",
+                         "a turn takes radius_m or rate_deg_s, not both (the radius would win)");
             if (c.radius_m != T(0)) {
                 sss::require_positive(c.radius_m, "perturbed.turn.radius_m");
                 omega_ = sign * static_cast<double>(p.speed_mps) / static_cast<double>(c.radius_m);

@@ -771,6 +771,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         if (o.pulse_length_s > 1) s.fail("pulse_length_s", "must be at most 1 s, got " + detail::table_reader::fmt(o.pulse_length_s));
         s.choice("pulse_shape", o.pulse_shape, {"rectangular", "hann", "lfm"});
         s.non_negative("pulse_bandwidth_hz", o.pulse_bandwidth_hz);
+        if (o.pulse_shape != "lfm" && o.pulse_bandwidth_hz > 0)
+            s.fail("pulse_bandwidth_hz", "applies only to pulse_shape = \"lfm\" (a burst's band is set by its length)");
         if (o.pulse_shape == "lfm" && !(o.pulse_bandwidth_hz * o.pulse_length_s >= 1 && o.pulse_bandwidth_hz * o.pulse_length_s <= 1e4))
             s.fail("pulse_bandwidth_hz", "an lfm pulse needs pulse_bandwidth_hz x pulse_length_s in [1, 10^4], got " +
                                              detail::table_reader::fmt(o.pulse_bandwidth_hz * o.pulse_length_s));
@@ -819,6 +821,11 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         m.non_negative("turn_rate_deg_s", o.turn_rate_deg_s);
         if (o.model == "perturbed" && o.turn != "none" && !(o.turn_radius_m > 0) && !(o.turn_rate_deg_s > 0))
             m.fail("turn", "a turn needs turn_radius_m > 0 or turn_rate_deg_s > 0");
+        // A radius or rate that nothing uses is an error rather than ignored: without a turn, or beside the other.
+        for (const auto& [key, v] : {std::pair<std::string_view, double>{"turn_radius_m", o.turn_radius_m}, {"turn_rate_deg_s", o.turn_rate_deg_s}})
+            if (o.turn == "none" && v > 0) m.fail(key, "applies only to a turn: set turn = \"port\" or \"starboard\"");
+        if (o.turn_radius_m > 0 && o.turn_rate_deg_s > 0)
+            m.fail("turn_rate_deg_s", "a turn takes turn_radius_m or turn_rate_deg_s, not both (the radius would win)");
         const auto wobble = [&](std::string_view key, oscillation& w, double limit) {
             auto t = m.sub(key);
             t.number("amplitude", w.amplitude);
