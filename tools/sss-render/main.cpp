@@ -26,7 +26,8 @@ namespace {
 
 namespace sf = sss::scene_file;
 
-/// "A:B" -> [A, B); "A:" -> [A, pings). A and B are whole numbers (digits only); at most sf::max_pings pings.
+/// "A:B" -> [A, B); "A:" -> [A, pings). A and B are whole numbers (digits only) with A < B <= pings: the range
+/// picks pings of the scene's survey (render.pings, itself at most sf::max_pings), never pings beyond it.
 std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t pings) {
     const auto colon = s.find(':');
     if (colon == std::string::npos) throw CLI::ValidationError("--pings", "expects A:B (first ping, one past the last)");
@@ -41,9 +42,12 @@ std::pair<std::size_t, std::size_t> ping_range(const std::string& s, std::size_t
         throw CLI::ValidationError("--pings", "'" + s + "' starts past the scene's last ping (render.pings = " +
                                                   std::to_string(pings) + ")");
     if (b <= a) throw CLI::ValidationError("--pings", "'" + s + "' is empty: B must exceed A");
-    if (b - a > std::size_t(sf::max_pings))
-        throw CLI::ValidationError("--pings", "'" + s + "' asks for " + std::to_string(b - a) + " pings; at most " +
-                                                  std::to_string(sf::max_pings) + " in one run: render ranges");
+    if (b > pings) {
+        std::string what = "'" + s + "' reaches past the scene's last ping (render.pings = ";
+        what += std::to_string(pings);
+        what += "): raise render.pings to render further";
+        throw CLI::ValidationError("--pings", what);
+    }
     return {a, b};
 }
 
@@ -91,7 +95,7 @@ int main(int argc, char** argv) {
     bool dry_run = false;
     app.add_option("scene", scene_path, "the scene file (TOML)")->required();
     app.add_option("-o,--output", out_dir, "directory the outputs go to (created if missing)");
-    app.add_option("--pings", pings_arg, "pings A:B to render (default 0:render.pings)");
+    app.add_option("--pings", pings_arg, "pings A:B of the scene's render.pings to render (default 0:render.pings)");
     app.add_option("--threads", threads_arg, "worker threads (default render.threads; 0 every core)");
     app.add_option("--seed", seed_arg, "replaces seabed.seed (roughness and ripples of a seabed generated from [[seabed.region]] tables): a whole number from 0 to 2^63 - 1");
     app.add_flag("--dry-run", dry_run, "validate, print the resolved scene as TOML and the coverage problems; render nothing");

@@ -661,6 +661,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
             ot.point("center_m", o.center_m);
             ot.number("heading_deg", o.heading_deg);
             ot.positive("length_m", o.length_m);
+            // The seabed under its axis is sampled every 5 cm (lying_cylinder_params::profile_step_m), at most 1e7 times.
+            if (o.length_m > 4e5) ot.fail("length_m", "must be at most 400 km, got " + detail::table_reader::fmt(o.length_m) + " m");
             ot.positive("radius_m", o.radius_m);
         } else if (o.type == "sphere") {
             o.radius_m = 0.5;
@@ -695,6 +697,12 @@ inline void read_array_layout(table_reader t, array_layout& a) {
                 }
             } else
                 ot.fail("type", "a pipeline needs route_m");
+            // The seabed along the route is sampled every 10 cm (pipeline_params::profile_step_m), at most 1e8 times.
+            double route_length_m = 0;
+            for (std::size_t k = 1; k < o.route_m.size(); ++k)
+                route_length_m += std::hypot(o.route_m[k][0] - o.route_m[k - 1][0], o.route_m[k][1] - o.route_m[k - 1][1]);
+            if (route_length_m > 8e6)
+                ot.fail("route_m", "is " + detail::table_reader::fmt(route_length_m) + " m long; at most 8000 km");
             ot.positive("radius_m", o.radius_m);
             ot.non_negative("max_span_m", o.max_span_m);
         }
@@ -758,7 +766,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         auto& o = d.sensor;
         s.choice("scattering", o.scattering, {"lambertian", "jackson"});
         s.choice("beam", o.beam, {"ideal_fan", "planar_array"});
-        s.positive("frequency_hz", o.frequency_hz);
+        // From infrasound to 10 MHz: beyond, the water absorbs a sidescan's echo within millimetres.
+        s.in_range("frequency_hz", o.frequency_hz, 1, 1e7);
         s.number("target_mu_db", o.target_mu_db);
         if (o.scattering == "lambertian") lambert_bound(s, "target_mu_db", o.target_mu_db);
         s.in_range("along_width_deg", o.along_width_deg, 1e-6, 179.999);
@@ -769,6 +778,11 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         s.in_range("source_level_db", o.source_level_db, -300, 300);
         s.positive("pulse_length_s", o.pulse_length_s);
         if (o.pulse_length_s > 1) s.fail("pulse_length_s", "must be at most 1 s, got " + detail::table_reader::fmt(o.pulse_length_s));
+        // The simulator holds the pulse's shape sample by sample: at most 2^20 samples of it.
+        if (o.pulse_length_s * o.sample_rate_hz > 1048576.0)
+            s.fail("pulse_length_s", "spans " + detail::table_reader::fmt(o.pulse_length_s * o.sample_rate_hz) +
+                                         " samples at sample_rate_hz = " + detail::table_reader::fmt(o.sample_rate_hz) +
+                                         "; at most 2^20 (1048576)");
         s.choice("pulse_shape", o.pulse_shape, {"rectangular", "hann", "lfm"});
         s.non_negative("pulse_bandwidth_hz", o.pulse_bandwidth_hz);
         if (o.pulse_shape != "lfm" && o.pulse_bandwidth_hz > 0)
@@ -859,10 +873,6 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         r.in_range("sv_db", o.sv_db, -300, 300);
         r.non_negative("psi_sr", o.psi_sr); // 0: the beam's own
         if (!(o.psi_sr <= 4 * sss::pi_v<double>)) r.fail("psi_sr", "must be at most 4 pi sr (the whole sphere)");
-        // The ambient noise curves hold for sonar frequencies.
-        if (o.noise && !(d.sensor.frequency_hz >= 1 && d.sensor.frequency_hz <= 1e7))
-            r.fail("noise", "needs sonar.frequency_hz in [1, 10^7] Hz (the ambient noise curves), got " +
-                                detail::table_reader::fmt(d.sensor.frequency_hz));
         r.boolean("tvg", o.tvg);
         r.in_range("tvg_spreading_n", o.tvg_spreading_n, -60, 60);
         r.in_range("tvg_gain_db", o.tvg_gain_db, -300, 300);
@@ -894,9 +904,11 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         o.choice("xtf_utm_hemisphere", d.out.xtf_utm_hemisphere, {"north", "south"});
         if (d.out.xtf_utm_zone > 0) {
             const std::string unused = "is not used with xtf_utm_zone (the world's x and y are UTM easting and northing): leave it out";
-            if (d.out.xtf_origin_latitude_deg != 0) o.fail("xtf_origin_latitude_deg", unused);
-            if (d.out.xtf_origin_longitude_deg != 0) o.fail("xtf_origin_longitude_deg", unused);
-        }
+            for (const char* key : {"xtf_origin_latitude_deg", "xtf_origin_longitude_deg"})
+                if (o.table().get(key)) o.fail(key, unused);
+        } else if (o.table().get("xtf_utm_hemisphere"))
+            o.fail("xtf_utm_hemisphere", "needs xtf_utm_zone (1 to 60): without a zone the world is a local plane about "
+                                         "xtf_origin_latitude_deg and xtf_origin_longitude_deg");
         o.in_range("xtf_start_unix_s", d.out.xtf_start_unix_s, 0, 253402300799); // to the end of the year 9999
         o.boolean("coco", d.out.coco);
         if (d.out.coco && !d.out.png) o.fail("coco", "needs png = true: its annotations name the image STEM.png");

@@ -297,10 +297,12 @@ struct toml_out {
     o.kv("ground_range_cell_m", d.out.ground_range_cell_m);
     o.kv("npy", d.out.npy);
     o.kv("xtf", d.out.xtf);
-    o.kv("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg);
-    o.kv("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg);
+    if (d.out.xtf_utm_zone == 0) { // a local plane about the origin; in a UTM zone the origin keys are not used
+        o.kv("xtf_origin_latitude_deg", d.out.xtf_origin_latitude_deg);
+        o.kv("xtf_origin_longitude_deg", d.out.xtf_origin_longitude_deg);
+    }
     o.kv("xtf_utm_zone", d.out.xtf_utm_zone);
-    o.kv("xtf_utm_hemisphere", d.out.xtf_utm_hemisphere);
+    if (d.out.xtf_utm_zone > 0) o.kv("xtf_utm_hemisphere", d.out.xtf_utm_hemisphere);
     o.kv("xtf_start_unix_s", d.out.xtf_start_unix_s);
     o.kv("coco", d.out.coco);
     o.kv("yolo", d.out.yolo);
