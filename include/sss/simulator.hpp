@@ -1153,8 +1153,10 @@ private:
     }
 
     /// The two-way time (s) up to which a column's echoes count as near the first return (ray_density::along_split_nadir):
-    /// a slant range of sqrt(2) times the towfish's altitude, at the reference speed.
+    /// a slant range of sqrt(2) times the towfish's altitude, at the reference speed; none where no seabed lies under
+    /// the towfish (height -infinity).
     [[nodiscard]] double nadir_end_s(const trace_frame& f) const noexcept {
+        if (!std::isfinite(f.altitude)) return 0.0;
         return 2.0 * std::sqrt(2.0) * std::max(0.0, double(f.altitude)) / c_ref_;
     }
 

@@ -6,9 +6,11 @@
 
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 #include "../support/compare.hpp"
 #include "../support/flat_seabed_oracle.hpp"
+#include <sss/scene/vertical_arc.hpp>
 #include <sss/sss.hpp>
 
 namespace {
@@ -192,4 +194,25 @@ TEST_CASE_TEMPLATE("a towfish a millimetre above a level seabed: a fan down to n
     CHECK(err.compared >= 4);
     CHECK(err.rms_db <= 0.05);
     CHECK(std::abs(err.worst_db) <= 0.1);
+}
+
+TEST_CASE_TEMPLATE("objects over no seabed (height -infinity) echo as over a seabed far below them", T, float, double) {
+    // With no seabed under the towfish its altitude is infinite: no plane spaces the rays in range, and the column
+    // launches evenly in angle. It launched nothing, and the sphere vanished from the line.
+    sss::receiver_params rx;
+    rx.max_range_m = 50.0;
+    const auto sim = make_sim<T>({T(2), T(60), T(20)}, T(10), rx, T(30));
+    const auto sphere = [] {
+        std::vector<sss::scene::object<T>> v;
+        v.push_back(sss::scene::object<T>(
+            std::vector<sss::scene::sphere<T>>{sss::scene::sphere<T>({T(20), T(0), T(2)}, T(1), {.material = 0, .object = 1})},
+            {}));
+        return sss::scene::object_set<T>(std::move(v));
+    };
+    const sss::scene::scene<sss::scene::no_geometry<T>> alone(sss::scene::no_geometry<T>{}, sphere());
+    const sss::scene::scene<sss::scene::flat_seabed<T>> deep(sss::scene::flat_seabed<T>(T(-500)), sphere());
+    const double e_alone = sum(sim.ping(alone, 0).starboard), e_deep = sum(sim.ping(deep, 0).starboard);
+    INFO("alone " << e_alone << ", over a seabed 510 m down " << e_deep);
+    REQUIRE(e_deep > 0.0);
+    CHECK(std::abs(e_alone / e_deep - 1.0) <= 0.01);
 }

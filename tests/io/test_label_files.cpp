@@ -143,7 +143,7 @@ TEST_CASE("Each box and COCO mask from an image of many objects holds exactly it
     }
 }
 
-TEST_CASE("Label writers refuse an image of the wrong size and class names that would break a class list or JSON") {
+TEST_CASE("Label writers refuse an image of the wrong size, and class names or ids that would break a class list or JSON") {
     scratch_dir d;
     label_image img = random_labels(8, 10, 5, 3);
     const std::vector<io::label_class> good{{1, "rock"}, {2, "tyre"}, {3, "mine"}, {4, "wreck"}, {5, "pipe"}};
@@ -172,6 +172,15 @@ TEST_CASE("Label writers refuse an image of the wrong size and class names that 
         CHECK(names_values([&] { (void)io::coco_json(std::vector<io::coco_image>{{"a.png", &img}}, classes, io::box_extent::highlight); }) ==
               "label_class.name");
         CHECK(names_values([&] { io::write_label_images(d.file("bad"), img, classes); }) == "label_class.name");
+    }
+    // Two classes of one id: COCO would list the id twice, YOLO take the first name and the legend the last.
+    {
+        std::vector<io::label_class> twice = good;
+        twice[4].id = 1;
+        CHECK(names_values([&] { (void)io::yolo_classes_txt(twice); }) == "label_class.id");
+        CHECK(names_values([&] { (void)io::coco_json(std::vector<io::coco_image>{{"a.png", &img}}, twice, io::box_extent::highlight); }) ==
+              "label_class.id");
+        CHECK(names_values([&] { io::write_label_images(d.file("twice"), img, twice); }) == "label_class.id");
     }
     // A file name that is not UTF-8 (a Linux file name may be any bytes) would be written altered.
     CHECK(names_values([&] { (void)io::coco_json(std::vector<io::coco_image>{{"a\xff.png", &img}}, good, io::box_extent::highlight); }) ==

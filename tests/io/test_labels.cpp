@@ -43,6 +43,9 @@ using scene::object_set;
 using scene::sphere;
 
 constexpr double c_mps = 1500.0, fs_hz = 20000.0, dt_s = 1.0 / fs_hz, H = 10.0;
+// A burst a fifth of a sample long: the receiver smears an echo over at most the next sample (a tenth of its energy),
+// so the labels lie where the geometry puts them. How a longer pulse moves them has its own test.
+constexpr double short_pulse_s = 10e-6;
 
 using sim_t = simulator<scattering::lambertian<double>, propagation::straight<double>, beam::ideal_fan<double>, motion::straight_line<double>>;
 
@@ -50,7 +53,7 @@ sim_t make_simulator(double max_range_m, double per_sample, motion::straight_lin
     receiver_params rp;
     rp.sample_rate_hz = fs_hz;
     rp.max_range_m = max_range_m;
-    rp.pulse.length_s = 100e-6;
+    rp.pulse.length_s = short_pulse_s;
     beam::ideal_fan_params<double> fan;
     fan.along_width_deg = 1.0;
     fan.vertical_width_deg = 90.0;
@@ -64,7 +67,7 @@ sim_t fan_simulator(double lo_deg, double hi_deg, double max_range_m) {
     receiver_params rp;
     rp.sample_rate_hz = fs_hz;
     rp.max_range_m = max_range_m;
-    rp.pulse.length_s = 100e-6;
+    rp.pulse.length_s = short_pulse_s;
     return sim_t(scattering::lambertian<double>({.mu_db = {-27.0}}), propagation::straight<double>(),
                  beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = hi_deg - lo_deg, .depression_deg = 0.5 * (lo_deg + hi_deg)}),
                  motion::straight_line<double>(motion::straight_line_params<double>{}), rp,
@@ -238,7 +241,7 @@ TEST_CASE("A bounced echo from beyond the swath is seabed, and the gap before it
     receiver_params rp;
     rp.sample_rate_hz = fs_hz;
     rp.max_range_m = 50.0;
-    rp.pulse.length_s = 100e-6;
+    rp.pulse.length_s = short_pulse_s;
     const bounce_sim sim(jackson_bounce(sand), propagation::straight<double>(),
                          beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = 40.0, .depression_deg = 40.0}),
                          motion::straight_line<double>(motion::straight_line_params<double>{}), rp,
@@ -305,6 +308,54 @@ TEST_CASE("A sphere in the water column: its highlight before the first bottom r
     CHECK(l[std::size_t(sample_of(H)) - 2].kind == sample_class::water_column);
 }
 
+TEST_CASE("A highlight covers the samples its echo shows in, as the pulse smears it: rectangular, Hann, long and chirped") {
+    // A small sphere in the water column (5 cm, 6.4 m away): its echo in the image is the pulse's envelope. A Hann
+    // burst of 1 ms peaks 0.5 ms (10 samples) after the echo arrives, a rectangular one lasts 20 samples: the labels
+    // at the arrival alone missed the first's echo altogether and the second's but its first two samples.
+    struct case_ {
+        pulse_shape shape;
+        double length_s, bandwidth_hz;
+    };
+    for (const case_ c : {case_{pulse_shape::rectangular, 100e-6, 0.0}, case_{pulse_shape::hann, 100e-6, 0.0},
+                          case_{pulse_shape::rectangular, 1e-3, 0.0}, case_{pulse_shape::hann, 1e-3, 0.0},
+                          case_{pulse_shape::lfm, 1e-3, 20000.0}}) {
+        CAPTURE(int(c.shape));
+        CAPTURE(c.length_s);
+        receiver_params rp;
+        rp.sample_rate_hz = fs_hz;
+        rp.max_range_m = 20.0;
+        rp.pulse = {.length_s = c.length_s, .shape = c.shape, .bandwidth_hz = c.bandwidth_hz};
+        const sim_t sim(scattering::lambertian<double>({.mu_db = {-27.0, -10.0}}), propagation::straight<double>(),
+                        beam::ideal_fan<double>({.along_width_deg = 1.0, .vertical_width_deg = 90.0, .depression_deg = 45.0}),
+                        motion::straight_line<double>(motion::straight_line_params<double>{}), rp,
+                        ray_density{.along = 4, .across = 0, .per_sample = 4.0});
+        std::vector<object<double>> objs{object<double>({sphere<double>({5.0, 0, 6.0}, 0.05, {1, 8, 4})}, {})};
+        const scene::scene sc(scene::flat_seabed<double>(0.0, 0, 2), object_set<double>(std::move(objs)));
+        const auto both = render_labelled(sim, sc, 0, 1);
+        const std::size_t n = both.image.samples, before_seabed = std::size_t(sample_of(H)) - 1;
+        double peak = 0.0;
+        for (std::size_t k = 0; k < before_seabed; ++k) peak = std::max(peak, double(both.image.at(0, n + k)));
+        REQUIRE(peak > 0.0);
+        std::size_t shown = 0, labelled = 0;
+        for (std::size_t k = 0; k < before_seabed; ++k) {
+            const double v = double(both.image.at(0, n + k));
+            const sample_label& l = both.labels.at(0, n + k);
+            CAPTURE(k);
+            if (v >= 0.1 * peak) { // within 10 dB of the echo's peak: the sphere's highlight
+                ++shown;
+                CHECK(l.kind == sample_class::highlight);
+                CHECK(l.object == 8u);
+            }
+            if (l.kind == sample_class::highlight) { // and no highlight where the image shows no echo
+                ++labelled;
+                CHECK(v > 0.0);
+            }
+        }
+        MESSAGE(shown << " samples within 10 dB of the echo's peak, " << labelled << " labelled highlight");
+        CHECK(shown >= 2);
+    }
+}
+
 TEST_CASE("In refracting water a sphere's shadow lies between the landings of its tangent bent rays, not its straight ones") {
     // Sound slows by 60 m/s over the 10 m between the towfish (depth 20 m) and the seabed (depth 30 m): the rays
     // bend down with a radius of about 250 m, and sag 0.3 to 0.5 m below their chords over the 30 m to the shadow.
@@ -315,7 +366,7 @@ TEST_CASE("In refracting water a sphere's shadow lies between the landings of it
     receiver_params rp;
     rp.sample_rate_hz = fs_hz;
     rp.max_range_m = 45.0;
-    rp.pulse.length_s = 100e-6;
+    rp.pulse.length_s = short_pulse_s;
     // A narrow beam along track (0.25 deg, 5 cm at the sphere) keeps the rays near the oracle's plane below: off it
     // the sphere's section, and so its shadow, is shorter.
     beam::ideal_fan_params<double> fan;
@@ -389,7 +440,7 @@ TEST_CASE("A sphere between two columns' launch cones is labelled, highlight and
     receiver_params rp;
     rp.sample_rate_hz = fs_hz;
     rp.max_range_m = 35.0;
-    rp.pulse.length_s = 100e-6;
+    rp.pulse.length_s = short_pulse_s;
     beam::ideal_fan_params<double> fan;
     fan.along_width_deg = 1.0;
     fan.vertical_width_deg = 90.0;

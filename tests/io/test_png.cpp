@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -64,4 +66,12 @@ TEST_CASE("A PNG whose pixels do not fill its size, or of no size, is refused na
     }
     CHECK(!std::filesystem::exists(path));
     CHECK(sss_test::temporaries_left(path) == 0);
+}
+
+TEST_CASE("The display maps a level beyond any number (infinity) to white, and zero, negatives and NaN to black") {
+    const std::vector<double> v{1.0, 10.0, std::numeric_limits<double>::infinity(), 100.0, 0.0, -1.0,
+                                std::numeric_limits<double>::quiet_NaN()};
+    const auto grey = sss::io::to_grey_db<std::uint8_t>(std::span<const double>(v), {.dynamic_range_db = 20.0});
+    // The window's top is the finite peak (100: 20 dB), its floor 0 dB.
+    CHECK(grey == std::vector<std::uint8_t>{0, 128, 255, 255, 0, 0, 0});
 }

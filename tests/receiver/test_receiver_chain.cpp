@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -60,6 +61,36 @@ TEST_CASE("TVG with N = 30 and the absorption flattens a constant-sigma flat sea
     CHECK(spread_db(line) < 2.0); // every sample within +-1 dB of the span's middle
     CHECK(sss::tvg_gain_db(sss::tvg_params{.spreading_n = 30.0, .absorption_db_per_km = 60.0, .gain_db = 3.0}, 100.0) ==
           doctest::Approx(60.0 + 12.0 + 3.0));
+}
+
+TEST_CASE_TEMPLATE("TVG beyond the number type's range holds a sample at its largest value, and zero stays zero", T, float, double) {
+    // 1000 dB/km both ways over 1.5 km, N = 60 and G0 = 300 dB: about 3500 dB. 0 x infinity made NaN of every empty
+    // far sample, and a lit one became infinity (shown black by a display that drops what is not finite).
+    const sss::tvg gain(sss::tvg_params{.spreading_n = 60.0, .absorption_db_per_km = 1000.0, .gain_db = 300.0});
+    sss::line_context<T> ctx;
+    ctx.dt_s = 1e-3;
+    std::vector<T> line(2000, T(0));
+    for (std::size_t k = 0; k < line.size(); k += 2) line[k] = T(1e-30);
+    gain.process(line, ctx);
+    std::size_t held = 0;
+    for (std::size_t k = 0; k < line.size(); ++k) {
+        CAPTURE(k);
+        REQUIRE(std::isfinite(line[k]));
+        if (k % 2 == 1) CHECK(line[k] == T(0));
+        held += line[k] == std::numeric_limits<T>::max();
+    }
+    CHECK(held > 0);
+    // Near range the gain is exact: 1e-30 x 10^(G/10) at 0.75 m (the minimum range's 1 m).
+    CHECK(double(line[0]) == doctest::Approx(1e-30 * std::pow(10.0, sss::tvg_gain_db(gain.params(), 0.75) / 10.0)).scale(0).epsilon(1e-6));
+    // A column whose mean is not finite is left as it is by the per-range normalisation.
+    sss::waterfall<T> w;
+    w.pings = 2;
+    w.samples = 1;
+    w.values = {std::numeric_limits<T>::infinity(), T(2), T(1), T(2)};
+    sss::normalise_range_mean(w);
+    CHECK(std::isinf(w.values[0]));
+    CHECK(w.values[2] == T(1));
+    CHECK(w.values[1] == T(1));
 }
 
 TEST_CASE("Lambert's sin^2 law leaves 20 log r after N = 30; per-range mean normalisation flattens it within 1 dB") {

@@ -134,3 +134,31 @@ TEST_CASE("a grid header promising more values than its file holds is refused be
               std::string::npos);
     }
 }
+
+TEST_CASE("ground-range labels and images of 2^62 cells a side, or from a mis-sized label image, are refused by name") {
+    sss::label_image slant;
+    slant.pings = 4;
+    slant.samples = 100;
+    slant.dt_s = 1e-4;
+    slant.values.resize(4 * 200);
+    const std::vector<double> h(4, 10.0);
+    const std::size_t huge = std::size_t(1) << 62; // 2 x 2^62 x 4 wraps to 0 in the size type
+    CHECK_THROWS_WITH_AS((void)sss::ground_range_labels(slant, h, {.cell_m = 0.05, .cells = huge, .sound_speed_mps = 1500.0}),
+                         doctest::Contains("ground_range_params.cells"), sss::invalid_parameter);
+    CHECK_THROWS_WITH_AS((void)sss::ground_range_labels(slant, h, {.cell_m = 1e-300, .cells = 0, .sound_speed_mps = 1500.0}),
+                         doctest::Contains("ground_range_params.cell_m"), sss::invalid_parameter);
+    CHECK_THROWS_WITH_AS((void)sss::ground_range_labels(slant, {10.0, -5.0, 10.0, 10.0}, {}), doctest::Contains("altitude_m"),
+                         sss::invalid_parameter);
+    sss::label_image short_one = slant;
+    short_one.values.resize(10);
+    CHECK_THROWS_WITH_AS((void)sss::ground_range_labels(short_one, h, {}), doctest::Contains("label_image.values"),
+                         sss::invalid_parameter);
+    CHECK(sss::ground_range_labels(slant, h, {}).values.size() == 4 * 2 * 150); // 100 samples of 7.5 cm over 5 cm cells
+    sss::waterfall<float> w;
+    w.pings = 4;
+    w.samples = 100;
+    w.dt_s = 1e-4;
+    w.values.resize(800);
+    CHECK_THROWS_WITH_AS((void)sss::to_ground_range(w, h, 1500.0, 0.05, huge), doctest::Contains("to_ground_range.pixels"),
+                         sss::invalid_parameter);
+}

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <glm/matrix.hpp>
@@ -34,11 +35,11 @@ TEST_CASE("level towfish: depression angles are spaced evenly in nominal slant r
     CHECK(e.front() == 45 * deg);
     CHECK(nominal_range(R, sss::side::starboard, 0.004, e.back(), 10.0) == doctest::Approx(50.0).epsilon(1e-9));
     const double step = nominal_range(R, sss::side::starboard, 0.004, e[1], 10.0) - nominal_range(R, sss::side::starboard, 0.004, e[0], 10.0);
-    CHECK(step == doctest::Approx(0.1).epsilon(0.02));
+    CHECK(step == doctest::Approx(0.1).epsilon(0.02).scale(0));
     for (std::size_t i = 1; i < e.size(); ++i) {
         CHECK(e[i] < e[i - 1]);
         const double dr = nominal_range(R, sss::side::starboard, 0.004, e[i], 10.0) - nominal_range(R, sss::side::starboard, 0.004, e[i - 1], 10.0);
-        CHECK(dr == doctest::Approx(step).epsilon(1e-6));
+        CHECK(dr == doctest::Approx(step).epsilon(1e-6).scale(0));
     }
 }
 
@@ -90,6 +91,49 @@ TEST_CASE("nothing is launched where nothing can be reached, and a towfish not a
     REQUIRE(e.size() == 52);
     CHECK(e.front() == doctest::Approx(30 * deg));
     CHECK(e.back() == doctest::Approx(10 * deg));
+}
+
+TEST_CASE("with no seabed under the towfish (an infinite altitude) or an endless range, the angles are even and as many "
+          "as the budget allows") {
+    const auto R = sss::body_to_world_rotation(0.0, 0.0, 0.0);
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> e;
+    sss::column_density d;
+    d.rays_per_m = 2.0;
+    d.max_rays = 300;
+    // Objects 30 m below, nothing else: 2 rays per metre of the 100 m range, evenly over the column.
+    sss::depression_angles(e, sss::side::starboard, 0.0, 10 * deg, 30 * deg, R, inf, 30.0, 100.0, d);
+    REQUIRE(e.size() == 202);
+    CHECK(e.front() == doctest::Approx(30 * deg));
+    CHECK(e.back() == doctest::Approx(10 * deg));
+    CHECK(sss::launch_span_m(sss::side::starboard, 0.0, 10 * deg, 30 * deg, R, sss::nominal_seabed{.altitude_m = inf,
+                                                                                                    .clearance_m = 30.0},
+                             100.0) == 100.0);
+    // An endless range: the budget, not an overflow.
+    sss::depression_angles(e, sss::side::starboard, 0.0, 10 * deg, 30 * deg, R, inf, 30.0, inf, d);
+    CHECK(e.size() == 300);
+    sss::depression_angles(e, sss::side::starboard, 0.0, 10 * deg, 30 * deg, R, 10.0, 10.0, inf, d);
+    CHECK(e.size() == 300);
+    CHECK(std::all_of(e.begin(), e.end(), [](double x) { return std::isfinite(x); }));
+}
+
+TEST_CASE("a column's pieces share its ray budget: a column across nadir, with its steps capped, launches max_rays") {
+    std::vector<double> e;
+    sss::column_density d;
+    d.rays_per_m = 1000;
+    d.max_rays = 1000;
+    for (const double roll_deg : {0.0, 15.0})
+        for (const double altitude_m : {10.0, 0.05})
+            for (const double step_deg : {0.0, 0.5}) {
+                CAPTURE(roll_deg);
+                CAPTURE(altitude_m);
+                CAPTURE(step_deg);
+                d.max_step_rad = step_deg * deg;
+                const auto R = sss::body_to_world_rotation(roll_deg * deg, 0.0, 0.0);
+                sss::depression_angles(e, sss::side::starboard, 0.0, 0.0, 120 * deg, R, altitude_m, altitude_m, 50.0, d);
+                CHECK(e.size() >= 100);
+                CHECK(e.size() <= 1000);
+            }
 }
 
 TEST_CASE("close to the seabed no step between launch angles exceeds the cap, and every angle spaced in range is kept") {
@@ -214,8 +258,8 @@ TEST_CASE("over a sloping plane the depression angles are spaced evenly in slant
         std::vector<double> r(e.size());
         for (std::size_t i = 0; i < e.size(); ++i) r[i] = range_to_plane(R, s, 0.01, e[i], n, 10.0);
         const double step = r[1] - r[0];
-        CHECK(step == doctest::Approx(0.1).epsilon(0.05));
-        for (std::size_t i = 1; i < r.size(); ++i) CHECK(r[i] - r[i - 1] == doctest::Approx(step).epsilon(1e-6));
+        CHECK(step == doctest::Approx(0.1).epsilon(0.05).scale(0));
+        for (std::size_t i = 1; i < r.size(); ++i) CHECK(r[i] - r[i - 1] == doctest::Approx(step).epsilon(1e-6).scale(0));
         // The last ray's straight line comes down to the clearance (1 m above the plane) at the longest range, 30 m.
         CHECK(r.back() * 9.0 / 10.0 == doctest::Approx(30.0).epsilon(1e-9));
         // What it spans is what launch_span_m says: the rays launched over it are rays_per_m to the metre.

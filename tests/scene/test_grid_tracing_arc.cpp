@@ -254,3 +254,31 @@ TEST_CASE_TEMPLATE("An arc bending down that rises out of the surface and falls 
     const double cos_hit = std::cos(phi) + kappa * z0, x = (std::sin(phi) - std::sqrt(1 - cos_hit * cos_hit)) / kappa;
     CHECK(double(h->x_m) == doctest::Approx(x).epsilon(sizeof(T) == 4 ? 1e-4 : 1e-9));
 }
+
+TEST_CASE_TEMPLATE("An arc that would turn vertical before x_end_m meets the surface it comes down on first, as with a "
+                   "shorter x_end_m",
+                   T, float, double) {
+    // Flat seabed at z = 0; from 1 m above it, 36.9 degrees down and bending down (kappa = -0.1 1/m): vertical at
+    // x_v = (1 - sin phi0) / -kappa = 4 m, but it meets the seabed at x = 1.141 m. That hit stands whatever x_end_m;
+    // beyond x_v it was dropped with the whole arc.
+    const auto hf = height_field<T>({.nx = 11, .ny = 11, .cell_m = T(1), .origin_m = {T(0), T(0)},
+                                     .heights_m = std::vector<T>(121, T(0))});
+    vertical_arc<T> a;
+    a.start = vec3<T>{T(5), T(5), T(1)};
+    a.heading = vec2<T>{T(1), T(0)};
+    a.sin_phi0 = T(0.6);
+    a.cos_phi0 = T(0.8);
+    a.kappa_per_m = T(-0.1);
+    // Depth 1 m first where cos phi = cos phi0 + kappa d: x = (sin phi - sin phi0) / -kappa.
+    const double x = (std::sqrt(1 - 0.7 * 0.7) - 0.6) / 0.1;
+    for (const double x_end : {2.0, 3.9, 4.1, 5.0, 1e6}) {
+        CAPTURE(x_end);
+        const auto h = hf.intersect_arc(a, T(0), T(x_end));
+        REQUIRE(h);
+        CHECK(double(h->x_m) == doctest::Approx(x).epsilon(sizeof(T) == 4 ? 1e-5 : 1e-12));
+    }
+    // A seabed it would meet only beyond x_v (10 m down from 1 m up: it turns vertical 4 m out, 8 m down) is not met.
+    const auto deep = height_field<T>({.nx = 11, .ny = 11, .cell_m = T(1), .origin_m = {T(0), T(0)},
+                                       .heights_m = std::vector<T>(121, T(-9))});
+    CHECK_FALSE(deep.intersect_arc(a, T(0), T(1e6)));
+}

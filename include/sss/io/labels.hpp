@@ -73,7 +73,7 @@ inline void check_label_image(const label_image& img) {
 
 /// Throws invalid_parameter ("label_class.name") unless every name is non-empty, well-formed UTF-8 and free of
 /// control characters: a name is one line of a YOLO class list and one string of a JSON file, and a newline in
-/// one would shift every later class's index.
+/// one would shift every later class's index; and ("label_class.id") where two classes share an id.
 inline void check_class_names(std::span<const label_class> classes) {
     for (const label_class& c : classes) {
         const bool control = std::any_of(c.name.begin(), c.name.end(), [](char ch) {
@@ -84,6 +84,15 @@ inline void check_class_names(std::span<const label_class> classes) {
             return "of class " + std::to_string(c.id) +
                    " must be non-empty UTF-8 text without control characters (it is one line of a class list)";
         });
+    }
+    // One name per id: COCO's categories, YOLO's list and the legend would each pick a different one.
+    std::vector<std::size_t> by_id(classes.size());
+    for (std::size_t i = 0; i < by_id.size(); ++i) by_id[i] = i;
+    std::stable_sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return classes[a].id < classes[b].id; });
+    for (std::size_t i = 1; i < by_id.size(); ++i) {
+        const label_class &a = classes[by_id[i - 1]], &b = classes[by_id[i]];
+        sss::require(a.id != b.id, "label_class.id",
+                     [&] { return std::to_string(a.id) + " names two classes, '" + a.name + "' and '" + b.name + "'"; });
     }
 }
 

@@ -13,7 +13,7 @@
 ///
 /// Display mapping (`to_grey_db`): the level 10 log10(v) of each value over the window
 /// [top_db - dynamic_range_db, top_db] goes linearly to [0, max grey] (255 or 65535); top_db is the peak's level
-/// unless given. Zeros, negatives and NaN map to 0.
+/// unless given (the finite values' peak). Zeros, negatives and NaN map to 0, +infinity to the max grey.
 
 #include <algorithm>
 #include <array>
@@ -81,7 +81,11 @@ template <class U, class V> [[nodiscard]] std::vector<U> to_grey_db(std::span<co
     std::vector<U> out(values.size(), U(0));
     for (std::size_t i = 0; i < values.size(); ++i) {
         const double v = double(values[i]);
-        if (!(v > 0.0) || !std::isfinite(v)) continue;
+        if (!(v > 0.0)) continue;
+        if (std::isinf(v)) { // beyond any level: white
+            out[i] = static_cast<U>(~U(0));
+            continue;
+        }
         const double f = std::clamp((10.0 * std::log10(v) - floor_db) / p.dynamic_range_db, 0.0, 1.0);
         out[i] = static_cast<U>(std::lround(f * grey));
     }

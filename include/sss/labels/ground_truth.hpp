@@ -4,9 +4,11 @@
 /// the geometry of the shadows.
 ///
 /// Per ping and side, the simulator's rays are traced twice through `simulator::trace` (its public visitor):
-/// 1. through the scene: every tube of echo energy is spread over the samples its two-way times cover (as the
-///    receiver does, without the pulse's smear), kept apart by the hit it came from: the seabed (by region and
-///    material) and each object (by id). render_labelled takes these echoes from the trace that renders the
+/// 1. through the scene: every tube of echo energy is spread over the samples the receiver shows it in (its two-way
+///    times, smeared over the pulse: a burst's length, a Hann burst's echo peaking half of it after its arrival; a
+///    compressed chirp's main lobe; detail::echo_smear), kept apart by the hit it came from: the seabed (by region and
+///    material) and each object (by id). So a highlight covers the samples its echo shows in, and a shadow starts
+///    where the echo before it has died away. render_labelled takes these echoes from the trace that renders the
 ///    image (simulator::ping with an observer), so image and labels cost two traces, not three;
 /// 2. through the seabed alone (`scene.seabed()`), with the rays of the first pass (`simulator::trace_seabed_alone`:
 ///    the same launch angles, which follow the top of the seabed and of the objects the side can reach): the echo
@@ -221,6 +223,13 @@ template <class Sim, class Seabed>
             });
         });
     }
+    // The bare seabed's first and last echoes as the line shows them (smeared over the pulse).
+    const double shown_first_s = acc.smear != nullptr
+                                     ? acc.first_bare_s - acc.smear->delay_s() + acc.smear->window_begin_s()
+                                     : acc.first_bare_s;
+    const double shown_last_s = acc.smear != nullptr
+                                    ? acc.last_bare_s - acc.smear->delay_s() + acc.smear->window_end_s()
+                                    : acc.last_bare_s;
     std::vector<sample_label> out(n);
     std::size_t lit = n; // the last sample before k that the bare seabed lights (n: none yet)
     for (std::size_t k = 0; k < n; ++k) {
@@ -242,9 +251,9 @@ template <class Sim, class Seabed>
             l = {sample_class::seabed, no_object, acc.seabed_region[k], acc.seabed_material[k]};
         } else if (acc.bare[k] > 0.0) { // lit in the bare seabed, unlit here, too little blocked for a shadow
             l = {sample_class::seabed, no_object, acc.bare_region[k], acc.bare_material[k]};
-        } else if (double(k + 1) * acc.dt <= acc.first_bare_s) {
+        } else if (double(k + 1) * acc.dt <= shown_first_s) {
             l = {sample_class::water_column, no_object, 0, 0};
-        } else if (double(k) * acc.dt < acc.last_bare_s && lit != n) {
+        } else if (double(k) * acc.dt < shown_last_s && lit != n) {
             l = {sample_class::seabed_shadow, no_object, acc.bare_region[lit], acc.bare_material[lit]};
         }
     }
@@ -269,7 +278,8 @@ template <class Sim, class Seabed>
                                                    side sd, const label_params& lp = {}) {
     using T = typename Sim::value_type;
     detail::check_label_params(lp);
-    detail::label_accumulator acc(sim.samples_per_line(), sim.dt_s());
+    const detail::echo_smear shown(sim.receiver().pulse);
+    detail::label_accumulator acc(sim.samples_per_line(), sim.dt_s(), &shown);
     sim.trace(sc, p, sd, [&](const tube_echo<T>& e) { detail::label_scene_echo(acc, e); });
     return detail::finish_labels(sim, sc, p, sd, acc, lp);
 }
@@ -309,7 +319,8 @@ void labelled_ping(const Sim& sim, const scene::scene<Seabed>& sc, std::size_t p
                    labelled_waterfall<typename Sim::value_type>& out, const label_params& lp) {
     using T = typename Sim::value_type;
     const std::size_t n = sim.samples_per_line();
-    label_accumulator port(n, sim.dt_s()), starboard(n, sim.dt_s());
+    const echo_smear shown(sim.receiver().pulse);
+    label_accumulator port(n, sim.dt_s(), &shown), starboard(n, sim.dt_s(), &shown);
     out.image.set_row(row, sim.ping(sc, ping, [&](side sd, const tube_echo<T>& e) {
         label_scene_echo(sd == side::port ? port : starboard, e);
     }));
@@ -363,13 +374,27 @@ struct ground_range_params {
                                                      const ground_range_params& g) {
     sss::require_positive(g.cell_m, "ground_range_params.cell_m");
     sss::require_positive(g.sound_speed_mps, "ground_range_params.sound_speed_mps");
+    sss::require_positive(slant.dt_s, "label_image.dt_s");
+    sss::require(slant.samples <= std::numeric_limits<std::size_t>::max() / 2 &&
+                     slant.values.size() == checked_elements(slant.pings, 2 * slant.samples, "label_image.values"),
+                 "label_image.values", "must hold pings x 2 x samples labels");
     sss::require(altitude_m.size() == slant.pings, "altitude_m", "must hold one altitude per ping");
+    for (const double h : altitude_m) sss::require_non_negative(h, "altitude_m");
     const double dr = 0.5 * g.sound_speed_mps * slant.dt_s;
     label_image out;
     out.pings = slant.pings;
     out.dt_s = slant.dt_s;
-    out.samples = g.cells != 0 ? g.cells : static_cast<std::size_t>(std::ceil(double(slant.samples) * dr / g.cell_m));
-    out.values.resize(out.pings * out.width());
+    if (g.cells != 0) {
+        out.samples = g.cells;
+    } else {
+        const double cells = std::ceil(double(slant.samples) * dr / g.cell_m);
+        sss::require(cells < double(max_elements), "ground_range_params.cell_m",
+                     "gives more cells than a label image can hold");
+        out.samples = static_cast<std::size_t>(cells);
+    }
+    sss::require(out.samples <= std::numeric_limits<std::size_t>::max() / 2, "ground_range_params.cells",
+                 "overflows the size type");
+    out.values.resize(checked_elements(out.pings, out.width(), "ground_range_params.cells"));
     const auto on_ground = [](const sample_label& l) { return l.kind == sample_class::water_column ? sample_label{} : l; };
     for (std::size_t i = 0; i < out.pings; ++i) {
         const double h = altitude_m[i];

@@ -12,9 +12,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <vector>
 
+#include "sss/core/checked_size.hpp"
 #include "sss/core/error.hpp"
 #include "sss/core/types.hpp"
 #include "sss/receiver/image.hpp"
@@ -68,10 +70,11 @@ template <Real T>
 [[nodiscard]] waterfall<T> to_ground_range(const waterfall<T>& w, const std::vector<double>& altitudes_m, double c_mps,
                                            double spacing_m, std::size_t pixels) {
     sss::require(altitudes_m.size() == w.pings, "to_ground_range.altitudes_m", "must hold one altitude per ping");
+    sss::require(pixels <= std::numeric_limits<std::size_t>::max() / 2, "to_ground_range.pixels", "overflows the size type");
     waterfall<T> g;
     g.pings = w.pings;
     g.samples = pixels;
-    g.values.assign(w.pings * g.width(), T(0));
+    g.values.assign(checked_elements(w.pings, g.width(), "to_ground_range.pixels"), T(0));
     std::vector<T> port(w.samples), starboard(w.samples);
     for (std::size_t i = 0; i < w.pings; ++i) {
         for (std::size_t k = 0; k < w.samples; ++k) {

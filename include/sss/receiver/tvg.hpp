@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "sss/core/error.hpp"
@@ -30,8 +31,8 @@ struct tvg_params {
     double min_range_m = 1.0;         ///< ranges below this get the gain at this range (m), > 0
 
     void validate() const {
-        // Bounds that keep 10^(G/10) in range over any line (spherical spreading is N = 40, seawater's absorption at
-        // 1 MHz about 300 dB/km).
+        // Spherical spreading is N = 40, seawater's absorption at 1 MHz about 300 dB/km. Over a long enough line the
+        // gain still passes any number's range: process holds such samples at the largest value (file comment).
         sss::require_in_range(spreading_n, -60.0, 60.0, "tvg.spreading_n");
         sss::require_in_range(absorption_db_per_km, 0.0, 1000.0, "tvg.absorption_db_per_km");
         sss::require_in_range(gain_db, -300.0, 300.0, "tvg.gain_db");
@@ -45,7 +46,9 @@ struct tvg_params {
     return p.spreading_n * std::log10(r) + 2.0 * p.absorption_db_per_km * r / 1000.0 + p.gain_db;
 }
 
-/// The time-varied gain as a line stage: sample k (two-way time (k + 1/2) dt, range c t / 2) times 10^(G/10).
+/// The time-varied gain as a line stage: sample k (two-way time (k + 1/2) dt, range c t / 2) times 10^(G/10). A sample
+/// the gain would lift beyond T's largest value (far out at a high absorption) is held there, as a receiver
+/// saturates; zero stays zero whatever the gain.
 class tvg {
 public:
     tvg() = default;
@@ -53,9 +56,16 @@ public:
     [[nodiscard]] const tvg_params& params() const noexcept { return p_; }
 
     template <Real T> void process(std::vector<T>& line, const line_context<T>& ctx) const {
+        const double top = double(std::numeric_limits<T>::max());
         for (std::size_t k = 0; k < line.size(); ++k) {
+            const double v = double(line[k]);
+            if (v == 0.0 || !std::isfinite(v)) continue;
             const double r = 0.5 * ctx.c_mps * (double(k) + 0.5) * ctx.dt_s;
-            line[k] = static_cast<T>(double(line[k]) * std::pow(10.0, tvg_gain_db(p_, r) / 10.0));
+            const double g_db = tvg_gain_db(p_, r);
+            // In decibels: 10 log10 |v| + G against the largest value's level.
+            const double level_db = 10.0 * std::log10(std::abs(v)) + g_db;
+            const double out = level_db >= 10.0 * std::log10(top) ? top : std::abs(v) * std::pow(10.0, g_db / 10.0);
+            line[k] = static_cast<T>(std::copysign(std::min(out, top), v));
         }
     }
 
@@ -64,14 +74,14 @@ private:
 };
 
 /// Divides every column of a waterfall (one range on one side) by its mean over the pings; columns whose mean is
-/// zero (the water column of a noiseless record) are left as they are.
+/// zero (the water column of a noiseless record) or not finite are left as they are.
 template <Real T> void normalise_range_mean(waterfall<T>& w) {
     const std::size_t width = w.width();
     std::vector<double> mean(width, 0.0);
     for (std::size_t i = 0; i < w.pings; ++i)
         for (std::size_t c = 0; c < width; ++c) mean[c] += double(w.values[i * width + c]);
     for (std::size_t c = 0; c < width; ++c) {
-        if (!(mean[c] > 0.0)) continue;
+        if (!(mean[c] > 0.0) || !std::isfinite(mean[c])) continue; // (a column holding infinity or NaN, too)
         const double scale = double(w.pings) / mean[c];
         for (std::size_t i = 0; i < w.pings; ++i) w.values[i * width + c] = static_cast<T>(double(w.values[i * width + c]) * scale);
     }

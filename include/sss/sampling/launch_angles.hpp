@@ -34,7 +34,9 @@ namespace sss {
 struct column_density {
     double rays_per_m = 0.0;      ///< rays per metre of nominal slant range (used when `rays` is 0)
     std::size_t rays = 0;         ///< rays over the reachable part of the column (0: use rays_per_m)
-    std::size_t max_rays = 1u << 16; ///< cap per column
+    /// Cap per column: each monotone piece of the column takes at most what the pieces before it left, but at least
+    /// two rays (and six towards a range minimum), so a column may pass a cap of a few rays.
+    std::size_t max_rays = 1u << 16;
     /// Largest step (rad) between adjacent launch angles (within max_rays: a cap the budget cannot meet is widened).
     /// Near the towfish's altitude the returns' spacing in range leaves few rays over a wide span of angles (under a
     /// receiver sampled at 1 kHz, 10 m up, one step is 4.5 degrees at 55 degrees of depression), and a tube's
@@ -160,7 +162,11 @@ template <Real T>
     lg.C = -up_of(2) * ca;
     lg.rho = std::hypot(lg.B, lg.C);
     const double H = nominal.altitude_m;
-    if (!(H > 0.0) || !(nominal.clearance_m > 0.0) || !(lg.rho > 1e-12) || !(Rmax > 0.0)) return lg;
+    // No spacing without a plane at a finite distance and a finite reach: the seabed beyond the scene (height
+    // -infinity, an altitude of +infinity) leaves only what rises above it, wherever that is.
+    if (!(H > 0.0) || !std::isfinite(H) || !(nominal.clearance_m > 0.0) || !(lg.rho > 1e-12) || !(Rmax > 0.0) ||
+        !std::isfinite(Rmax))
+        return lg;
     lg.spaced = true;
     // A ray can reach geometry within Rmax only if g >= clearance / Rmax.
     const double g_cut = nominal.clearance_m / Rmax;
@@ -229,7 +235,7 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
     };
     if (!lg.spaced) {
         const double n = density.rays != 0 ? double(density.rays) : density.rays_per_m * Rmax;
-        uniform(e_lo, e_hi, static_cast<std::size_t>(n) + 2);
+        uniform(e_lo, e_hi, n < double(density.max_rays) ? static_cast<std::size_t>(n) + 2 : density.max_rays);
         return;
     }
     const double span_total = lg.span_m;
@@ -237,14 +243,19 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
     const double n_total = std::min(double(density.max_rays),
                                     density.rays != 0 ? double(density.rays) : density.rays_per_m * span_total);
     for (const detail::launch_piece& p : lg.pieces) {
-        const auto n = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(n_total * (p.r_far - p.r_near) / span_total)) + 1);
+        // At the range minimum (e.g. nadir) the return density grows like 1/sqrt(t - t_min): refine towards
+        // it geometrically so that no tube spreads that peak evenly over a whole step.
+        const bool at_minimum = std::abs(p.e_near - p.centre) < 1e-9;
+        // The piece's share of the column's rays, within what the pieces before it left of the budget.
+        const double left = (density.max_rays > out.size() ? double(density.max_rays - out.size()) : 0.0) -
+                            (at_minimum ? double(refine_levels) : 0.0);
+        const double share = std::ceil(n_total * (p.r_far - p.r_near) / span_total) + 1;
+        const auto n = std::max<std::size_t>(2, static_cast<std::size_t>(std::max(0.0, std::min(share, left))));
         std::vector<double> ranges;
         ranges.reserve(n + refine_levels);
         const double step = (p.r_far - p.r_near) / double(n - 1);
         ranges.push_back(p.r_near);
-        // At the range minimum (e.g. nadir) the return density grows like 1/sqrt(t - t_min): refine towards
-        // it geometrically so that no tube spreads that peak evenly over a whole step.
-        if (std::abs(p.e_near - p.centre) < 1e-9)
+        if (at_minimum)
             for (std::size_t l = refine_levels; l >= 1; --l) ranges.push_back(p.r_near + step * std::pow(0.25, double(l)));
         for (std::size_t i = 1; i < n; ++i) ranges.push_back(p.r_near + step * double(i));
         detail::cap_range_steps(ranges, density.max_range_step, density.max_rays > out.size() ? density.max_rays - out.size() : 0);

@@ -81,10 +81,11 @@
 ///
 /// with `a` a `scene::vertical_arc<T>`: where the arc first comes down onto that part within horizontal distance
 /// x_end_m (m) of its start, given that it meets nothing before x_clear_m (m; 0 when nothing is known), the same to the
-/// last bit whatever such x_clear_m is given; the hit's point lies on the arc. A height field meets arcs in all of
-/// itself; a scene of a height field and objects, in its seabed, its objects being the rest. Layered water then
-/// traces a ray through each layer by one query on that part and chords on the rest (propagation/layered.hpp), so that
-/// a view of the scene with fewer objects near (area_view) gives the same paths.
+/// last bit whatever such x_clear_m is given; the hit's point lies on the arc. An arc that turns vertical before
+/// x_end_m is met up to that point (beyond it, it curls back over distances already passed). A height field meets arcs
+/// in all of itself; a scene of a height field and objects, in its seabed, its objects being the rest. Layered water
+/// then traces a ray through each layer by one query on that part and chords on the rest (propagation/layered.hpp), so
+/// that a view of the scene with fewer objects near (area_view) gives the same paths.
 
 #include <concepts>
 #include <cstddef>

@@ -27,7 +27,8 @@
 /// skips end at a cell's entry crossing. Breakpoints and f there are computed by one formula whatever the start, so
 /// every start that the arc is above sees the same pieces from there on, and the hit is the same to the last bit.
 /// An arc that starts under the surface (inside the sediment, or coming over the footprint's side below it) is not
-/// stopped while it rises out of it: its first crossing from above is the hit, as for a straight ray.
+/// stopped while it rises out of it: its first crossing from above is the hit, as for a straight ray. An arc that turns
+/// vertical is walked up to just before that point (x_v, where |sin phi| = 1), whatever x_end_m.
 
 #include <algorithm>
 #include <cmath>
@@ -154,8 +155,13 @@ template <Real T>
          line.su != 0 ? line.cross_u(g.nx - 1) : T(0));
     clip(line.sv, line.v0, g.ny - 1, line.sv != 0 ? line.cross_v(0) : T(0),
          line.sv != 0 ? line.cross_v(g.ny - 1) : T(0));
+    // The arc is a function of x up to where it turns vertical (|sin phi| = 1, at x_v = (sin phi0 -+ 1) / kappa): the
+    // stretch ends just before that; beyond it the arc curls back and is not traced.
+    if (!(std::abs(a.sin_at(x_hi)) < T(1)) && a.kappa_per_m != T(0)) {
+        const T x_v = (a.sin_phi0 - (a.kappa_per_m < T(0) ? T(1) : T(-1))) / a.kappa_per_m;
+        x_hi = std::min(x_hi, x_v * (T(1) - T(8) * eps));
+    }
     if (!(x_lo <= x_hi) || x_clear_m >= x_hi) return std::nullopt; // off the footprint, or all of it known clear
-    // The arc must not pass vertical within the stretch (|sin phi| < 1): it is then a function of x.
     if (!(std::abs(a.sin_at(x_lo)) < T(1)) || !(std::abs(a.sin_at(x_hi)) < T(1))) return std::nullopt;
 
     // f at x in cell (ix, iy) is detail::arc_above with the arc's depth there; on entering a cell at a crossing the

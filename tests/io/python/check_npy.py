@@ -20,9 +20,10 @@ def check(ok, what):
 def read_png(path):
     data = open(path, "rb").read()
     check(data[:8] == b"\x89PNG\r\n\x1a\n", f"{path}: signature")
-    at, idat, header = 8, b"", None
+    at, idat, header, chunks = 8, b"", None, []
     while at < len(data):
         length, kind = struct.unpack(">I4s", data[at:at + 8])
+        chunks.append((kind, length))
         body = data[at + 8:at + 8 + length]
         crc = struct.unpack(">I", data[at + 8 + length:at + 12 + length])[0]
         check(zlib.crc32(kind + body) == crc, f"{path}: CRC of {kind}")
@@ -31,6 +32,11 @@ def read_png(path):
         elif kind == b"IDAT":
             idat += body
         at += 12 + length
+    idats = [n for kind, n in chunks if kind == b"IDAT"]
+    check(all(n <= 1 << 20 for n in idats) and all(n == 1 << 20 for n in idats[:-1]),
+          f"{path}: IDAT chunks of 1 MiB, the last one shorter ({idats})")
+    if path.endswith("wide.png"):
+        check(len(idats) == 3, f"{path}: 2.1 MB of noise in three IDAT chunks ({idats})")
     width, height, depth, colour, _, _, interlace = header
     check(colour == 0 and interlace == 0, f"{path}: greyscale, not interlaced")
     raw = zlib.decompress(idat)
@@ -62,6 +68,7 @@ def main():
           "sidecar: poses")
     for name, raw, dtype in (("grey8.png", "grey8.raw", np.uint8), ("grey16.png", "grey16.raw", "<u2"),
                              ("ramp.png", "ramp.raw", np.uint8), ("noise.png", "noise.raw", np.uint8),
+                             ("wide.png", "wide.raw", np.uint8),
                              ("runs.png", "runs.raw", "<u2")):
         pixels = read_png(name)
         truth = np.fromfile(raw, dtype=dtype)
@@ -70,7 +77,7 @@ def main():
     if failures:
         print("\n".join(failures))
         return 1
-    print(f"numpy.load: waterfall {shape} exact in float64 and float32; sidecar and 5 PNG files agree")
+    print(f"numpy.load: waterfall {shape} exact in float64 and float32; sidecar and 6 PNG files agree")
     return 0
 
 

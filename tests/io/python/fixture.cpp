@@ -77,12 +77,18 @@ int main() try {
     // Incompressible noise (literals only) and long runs of 16-bit values (the longest matches).
     std::vector<std::uint8_t> noise(257 * 131);
     std::uint32_t state = 2463534242u;
-    for (auto& v : noise) {
+    const auto next = [&state] {
         state ^= state << 13, state ^= state >> 17, state ^= state << 5; // xorshift32 (Marsaglia, 2003)
-        v = static_cast<std::uint8_t>(state >> 24);
-    }
+        return static_cast<std::uint8_t>(state >> 24);
+    };
+    for (auto& v : noise) v = next();
     io::write_png_grey8("noise.png", 257, 131, noise);
     write_raw("noise.raw", noise.data(), noise.size());
+    // Noise of 2.1 MB: its zlib stream spans three IDAT chunks of at most 1 MiB.
+    std::vector<std::uint8_t> wide(2048 * 1024);
+    for (auto& v : wide) v = next();
+    io::write_png_grey8("wide.png", 2048, 1024, wide);
+    write_raw("wide.raw", wide.data(), wide.size());
     std::vector<std::uint16_t> runs(500 * 40);
     for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = static_cast<std::uint16_t>((i / 1000) * 3001 + (i % 500 > 480 ? 7 : 0));
     io::write_png_grey16("runs.png", 500, 40, runs);

@@ -2,6 +2,7 @@
 /// \file
 /// Internal to io/png.hpp: the PNG encoder (chunks, their CRC-32, the greyscale image). Not part of the API.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -34,6 +35,7 @@ inline void png_put_be32(std::vector<std::uint8_t>& out, std::uint32_t v) {
 }
 
 inline void png_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], std::span<const std::uint8_t> data) {
+    sss::require(data.size() < (std::size_t(1) << 31), "png chunk", "must hold fewer than 2^31 bytes");
     png_put_be32(out, static_cast<std::uint32_t>(data.size()));
     const std::size_t start = out.size();
     out.insert(out.end(), type, type + 4);
@@ -69,7 +71,11 @@ template <class U>
     png_put_be32(ihdr, static_cast<std::uint32_t>(height));
     ihdr.insert(ihdr.end(), {static_cast<std::uint8_t>(bit_depth), 0, 0, 0, 0}); // grey, deflate, filter 0, no interlace
     png_chunk(out, "IHDR", ihdr);
-    png_chunk(out, "IDAT", z);
+    // The zlib stream in IDAT chunks of at most 1 MiB: a chunk's length must stay below 2^31 (PNG, section 5.3), and a
+    // speckled image of 2^31 pixels compresses to more than that.
+    constexpr std::size_t idat_bytes = std::size_t(1) << 20;
+    for (std::size_t at = 0; at < z.size(); at += idat_bytes)
+        png_chunk(out, "IDAT", std::span<const std::uint8_t>(z.data() + at, std::min(idat_bytes, z.size() - at)));
     png_chunk(out, "IEND", {});
     return out;
 }

@@ -3,13 +3,78 @@
 /// Internal to labels/ground_truth.hpp: echo energy per sample, kept apart by where it came from.
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
 
+#include "sss/receiver/pulse.hpp"
+
 namespace sss::detail {
+
+/// How the receiver shows an echo (receiver/time_sampler.hpp): power arriving at t shows at t - d + tau, d the clock's
+/// delay (pulse::filter_delay_s) and tau spread as the pulse's power envelope p over [w0, w1]: a burst's whole length;
+/// a compressed chirp's main lobe, its peak +-1/B (its sidelobes, 13 dB down and falling, are not what an image shows
+/// as the echo). C(y) is the envelope's energy before y and G(y) its integral, both over the window's energy:
+/// power spread evenly over arrivals [t0, t1] shows before x a share (G(x + d - t0) - G(x + d - t1)) / (t1 - t0).
+/// C is tabulated at 1024 steps of the window (exact for a burst, whose C is known in closed form at the steps, and
+/// linear between them for a rectangular one) and taken as linear between them; G is its exact integral.
+class echo_smear {
+public:
+    explicit echo_smear(const pulse& p) {
+        const bool chirp = p.shape == pulse_shape::lfm;
+        d_ = p.filter_delay_s();
+        w0_ = chirp ? std::max(0.0, p.length_s - 1.0 / p.bandwidth_hz) : 0.0;
+        w1_ = chirp ? std::min(p.duration_s(), p.length_s + 1.0 / p.bandwidth_hz) : p.duration_s();
+        step_ = (w1_ - w0_) / double(steps);
+        c_.assign(steps + 1, 0.0);
+        if (chirp) { // 4-point Gauss-Legendre over each step
+            static constexpr double gx[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+            static constexpr double gw[4] = {0.1739274225844904, 0.3260725774155096, 0.3260725774155096, 0.1739274225844904};
+            for (std::size_t i = 0; i < steps; ++i) {
+                double piece = 0.0;
+                for (std::size_t g = 0; g < 4; ++g) piece += gw[g] * p.power(w0_ + (double(i) + gx[g]) * step_);
+                c_[i + 1] = c_[i] + piece * step_;
+            }
+        } else {
+            for (std::size_t i = 0; i <= steps; ++i) c_[i] = p.cumulative(w0_ + double(i) * step_);
+        }
+        const double energy = c_.back();
+        for (double& c : c_) c /= energy;
+        g_.assign(steps + 1, 0.0);
+        for (std::size_t i = 0; i < steps; ++i) g_[i + 1] = g_[i] + 0.5 * step_ * (c_[i] + c_[i + 1]);
+    }
+
+    /// The clock's delay d and the window [w0, w1] (s).
+    [[nodiscard]] double delay_s() const noexcept { return d_; }
+    [[nodiscard]] double window_begin_s() const noexcept { return w0_; }
+    [[nodiscard]] double window_end_s() const noexcept { return w1_; }
+
+    /// The share of the envelope's energy before y (s after the echo's arrival, on the receiver's clock plus d).
+    [[nodiscard]] double energy_before(double y) const noexcept {
+        if (!(y > w0_)) return 0.0;
+        if (!(y < w1_)) return 1.0;
+        const double x = (y - w0_) / step_;
+        const auto i = std::min<std::size_t>(static_cast<std::size_t>(x), steps - 1);
+        return c_[i] + (x - double(i)) * (c_[i + 1] - c_[i]);
+    }
+    /// Its integral from w0 to y (s).
+    [[nodiscard]] double energy_integral(double y) const noexcept {
+        if (!(y > w0_)) return 0.0;
+        if (!(y < w1_)) return g_.back() + (y - w1_);
+        const double x = (y - w0_) / step_;
+        const auto i = std::min<std::size_t>(static_cast<std::size_t>(x), steps - 1);
+        const double f = x - double(i);
+        return g_[i] + step_ * f * (c_[i] + 0.5 * f * (c_[i + 1] - c_[i]));
+    }
+
+private:
+    static constexpr std::size_t steps = 1024;
+    double d_ = 0.0, w0_ = 0.0, w1_ = 0.0, step_ = 0.0;
+    std::vector<double> c_, g_;
+};
 
 /// Energy per sample, kept apart by source.
 struct label_accumulator {
@@ -30,9 +95,11 @@ struct label_accumulator {
     double last_seabed_s = -std::numeric_limits<double>::infinity(); ///< the scene's last direct seabed echo (s)
     bool met_object = false; ///< some ray of the scene's pass met an object (with or without echo power)
 
-    explicit label_accumulator(std::size_t samples, double dt_s)
+    const echo_smear* smear = nullptr; ///< how the receiver shows an echo (none: at its arrival alone)
+
+    explicit label_accumulator(std::size_t samples, double dt_s, const echo_smear* shown = nullptr)
         : n(samples), dt(dt_s), seabed(samples), bare(samples), seabed_best(samples), seabed_region(samples),
-          seabed_material(samples), bare_best(samples), bare_region(samples), bare_material(samples) {}
+          seabed_material(samples), bare_best(samples), bare_region(samples), bare_material(samples), smear(shown) {}
 
     std::size_t slot(std::uint32_t id, std::uint32_t cls) {
         for (std::size_t i = 0; i < ids.size(); ++i)
@@ -55,9 +122,32 @@ struct label_accumulator {
         return true;
     }
 
-    /// Calls f(k, share) for every sample k that [t0, t1] covers, share: the fraction of the span in it.
+    /// Calls f(k, share) for every sample k that power arriving evenly over [t0, t1] (s) shows in, share: the fraction
+    /// of it there, as the receiver shows it (`smear`; without: the fraction of the span in k).
     template <class F> void spread(double t0, double t1, F&& f) const {
         if (t1 < t0) std::swap(t0, t1);
+        if (smear != nullptr) {
+            const double d = smear->delay_s();
+            const double a = (t0 - d + smear->window_begin_s()) / dt, b = (t1 - d + smear->window_end_s()) / dt;
+            if (!(a < double(n)) || !(b >= 0.0)) return;
+            const double width = t1 - t0;
+            const bool point = !(width > 1e-6 * dt);
+            const double t_mid = 0.5 * (t0 + t1);
+            // The share shown before x (s).
+            const auto before = [&](double x) {
+                if (point) return smear->energy_before(x + d - t_mid);
+                return (smear->energy_integral(x + d - t0) - smear->energy_integral(x + d - t1)) / width;
+            };
+            const auto k0 = static_cast<std::size_t>(std::max(0.0, a));
+            const std::size_t k1 = std::min(n - 1, static_cast<std::size_t>(std::max(0.0, b)));
+            double lo = before(double(k0) * dt);
+            for (std::size_t k = k0; k <= k1; ++k) {
+                const double hi = before(double(k + 1) * dt);
+                if (hi > lo) f(k, hi - lo);
+                lo = hi;
+            }
+            return;
+        }
         const double a = t0 / dt, b = t1 / dt;
         if (!(a < double(n)) || !(b >= 0.0)) return;
         if (b - a <= 0.0) {
