@@ -48,7 +48,7 @@ TEST_CASE("A 0.5 m line aperture at 15 mm has the published half-power width 1.5
     CHECK(sss::rad_to_deg(sss::beam::line_aperture_half_power_width_rad(L, lambda)) ==
           doctest::Approx(width_deg).epsilon(1e-9));
     // The half-power width is 0.885893 lambda / L to first order.
-    CHECK(2.0 * half_power == doctest::Approx(0.885893 * lambda / L).epsilon(1e-3));
+    CHECK(2.0 * half_power == doctest::Approx(0.885893 * lambda / L).epsilon(1e-3).scale(0));
 
     const double null = bisect_down([](double th) { return line_aperture(L, lambda, std::sin(th)); }, 0.0, 0.02, 0.04);
     CHECK(sss::rad_to_deg(null) == doctest::Approx(1.7191).epsilon(1e-3));
@@ -68,8 +68,8 @@ TEST_CASE("The first sidelobe of a uniform line aperture is 13.26 dB down, at si
     }
     CHECK(best_db == doctest::Approx(-13.26).epsilon(0.05 / 13.26));
     CHECK(sss::beam::line_aperture_first_sidelobe_db<double>() == doctest::Approx(best_db).epsilon(1e-6));
-    CHECK(std::sin(sss::beam::line_aperture_first_sidelobe_rad(L, lambda)) ==
-          doctest::Approx(best_u).epsilon(2.0 / n));
+    // The scan finds the peak to within a grid step (u2 - u1) / n; allow two.
+    CHECK(std::abs(std::sin(sss::beam::line_aperture_first_sidelobe_rad(L, lambda)) - best_u) <= 2.0 * (u2 - u1) / n);
     CHECK(sss::beam::line_aperture_first_sidelobe_db<float>() == doctest::Approx(-13.2614).epsilon(1e-4));
 }
 
@@ -184,7 +184,7 @@ TEST_CASE("Array half-power widths: 2 asin(lambda / (4 d)) for two elements, 0.8
           doctest::Approx(2.0 * std::asin(lambda / (4.0 * d))).epsilon(1e-12));
     const std::size_t n = 64;
     const double w = sss::beam::array_width_rad(n, d, lambda, 0.5);
-    CHECK(w == doctest::Approx(0.885893 * lambda / (static_cast<double>(n) * d)).epsilon(2e-3));
+    CHECK(w == doctest::Approx(0.885893 * lambda / (static_cast<double>(n) * d)).epsilon(2e-3).scale(0));
     const double u_hp = std::sin(w / 2.0);
     CHECK(std::pow(array_factor(n, d, lambda, u_hp), 2) == doctest::Approx(0.5).epsilon(1e-9));
     // Line aperture at another level: -6 dB one way.

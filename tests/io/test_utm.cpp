@@ -139,9 +139,19 @@ TEST_CASE("an XTF of a UTM world carries the exact latitude and longitude of eac
     CHECK(f.pings[0].y < 56.3);
     CHECK(f.pings[0].x > 11.4);
     CHECK(f.pings[0].x < 11.6);
-    // Ping 1 is 40 m further grid north: 40 m of meridian (111345.5 m per degree at 56.2 N) within the scale factor
-    // there (1.0001) and the grid convergence (2 deg, cos 0.9993).
-    CHECK(f.pings[1].y - f.pings[0].y == doctest::Approx(40.0 / 111345.5).epsilon(2e-3));
+    // Ping 1 is 40 m grid north and 3 m grid east of ping 0. True north lies at the grid bearing c of the meridian
+    // convergence (about -2.04 deg here, east of the central meridian), so the step goes 40 cos c + 3 sin c grid
+    // metres northward (the eastward 3 m takes off 0.11 m). The grid scales ground lengths by the point scale factor
+    // k = k0 / sqrt(1 - cos^2(lat) sin^2(l)), about 0.99988 here (the sphere's; the ellipsoid's differs by under
+    // 1e-6), and a degree of latitude is 111345.3 m of meridian there.
+    const io::utm_zone zone{.zone = 32};
+    const double rad = pi_v<double> / 180.0;
+    const double c = io::utm_north_grid_bearing_deg(zone, 652001.5, 6230020.0) * rad;
+    const double lat = f.pings[0].y, l = (f.pings[0].x - 9.0) * rad;
+    const double k = 0.9996 / std::sqrt(1.0 - std::pow(std::cos(lat * rad) * std::sin(l), 2));
+    const double metres_per_deg = (meridian_arc_m(lat + 0.005) - meridian_arc_m(lat - 0.005)) / 0.01;
+    const double north_m = 40.0 * std::cos(c) + 3.0 * std::sin(c);
+    CHECK(f.pings[1].y - f.pings[0].y == doctest::Approx(north_m / (k * metres_per_deg)).epsilon(1e-5).scale(0));
 }
 
 TEST_CASE("true north's grid bearing is the meridian convergence: tan c = tan l sin(latitude) to 0.01 deg, 0 on the central "

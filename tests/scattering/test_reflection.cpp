@@ -100,7 +100,7 @@ TEST_CASE("the RMS roughness height above a wavenumber equals the integral of th
                 sum += (j == 0 || j == n ? 0.5 : 1.0) * f * du;
             }
             const double h_m = std::sqrt(sum) / 100.0;
-            CHECK(roughness_rms_height_m(w2, gamma, kmin_radpm) == doctest::Approx(h_m).epsilon(1e-5));
+            CHECK(roughness_rms_height_m(w2, gamma, kmin_radpm) == doctest::Approx(h_m).epsilon(1e-5).scale(0));
         }
 }
 
