@@ -195,6 +195,36 @@ TEST_CASE("a fan tilted down by its depression sees the seabed first at the rang
     CHECK(double(first) == doctest::Approx(std::floor(expected)).epsilon(0.02));
 }
 
+TEST_CASE("an echo from slant range R lands in sample floor(2 R / c / dt)") {
+    // A 2 cm sphere in the water column to starboard, its nearest point at R = (j + f) c dt / 2 for a few whole j and
+    // fractions f of a sample; a 10 us burst (a fifth of a sample) starts at the echo's arrival.
+    sss::receiver_params rx;
+    rx.sample_rate_hz = 20000;
+    rx.max_range_m = 30;
+    rx.pulse = {10e-6, sss::pulse_shape::rectangular};
+    const P::simulator<> sim(P::lambertian({.mu_db = {T(-30), T(-5)}}), {},
+                             P::ideal_fan({.along_width_deg = 1, .vertical_width_deg = 90, .depression_deg = 45}), track(0), rx);
+    const sss::scene::flat_seabed<T> flat(0.0);
+    const auto without = sim.ping(flat, 0).starboard;
+    const T a = 0.02, half_sample_m = 0.5 * 1500.0 / 20000.0;
+    for (const std::size_t j : {150u, 201u, 247u})
+        for (const T f : {T(0.1), T(0.5), T(0.9)}) {
+            CAPTURE(j);
+            CAPTURE(f);
+            const T R = (T(j) + f) * half_sample_m;
+            // Heading north, starboard is +x: the centre 3 m below the towfish, R + a from it.
+            const T x = std::sqrt((R + a) * (R + a) - T(9));
+            std::vector<sss::scene::object<T>> objs;
+            objs.emplace_back(std::vector<sss::scene::sphere<T>>{sss::scene::sphere<T>(
+                                  unit(x, 0, 7), a, sss::scene::surface_ids{.material = 1, .object = 1, .label = 1})},
+                              std::vector<sss::scene::cylinder<T>>{});
+            const sss::scene::scene world(flat, sss::scene::object_set<T>(std::move(objs)));
+            const auto first = first_extra(sim.ping(world, 0).starboard, without);
+            REQUIRE(first.has_value());
+            CHECK(*first == j);
+        }
+}
+
 TEST_CASE("a 20 kHz receiver over 75 m gives ceil(2 x 75 / 1500 x 20000) samples per side") {
     sss::receiver_params rx;
     rx.sample_rate_hz = 20000;

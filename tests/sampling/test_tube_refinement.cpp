@@ -79,6 +79,29 @@ TEST_CASE("a shadow between rays n launch intervals apart is found exactly when 
     CHECK(judge_tube(a, b, 2 * de1, dt_s, 2) == tube_verdict::split);
 }
 
+TEST_CASE("a pair about normal incidence on one plane is one tube: time grows as the square of the step there") {
+    // A level seabed 10 m down, rays delta_a and delta_b from the vertical: t = 2 H / (c cos delta), and the stretch
+    // t tan delta vanishes at nadir. To first order the pair (0, 5 deg) predicted no gap at all against its 0.8
+    // samples, and was taken for an edge (each ray keeping half the step as a point).
+    const double H = 10.0, c = 1500.0, deg = 3.141592653589793 / 180.0;
+    const auto at = [&](double delta) {
+        const double t = 2.0 * H / (c * std::cos(delta));
+        return seabed_end(t, sss::detail::time_stretch(t, std::cos(delta)));
+    };
+    for (const auto& [lo, hi] : {std::array<double, 2>{0.0, 5.0}, {0.1, 3.0}, {0.0, 3.5}, {1.0, 6.0}}) {
+        CAPTURE(lo);
+        CAPTURE(hi);
+        const tube_end a = at(lo * deg), b = at(hi * deg);
+        REQUIRE(std::abs(b.t_s - a.t_s) > 0.25 * dt_s); // beyond the quarter sample that is never an edge
+        CHECK(judge_tube(a, b, (hi - lo) * deg, dt_s) == tube_verdict::continuous);
+        CHECK(judge_tube(b, a, (hi - lo) * deg, dt_s) == tube_verdict::continuous);
+        // A shadow of three samples between them is still one.
+        tube_end beyond = b;
+        beyond.t_s += 3.0 * dt_s;
+        CHECK(judge_tube(a, beyond, (hi - lo) * deg, dt_s) == tube_verdict::split);
+    }
+}
+
 TEST_CASE("across a facet's edge, a ray grazing its facet is refined by its own stretch, not only by the time gap") {
     // The two rays return within a tenth of a sample of each other, but one meets its facet at 2e-4 rad: its
     // stretch, t cot theta, spans hundreds of samples over the step, and its echo per radian is thousands of times

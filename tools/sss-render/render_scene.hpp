@@ -568,8 +568,10 @@ template <Real T> int render_scene(const description& d, const render_request& r
         return detail::render(sim, w, r.first, count, unsigned(d.run.threads), want_labels ? &labels : nullptr);
     });
     const auto t2 = std::chrono::steady_clock::now();
-    if (const auto bad = std::count_if(image.values.begin(), image.values.end(), [](T v) { return !std::isfinite(v); }); bad > 0)
-        throw scene_error(r.scene_path + ": " + std::to_string(bad) + " samples of the render are not finite: the levels overflow " +
+    // Not finite, or held at the largest value (the TVG stage saturates rather than overflow).
+    const auto overflown = [](T v) { return !std::isfinite(v) || std::abs(v) >= std::numeric_limits<T>::max(); };
+    if (const auto bad = std::count_if(image.values.begin(), image.values.end(), overflown); bad > 0)
+        throw scene_error(r.scene_path + ": " + std::to_string(bad) + " samples of the render are not finite or saturated: the levels overflow " +
                           (std::is_same_v<T, float> ? "single precision" : "double precision") +
                           "; lower sonar.source_level_db or receiver.tvg_gain_db (or set render.precision = \"double\")");
 

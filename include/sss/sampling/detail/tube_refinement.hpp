@@ -6,7 +6,9 @@
 /// A ray meeting a facet at angle theta (between the ray and the facet) at two-way time t predicts how fast the
 /// time of its neighbours grows with depression: dt/de = t cot theta (s/rad), the footprint r de / sin theta
 /// seen along the ray (straight rays; in refracting water a close estimate, which is all a test needs). Two rays
-/// de apart on one continuous surface return within a time of about de times that; a time gap many times larger
+/// de apart on one continuous surface return within a time of about de times that, plus t de^2 / 2 (the second order,
+/// which is all there is where a facet faces the ray: a pair about normal incidence on one plane is no edge); a time
+/// gap many times larger
 /// than the smaller of the two predictions means the surface between them is hidden (the first ray grazes a crest,
 /// the next lands beyond the shadow) or that they met different parts of the scene. Such a pair is split by the
 /// ray between them, recursively, until the side with the smaller prediction spans less than 1/16 of a sample:
@@ -148,7 +150,9 @@ enum class tube_verdict : unsigned char {
         return v.stretch * de <= located ? tube_verdict::located : tube_verdict::split;
     }
     const double gap = std::abs(b.t_s - a.t_s);
-    const double predicted = std::min(a.stretch, b.stretch) * de;
+    // To second order: near normal incidence the stretch vanishes and time grows as the square of the step,
+    // t (1 + de^2 / 2) over a plane facing the ray (second-order term below).
+    const double predicted = std::min(a.stretch, b.stretch) * de + 0.5 * std::min(a.t_s, b.t_s) * de * de;
     if (a.object != b.object || a.material != b.material)
         return gap <= located || predicted <= located ? tube_verdict::located : tube_verdict::split;
     if (gap <= gap_floor || gap <= gap_ratio * predicted) {
