@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// sss: sidescan sonar simulation by ray tracing. The umbrella header: everything public.
+/// sss: sidescan sonar simulation by ray tracing. The umbrella header: everything public but the POSIX memory-mapped
+/// height field (io/mapped_height_field.hpp) and the MPI render (mpi/render.hpp), which need more than C++20.
 
 #include "sss/version.hpp"
 

@@ -27,6 +27,16 @@ install)
         -DCMAKE_BUILD_TYPE=Release -DSSS_BUILD_TESTS=OFF -DSSS_BUILD_BENCH=OFF -DSSS_BUILD_EXAMPLES=OFF -DSSS_BUILD_TOOLS=OFF
     "$cmake" --build "$work/sss-build"
     "$cmake" --install "$work/sss-build" --prefix "$work/prefix"
+    # sss.pc names the headers where they were installed, whatever the prefix configured.
+    if command -v pkg-config >/dev/null 2>&1; then
+        cflags=$(PKG_CONFIG_PATH="$work/prefix/share/pkgconfig" pkg-config --cflags sss) || exit 1
+        include=${cflags#*-I}
+        include=${include%% *}
+        if [ ! -f "$include/sss/sss.hpp" ]; then
+            echo "consumer_cmake.sh: pkg-config --cflags sss gives '$cflags', not the installed headers" >&2
+            exit 1
+        fi
+    fi
     "$cmake" -S "$work/consumer" -B "$work/consumer-build" "${generator[@]}" "${compiler[@]}" \
         -DCMAKE_BUILD_TYPE=Release -DSSS_CONSUMER_MODE=install -DCMAKE_PREFIX_PATH="$work/prefix" \
         -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON

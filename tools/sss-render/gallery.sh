@@ -24,7 +24,7 @@ for scene in "$root"/examples/scenes/gallery/*.toml; do
         echo
         echo "## $name"
         echo
-        sed -n 's/^# \{0,1\}//p;/^[^#]/q' "$scene" | sed '$d'
+        sed -n '/^#/!q; s/^# \{0,1\}//p' "$scene" # the scene's opening comment: its caption
         echo
         echo "![$name](gallery/$name.png)"
         echo
