@@ -356,6 +356,44 @@ TEST_CASE("A highlight covers the samples its echo shows in, as the pulse smears
     }
 }
 
+TEST_CASE("A label deposit shows wholly in the line, on a sample's boundary too, whatever the pulse") {
+    // Arrival 0.01 s at dt = 1e-5 s: t / dt rounds to 999.99999999999989, and the last sample the deposit reaches was
+    // cut at 999. Under a pulse too short to hold (a subnormal length) the smear's tables were NaN and every deposit
+    // vanished.
+    const double dt = 1e-5;
+    for (const double length_s : {5e-324, 1e-9, 100e-6}) {
+        CAPTURE(length_s);
+        const detail::echo_smear shown(pulse{.length_s = length_s, .shape = pulse_shape::rectangular});
+        const detail::label_accumulator acc(4000, dt, &shown);
+        for (const auto& [t0, t1] : {std::array<double, 2>{0.01, 0.01}, {0.01, 0.0100123}, {0.0031, 0.0095}}) {
+            CAPTURE(t0);
+            CAPTURE(t1);
+            double total = 0.0;
+            std::size_t first = 4000;
+            acc.spread(t0, t1, [&](std::size_t k, double share) {
+                total += share;
+                first = std::min(first, k);
+            });
+            CHECK(total == doctest::Approx(1.0).scale(0).epsilon(1e-12));
+            CHECK(std::abs(double(first) - t0 / dt) <= 1.0); // the arrival's sample, or the one before by rounding
+        }
+    }
+}
+
+TEST_CASE("Ground-range labels of a ping with no seabed under it (altitude +infinity) are no coverage, as its image") {
+    label_image slant;
+    slant.pings = 2;
+    slant.samples = 400; // 15 m of slant range
+    slant.dt_s = dt_s;
+    slant.values.assign(2 * 800, sample_label{sample_class::seabed, no_object, 1, 0});
+    const label_image g = ground_range_labels(slant, {10.0, std::numeric_limits<double>::infinity()}, {.cell_m = 0.05});
+    CHECK(g.at(0, g.samples + 5).kind == sample_class::seabed);
+    for (std::size_t c = 0; c < g.width(); ++c) CHECK(g.at(1, c).kind == sample_class::no_coverage);
+    CHECK_THROWS_AS((void)ground_range_labels(slant, {10.0, -1.0}, {.cell_m = 0.05}), invalid_parameter);
+    CHECK_THROWS_AS((void)ground_range_labels(slant, {10.0, std::numeric_limits<double>::quiet_NaN()}, {.cell_m = 0.05}),
+                    invalid_parameter);
+}
+
 TEST_CASE("In refracting water a sphere's shadow lies between the landings of its tangent bent rays, not its straight ones") {
     // Sound slows by 60 m/s over the 10 m between the towfish (depth 20 m) and the seabed (depth 30 m): the rays
     // bend down with a radius of about 250 m, and sag 0.3 to 0.5 m below their chords over the 30 m to the shadow.

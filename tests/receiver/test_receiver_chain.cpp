@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include <sss/receiver/echo_statistics.hpp>
@@ -82,6 +83,18 @@ TEST_CASE_TEMPLATE("TVG beyond the number type's range holds a sample at its lar
     CHECK(held > 0);
     // Near range the gain is exact: 1e-30 x 10^(G/10) at 0.75 m (the minimum range's 1 m).
     CHECK(double(line[0]) == doctest::Approx(1e-30 * std::pow(10.0, sss::tvg_gain_db(gain.params(), 0.75) / 10.0)).scale(0).epsilon(1e-6));
+    // Where the gain alone passes double's range (3276 dB at 1425 m) a small sample still comes out finite and exact.
+    if constexpr (std::is_same_v<T, double>) {
+        const sss::tvg steep(sss::tvg_params{.spreading_n = 40.0, .absorption_db_per_km = 1000.0, .gain_db = 300.0});
+        sss::line_context<T> far;
+        far.dt_s = 1.9e-3; // sample 1000's centre at 1425.7 m
+        std::vector<T> one(1001, T(0));
+        one[1000] = T(1e-300);
+        steep.process(one, far);
+        const double g_db = sss::tvg_gain_db(steep.params(), 0.5 * 1500.0 * 1000.5 * 1.9e-3);
+        REQUIRE(g_db > 3083.0);
+        CHECK(std::log10(double(one[1000])) == doctest::Approx(-300.0 + g_db / 10.0).scale(0).epsilon(1e-9));
+    }
     // A column whose mean is not finite is left as it is by the per-range normalisation.
     sss::waterfall<T> w;
     w.pings = 2;

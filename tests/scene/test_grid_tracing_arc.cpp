@@ -281,4 +281,16 @@ TEST_CASE_TEMPLATE("An arc that would turn vertical before x_end_m meets the sur
     const auto deep = height_field<T>({.nx = 11, .ny = 11, .cell_m = T(1), .origin_m = {T(0), T(0)},
                                        .heights_m = std::vector<T>(121, T(-9))});
     CHECK_FALSE(deep.intersect_arc(a, T(0), T(1e6)));
+    // Steep and bending fast: sin phi0 = 0.99, kappa = -1 1/m (vertical 1 cm out). Stepping back a fixed fraction of
+    // x_v left sin phi rounded to 1, and the arc was dropped whole; it meets the seabed 10 cm down before that.
+    vertical_arc<T> steep;
+    steep.start = vec3<T>{T(5), T(5), T(0.1)};
+    steep.heading = vec2<T>{T(1), T(0)};
+    steep.sin_phi0 = T(0.99);
+    steep.cos_phi0 = T(std::sqrt(1.0 - 0.99 * 0.99));
+    steep.kappa_per_m = T(-1);
+    const auto h = hf.intersect_arc(steep, T(0), T(1));
+    REQUIRE(h);
+    CHECK(double(h->x_m) < 0.01);
+    CHECK(std::abs(double(h->surface.point.z)) < 1e-4);
 }

@@ -379,7 +379,9 @@ struct ground_range_params {
                      slant.values.size() == checked_elements(slant.pings, 2 * slant.samples, "label_image.values"),
                  "label_image.values", "must hold pings x 2 x samples labels");
     sss::require(altitude_m.size() == slant.pings, "altitude_m", "must hold one altitude per ping");
-    for (const double h : altitude_m) sss::require_non_negative(h, "altitude_m");
+    // An infinite altitude (no seabed under the towfish) leaves its row no_coverage, as the image's is empty.
+    for (const double h : altitude_m)
+        sss::require(h >= 0.0, "altitude_m", [&] { return "must be >= 0 (or +infinity), got " + std::to_string(h); });
     const double dr = 0.5 * g.sound_speed_mps * slant.dt_s;
     label_image out;
     out.pings = slant.pings;

@@ -62,9 +62,11 @@ public:
             if (v == 0.0 || !std::isfinite(v)) continue;
             const double r = 0.5 * ctx.c_mps * (double(k) + 0.5) * ctx.dt_s;
             const double g_db = tvg_gain_db(p_, r);
-            // In decibels: 10 log10 |v| + G against the largest value's level.
-            const double level_db = 10.0 * std::log10(std::abs(v)) + g_db;
-            const double out = level_db >= 10.0 * std::log10(top) ? top : std::abs(v) * std::pow(10.0, g_db / 10.0);
+            double out = std::abs(v) * std::pow(10.0, g_db / 10.0);
+            if (!(out < top)) { // the gain alone may pass double's range: in decibels, 10 log10 |v| + G
+                const double level_db = 10.0 * std::log10(std::abs(v)) + g_db;
+                out = level_db >= 10.0 * std::log10(top) ? top : std::pow(10.0, level_db / 10.0);
+            }
             line[k] = static_cast<T>(std::copysign(std::min(out, top), v));
         }
     }

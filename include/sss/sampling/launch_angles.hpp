@@ -235,7 +235,11 @@ void depression_angles(std::vector<T>& out, side s, T along_rad, T depression_mi
     };
     if (!lg.spaced) {
         const double n = density.rays != 0 ? double(density.rays) : density.rays_per_m * Rmax;
-        uniform(e_lo, e_hi, n < double(density.max_rays) ? static_cast<std::size_t>(n) + 2 : density.max_rays);
+        // (0 rays per metre of an endless range: none asked for, the two edges)
+        const std::size_t count = !(n >= 0.0)                     ? 0
+                                  : n < double(density.max_rays) ? static_cast<std::size_t>(n)
+                                                                 : density.max_rays;
+        uniform(e_lo, e_hi, count < density.max_rays ? count + 2 : count);
         return;
     }
     const double span_total = lg.span_m;

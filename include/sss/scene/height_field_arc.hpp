@@ -159,7 +159,10 @@ template <Real T>
     // stretch ends just before that; beyond it the arc curls back and is not traced.
     if (!(std::abs(a.sin_at(x_hi)) < T(1)) && a.kappa_per_m != T(0)) {
         const T x_v = (a.sin_phi0 - (a.kappa_per_m < T(0) ? T(1) : T(-1))) / a.kappa_per_m;
-        x_hi = std::min(x_hi, x_v * (T(1) - T(8) * eps));
+        x_hi = std::min(x_hi, x_v);
+        // Back from x_v until sin phi rounds below 1: a few ulps of x, more where sin phi0 is near 1.
+        for (T back = eps * std::abs(x_hi); x_hi > x_lo && !(std::abs(a.sin_at(x_hi)) < T(1)); back *= T(2))
+            x_hi = std::max(x_lo, x_hi - back);
     }
     if (!(x_lo <= x_hi) || x_clear_m >= x_hi) return std::nullopt; // off the footprint, or all of it known clear
     if (!(std::abs(a.sin_at(x_lo)) < T(1)) || !(std::abs(a.sin_at(x_hi)) < T(1))) return std::nullopt;

@@ -42,8 +42,13 @@ public:
             for (std::size_t i = 0; i <= steps; ++i) c_[i] = p.cumulative(w0_ + double(i) * step_);
         }
         const double energy = c_.back();
-        for (double& c : c_) c /= energy;
         g_.assign(steps + 1, 0.0);
+        if (!(step_ > 0.0) || !(energy > 0.0) || !std::isfinite(energy)) { // a pulse too short to hold: at arrival
+            w1_ = w0_;
+            std::fill(c_.begin(), c_.end(), 0.0);
+            return;
+        }
+        for (double& c : c_) c /= energy;
         for (std::size_t i = 0; i < steps; ++i) g_[i + 1] = g_[i] + 0.5 * step_ * (c_[i] + c_[i + 1]);
     }
 
@@ -133,13 +138,19 @@ struct label_accumulator {
             const double width = t1 - t0;
             const bool point = !(width > 1e-6 * dt);
             const double t_mid = 0.5 * (t0 + t1);
-            // The share shown before x (s).
+            const double shown_from = point ? t_mid - d + smear->window_begin_s() : t0 - d + smear->window_begin_s();
+            const double shown_to = point ? t_mid - d + smear->window_end_s() : t1 - d + smear->window_end_s();
+            // The share shown before x (s): none up to where the echo shows from, all of it past where it ends.
             const auto before = [&](double x) {
+                if (x <= shown_from) return 0.0;
+                if (x > shown_to) return 1.0;
                 if (point) return smear->energy_before(x + d - t_mid);
-                return (smear->energy_integral(x + d - t0) - smear->energy_integral(x + d - t1)) / width;
+                return std::clamp((smear->energy_integral(x + d - t0) - smear->energy_integral(x + d - t1)) / width,
+                                  0.0, 1.0);
             };
+            // One sample more than b reaches: the rounding of b must not cut off the last share.
             const auto k0 = static_cast<std::size_t>(std::max(0.0, a));
-            const std::size_t k1 = std::min(n - 1, static_cast<std::size_t>(std::max(0.0, b)));
+            const std::size_t k1 = b + 1.0 < double(n) ? static_cast<std::size_t>(std::max(0.0, b)) + 1 : n - 1;
             double lo = before(double(k0) * dt);
             for (std::size_t k = k0; k <= k1; ++k) {
                 const double hi = before(double(k + 1) * dt);
