@@ -28,7 +28,7 @@
 /// every start that the arc is above sees the same pieces from there on, and the hit is the same to the last bit.
 /// An arc that starts under the surface (inside the sediment, or coming over the footprint's side below it) is not
 /// stopped while it rises out of it: its first crossing from above is the hit, as for a straight ray. An arc that turns
-/// vertical is walked up to just before that point (x_v, where |sin phi| = 1), whatever x_end_m.
+/// vertical is walked up to just before that point (where |sin phi| = 1 - 64 eps), whatever x_end_m.
 
 #include <algorithm>
 #include <cmath>
@@ -155,14 +155,18 @@ template <Real T>
          line.su != 0 ? line.cross_u(g.nx - 1) : T(0));
     clip(line.sv, line.v0, g.ny - 1, line.sv != 0 ? line.cross_v(0) : T(0),
          line.sv != 0 ? line.cross_v(g.ny - 1) : T(0));
-    // The arc is a function of x up to where it turns vertical (|sin phi| = 1, at x_v = (sin phi0 -+ 1) / kappa): the
-    // stretch ends just before that; beyond it the arc curls back and is not traced.
-    if (!(std::abs(a.sin_at(x_hi)) < T(1)) && a.kappa_per_m != T(0)) {
-        const T x_v = (a.sin_phi0 - (a.kappa_per_m < T(0) ? T(1) : T(-1))) / a.kappa_per_m;
-        x_hi = std::min(x_hi, x_v);
-        // Back from x_v until sin phi rounds below 1: a few ulps of x, more where sin phi0 is near 1.
-        for (T back = eps * std::abs(x_hi); x_hi > x_lo && !(std::abs(a.sin_at(x_hi)) < T(1)); back *= T(2))
-            x_hi = std::max(x_lo, x_hi - back);
+    // The arc is a function of x up to where it turns vertical (|sin phi| = 1, at (sin phi0 -+ 1) / kappa); beyond it
+    // the arc curls back and is not traced. The stretch ends where |sin phi| = 1 - 64 eps, where cos phi (about
+    // sqrt(128 eps)) still bounds the walk's slopes: short of the vertical point by cos phi / |kappa| of depth (4 cm in
+    // float at kappa = 0.1 1/m, 2e-6 m in double).
+    if (a.kappa_per_m != T(0)) {
+        const T edge = (a.kappa_per_m < T(0) ? T(1) : T(-1)) * (T(1) - T(64) * eps);
+        if (!(std::abs(a.sin_at(x_hi)) < std::abs(edge))) {
+            x_hi = std::min(x_hi, (a.sin_phi0 - edge) / a.kappa_per_m);
+            const auto short_of_edge = [&] { return std::abs(a.sin_at(x_hi)) < std::abs(edge); };
+            for (T back = eps * std::abs(x_hi); x_hi > x_lo && !short_of_edge(); back *= T(2))
+                x_hi = std::max(x_lo, x_hi - back);
+        }
     }
     if (!(x_lo <= x_hi) || x_clear_m >= x_hi) return std::nullopt; // off the footprint, or all of it known clear
     if (!(std::abs(a.sin_at(x_lo)) < T(1)) || !(std::abs(a.sin_at(x_hi)) < T(1))) return std::nullopt;
