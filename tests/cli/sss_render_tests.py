@@ -66,6 +66,10 @@ elif case == "roundtrip":
             open(resolved, "w").write(first.stdout)
             second = run([resolved, "--dry-run"], cwd=os.path.dirname(scene))
             check(second.returncode == 0 and second.stdout == first.stdout, f"{scene}: the resolved scene reads back to itself")
+            # From elsewhere: a relative file key leads from the scene file's directory, not the working directory.
+            elsewhere = run([scene, "--dry-run"], cwd=d)
+            check(elsewhere.returncode == 0 and elsewhere.stdout == first.stdout,
+                  f"{scene}: the same resolved scene from another working directory ({elsewhere.stderr})")
             for key in ["threads =", "cell_m =", "absorption_db_per_km =", "pulse_shape =", "png_dynamic_range_db =", "precision ="]:
                 check(key in first.stdout, f"{scene}: the resolved scene fills in {key}")
             # The regions' boundary keys where regions meet, and only there (a flat seabed, or one of a single region,

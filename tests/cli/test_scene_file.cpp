@@ -520,3 +520,21 @@ TEST_CASE("a millimetre seabed without region boundaries keeps the default blend
     CHECK(has_text(error_of("[water]\nmodel = \"layered\"\ndepth_m = [0, 9007199254740993]\nspeed_mps = [1500, 1500]\n"),
                    "s.toml:3:11: water.depth_m: each value must lie within"));
 }
+
+TEST_CASE("a relative file key leads from the scene file's directory, and a resolved scene writes it absolute") {
+    const std::string text = "[motion]\nmodel = \"trajectory\"\ntrajectory_file = \"tracks/turn.csv\"\n"
+                             "[water]\nmodel = \"layered\"\nsvp_file = \"/data/profile.csv\"\n";
+    const auto d = sss::scene_file::parse(text, "survey/north/scene.toml");
+    CHECK(std::filesystem::path(d.tow.trajectory_file) == std::filesystem::path("survey/north") / "tracks/turn.csv");
+    CHECK(d.sea.svp_file == "/data/profile.csv"); // absolute: as written
+    CHECK(d.bed.file.empty());                    // no file: none
+    const auto here = sss::scene_file::parse(text, "scene.toml");
+    CHECK(here.tow.trajectory_file == "tracks/turn.csv"); // a scene in the working directory: from there
+    const std::string resolved = sss::scene_file::to_toml(d);
+    const std::string written = (std::filesystem::current_path() / "survey/north/tracks/turn.csv").string();
+    CHECK(resolved.find("trajectory_file = \"" + written + "\"") != std::string::npos);
+    // Read back from another directory, the resolved scene names the same files.
+    const auto again = sss::scene_file::parse(resolved, "elsewhere/resolved.toml");
+    CHECK(again.tow.trajectory_file == written);
+    CHECK(sss::scene_file::to_toml(again) == resolved);
+}

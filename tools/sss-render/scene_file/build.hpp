@@ -254,7 +254,7 @@ template <Real T = float> [[nodiscard]] scene_beam<T> beam_of(const description&
                                                   .depression_deg = T(s.depression_deg)}));
 }
 
-/// The trajectory of `motion.trajectory_file` (a relative path: from the working directory). A file that cannot
+/// The trajectory of `motion.trajectory_file` (a relative path: from the scene file's directory). A file that cannot
 /// be read is a scene_error naming the scene, the key and the file's own message (with its line).
 template <Real T = float> [[nodiscard]] sss::motion::trajectory<T> load_trajectory(const description& d) {
     const auto& m = d.tow;

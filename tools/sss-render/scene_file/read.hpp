@@ -927,6 +927,8 @@ inline void read_array_layout(table_reader t, array_layout& a) {
         o.finish();
     }
     top.finish();
+    // The file keys lead from the scene file's directory (beside_scene).
+    for (std::string* key : {&d.bed.file, &d.sea.svp_file, &d.tow.trajectory_file}) *key = beside_scene(file, *key);
     return d;
 }
 

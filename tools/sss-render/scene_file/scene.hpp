@@ -7,7 +7,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
+#include <system_error>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -191,7 +193,7 @@ struct oscillation {
 struct motion {
     std::string model = "perturbed"; ///< perturbed (the keys below) or trajectory (a sampled track from a CSV file)
     // trajectory
-    std::string trajectory_file;        ///< the CSV (io/trajectory_csv.hpp); relative: to the working directory
+    std::string trajectory_file;        ///< the CSV (io/trajectory_csv.hpp); relative: to the scene file's directory
     std::string interpolation = "cubic"; ///< cubic or linear
     std::optional<double> ping_zero_at;  ///< key (time in s, or ping number) of ping 0; empty: the first sample's
     bool roll_from_turn = false;         ///< without a roll column: the coordinated-turn bank angle instead of 0
@@ -269,5 +271,25 @@ struct description {
     receiver rx;
     output out;
 };
+
+/// Where a file key's path (`seabed.file`, `water.svp_file`, `motion.trajectory_file`) leads from the scene file
+/// `scene_path`: a relative path is taken from the scene file's directory, as an #include is, so that a scene and its
+/// data files can be moved and run from anywhere together; an absolute path, or an empty one (no file), stays.
+[[nodiscard]] inline std::string beside_scene(const std::string& scene_path, const std::string& key_path) {
+    if (key_path.empty()) return key_path;
+    const std::filesystem::path p(key_path);
+    if (p.is_absolute()) return key_path;
+    const std::filesystem::path dir = std::filesystem::path(scene_path).parent_path();
+    return dir.empty() ? key_path : (dir / p).string();
+}
+
+/// A file key's path as a resolved scene writes it: absolute, so that the resolved scene reads the same files from
+/// wherever it is saved (empty: no file; unchanged where the working directory is unknown).
+[[nodiscard]] inline std::string absolute_path(const std::string& key_path) {
+    if (key_path.empty()) return key_path;
+    std::error_code ec;
+    const std::filesystem::path a = std::filesystem::absolute(std::filesystem::path(key_path), ec);
+    return ec ? key_path : a.string();
+}
 
 } // namespace sss::scene_file

@@ -61,7 +61,7 @@ struct toml_out {
 
 } // namespace detail
 
-/// The scene file text of d (its `path` is not written).
+/// The scene file text of d (its `path` is not written; its file keys are written as absolute paths).
 [[nodiscard]] inline std::string to_toml(const description& d) {
     detail::toml_out o;
     o.header("[render]");
@@ -85,7 +85,7 @@ struct toml_out {
 
     const auto& b = d.bed;
     o.header("[seabed]");
-    o.kv("file", b.file);
+    o.kv("file", absolute_path(b.file));
     // The keys this seabed does not use are left out (the reader refuses them).
     const auto unused = unused_seabed_keys(b.file, b.regions.size());
     const auto used = [&](std::string_view key) {
@@ -197,7 +197,7 @@ struct toml_out {
     o.kv("absorption_db_per_km", d.sea.absorption_db_per_km);
     o.kv("model", d.sea.model);
     if (d.sea.model == "layered") {
-        o.kv("svp_file", d.sea.svp_file);
+        o.kv("svp_file", absolute_path(d.sea.svp_file));
         std::string dl = "depth_m = [", sl = "speed_mps = [";
         for (std::size_t i = 0; i < d.sea.depth_m.size(); ++i) {
             dl += (i ? ", " : "") + detail::num(d.sea.depth_m[i]);
@@ -248,7 +248,7 @@ struct toml_out {
     o.kv("ping_interval_s", d.tow.ping_interval_s);
     if (d.tow.model == "trajectory") {
         // The perturbed motion's keys are not used by a trajectory: not written.
-        o.kv("trajectory_file", d.tow.trajectory_file);
+        o.kv("trajectory_file", absolute_path(d.tow.trajectory_file));
         o.kv("interpolation", d.tow.interpolation);
         if (d.tow.ping_zero_at) o.kv("ping_zero_at", *d.tow.ping_zero_at);
         o.kv("roll_from_turn", d.tow.roll_from_turn);
