@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "render_scene.hpp"
+#include "scene_file/read.hpp"
 #include "support/scratch_dir.hpp"
 
 #include <algorithm>
@@ -86,4 +87,29 @@ TEST_CASE("two runs writing one name in one directory never share a temporary or
     CHECK(get(d.dir / "line.xtf") == "second xtf");
     CHECK(get(d.dir / "line.json") == "second json");
     CHECK(listing(d.dir) == std::vector<std::string>{"a.png", "line.json", "line.xtf"});
+}
+
+TEST_CASE("the memory check counts each thread's working memory for its ping, which long lines make larger than the image") {
+    namespace sf = sss::scene_file;
+    // One ping at 1 GHz over 6 m: lines of 8 M samples. The image is 2 x 8 M values; a ping's time sampler alone
+    // holds 8 sub-bins of two moments in double a sample (128 bytes), shared once and copied per thread.
+    auto scene = [](int threads, bool labels) {
+        return sf::parse("[render]\npings = 1\nthreads = " + std::to_string(threads) +
+                             "\n[sonar]\nmax_range_m = 6\nsample_rate_hz = 1e9\n[output]\nyolo = " + (labels ? "true" : "false") +
+                             "\n",
+                         "long_lines.toml");
+    };
+    const auto one = sf::detail::estimate_memory<float>(scene(1, false), 1);
+    CHECK(one.samples == 8000000.0);
+    CHECK(one.threads == 1.0);
+    CHECK(one.image < 0.25e9);
+    CHECK(one.working > 2.0e9);                  // 8 M samples x (152 + 128) bytes, and the rays' echoes
+    CHECK(one.total() > one.image + one.working - 1.0);
+    // Threads beyond the pings render nothing at once; with two pings, two threads each hold a ping.
+    CHECK(sf::detail::estimate_memory<float>(scene(4, false), 1).working == one.working);
+    const auto two = sf::detail::estimate_memory<float>(scene(2, false), 2);
+    CHECK(two.threads == 2.0);
+    CHECK(two.working - one.working > 1.0e9);
+    // Labels add each thread's sums.
+    CHECK(sf::detail::estimate_memory<float>(scene(1, true), 1).working > one.working + 1.0e9);
 }

@@ -36,6 +36,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <thread>
 #include <signal.h>
 #include <unistd.h>
 #include <vector>
@@ -297,32 +298,60 @@ inline double physical_memory_bytes() {
     return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
 }
 
-/// What the run would hold in memory at once, roughly (bytes): the synthesised seabed with its pyramid and
-/// synthesis buffers, the image with its labels, and what the outputs derive from it. A scene error naming the
-/// keys that set each part where the whole exceeds the machine's memory, before anything is built.
-template <Real T> void check_memory(const description& d, const render_request& r, std::size_t count) {
-    const double total = physical_memory_bytes();
-    if (!(total > 0)) return;
-    const double samples = std::ceil(2.0 * d.sensor.max_range_m / d.sea.sound_speed_mps * d.sensor.sample_rate_hz);
-    const double values = double(count) * 2.0 * samples;
+/// What a run would hold in memory at once, roughly (bytes), by part.
+struct memory_estimate {
+    double samples = 0; ///< per line
+    double threads = 0; ///< rendering pings at once
+    double seabed = 0;  ///< the synthesised seabed with its pyramid and synthesis buffers
+    double image = 0;   ///< the image with its labels, and the PNG's bytes
+    double ground = 0;  ///< the ground-range image
+    double working = 0; ///< the pings' working memory, every thread's together
+    [[nodiscard]] double total() const noexcept { return seabed + image + ground + working; }
+};
+
+/// The memory of a run of `count` pings of scene d (memory_estimate).
+template <Real T> [[nodiscard]] memory_estimate estimate_memory(const description& d, std::size_t count) {
+    memory_estimate m;
+    m.samples = std::ceil(2.0 * d.sensor.max_range_m / d.sea.sound_speed_mps * d.sensor.sample_rate_hz);
+    const double values = double(count) * 2.0 * m.samples;
     const bool labels = d.out.coco || d.out.yolo || d.out.label_images;
     // A generated seabed: its heights and pyramid (2.5 values a cell); with regions, their synthesis's working
     // rasters too (the blend's sums in double, the textures' fields and spectra: about 40 bytes a cell, measured at
     // 2048^2 with two regions).
     const double per_cell = 2.5 * double(sizeof(T)) + (d.bed.regions.empty() ? 0.0 : 40.0);
-    const double seabed = d.bed.file.empty() ? per_cell * double(d.bed.nx) * double(d.bed.ny) : 0.0;
-    const double image = values * (double(sizeof(T)) + (labels ? double(sizeof(sss::sample_label)) : 0.0) +
-                                   (d.out.png || d.out.ground_range ? 9.0 : 0.0));
-    const double ground = d.out.ground_range ? double(count) * 2.0 * std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m) *
-                                                   (9.0 + (labels ? double(sizeof(sss::sample_label)) : 0.0))
-                                             : 0.0;
-    if (seabed + image + ground <= total) return;
+    m.seabed = d.bed.file.empty() ? per_cell * double(d.bed.nx) * double(d.bed.ny) : 0.0;
+    m.image = values * (double(sizeof(T)) + (labels ? double(sizeof(sss::sample_label)) : 0.0) +
+                        (d.out.png || d.out.ground_range ? 9.0 : 0.0));
+    m.ground = d.out.ground_range ? double(count) * 2.0 * std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m) *
+                                        (9.0 + (labels ? double(sizeof(sss::sample_label)) : 0.0))
+                                  : 0.0;
+    // A ping's working memory, measured (sss-render at 0.07 to 0.5 M samples a line): the simulator's time sampler
+    // and line stage, shared (152 bytes a sample: time_sampler::sub_bins sub-bins of two moments in double, and the
+    // stage's buffers); each thread's copy of the sampler (128 bytes a sample), its labels' sums (about 130 bytes a
+    // sample) and its rays' echoes and paths (about 40 MiB a thread once the columns reach their ray cap, less before).
+    m.threads = std::min(double(count), d.run.threads > 0 ? double(d.run.threads)
+                                                          : double(std::max(1u, std::thread::hardware_concurrency())));
+    const double rays = std::min(40.0 * double(1 << 20), 300.0 * m.samples * std::max(1.0, d.run.rays_per_sample));
+    m.working = m.samples * 152.0 + m.threads * (m.samples * (128.0 + (labels ? 130.0 : 0.0)) + rays);
+    return m;
+}
+
+/// A scene error naming the keys that set each part of the run's memory (estimate_memory) where the whole exceeds
+/// the machine's memory, before anything is built.
+template <Real T> void check_memory(const description& d, const render_request& r, std::size_t count) {
+    const double total = physical_memory_bytes();
+    if (!(total > 0)) return;
+    const memory_estimate m = estimate_memory<T>(d, count);
+    if (m.total() <= total) return;
     const auto gib = [](double b) { return detail::fmt(std::round(b / double(1 << 30) * 10.0) / 10.0) + " GiB"; };
-    throw scene_error(r.scene_path + ": the run needs about " + gib(seabed + image + ground) + " of memory, more than this machine's " +
-                      gib(total) + ": the seabed " + gib(seabed) + " (seabed.nx x seabed.ny), the image " + gib(image) + " (" +
-                      std::to_string(count) + " pings from " + r.pings_asked + " x 2 x " + detail::fmt(samples) +
+    throw scene_error(r.scene_path + ": the run needs about " + gib(m.total()) + " of memory, more than this machine's " +
+                      gib(total) + ": the seabed " + gib(m.seabed) + " (seabed.nx x seabed.ny), the image " + gib(m.image) +
+                      " (" + std::to_string(count) + " pings from " + r.pings_asked + " x 2 x " + detail::fmt(m.samples) +
                       " samples from sonar.max_range_m and sonar.sample_rate_hz)" +
-                      (d.out.ground_range ? ", the ground-range image " + gib(ground) + " (output.ground_range_cell_m)" : std::string()));
+                      (d.out.ground_range ? ", the ground-range image " + gib(m.ground) + " (output.ground_range_cell_m)"
+                                          : std::string()) +
+                      ", the pings' working memory " + gib(m.working) + " (" + detail::fmt(m.threads) +
+                      " threads from render.threads, each with lines of " + detail::fmt(m.samples) + " samples)");
 }
 
 /// The class list of YOLO's files in directory `dir`, one name per index: the names its classes.txt already lists, in
