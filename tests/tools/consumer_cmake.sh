@@ -36,6 +36,16 @@ install)
             echo "consumer_cmake.sh: pkg-config --cflags sss gives '$cflags', not the installed headers" >&2
             exit 1
         fi
+        # Where pkg-config knows no glm.pc (a GLM installed from its sources), sss.pc requires none: configured so,
+        # it still answers.
+        mkdir -p "$work/no-pc"
+        PKG_CONFIG_LIBDIR="$work/no-pc" "$cmake" -S "$src" -B "$work/sss-no-glm-pc" "${generator[@]}" "${compiler[@]}" \
+            -DSSS_BUILD_TESTS=OFF -DSSS_BUILD_BENCH=OFF -DSSS_BUILD_EXAMPLES=OFF -DSSS_BUILD_TOOLS=OFF -DSSS_INSTALL=ON >/dev/null
+        if ! PKG_CONFIG_LIBDIR="$work/no-pc" PKG_CONFIG_PATH="$work/sss-no-glm-pc" pkg-config --cflags sss >/dev/null; then
+            echo "consumer_cmake.sh: sss.pc configured without a glm.pc requires one:" >&2
+            cat "$work/sss-no-glm-pc/sss.pc" >&2
+            exit 1
+        fi
     fi
     "$cmake" -S "$work/consumer" -B "$work/consumer-build" "${generator[@]}" "${compiler[@]}" \
         -DCMAKE_BUILD_TYPE=Release -DSSS_CONSUMER_MODE=install -DCMAKE_PREFIX_PATH="$work/prefix" \
