@@ -58,9 +58,11 @@ template <Real T> inline void inverse_and_step(T& x, T& inv, std::int32_t& step)
     }
 }
 
-/// Clips [lo, hi] to the slab 0 <= x0 + dx s <= x_max; false when nothing is left.
-template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi) noexcept {
-    if (dx == T(0)) return x0 >= T(0) && x0 <= x_max;
+/// Clips [lo, hi] to the slab 0 <= x0 + dx s <= x_max; false when nothing is left. A ray that does not move along
+/// this axis (dx = 0) is inside when x0 is, to within `slack` (grid units): a ray exactly on the footprint's edge, whose
+/// grid coordinate rounding put a few ulps outside, still meets the edge.
+template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi, T slack) noexcept {
+    if (dx == T(0)) return x0 >= -slack && x0 <= x_max + slack;
     T a = (T(0) - x0) * inv, b = (x_max - x0) * inv;
     if (a > b) std::swap(a, b);
     lo = std::max(lo, a);
@@ -72,6 +74,7 @@ template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi
 template <Real T> struct grid_origin {
     T u0, v0, z0, w0; // as in grid_ray
     T z_margin;       // as in grid_ray: it depends on the origin's height alone
+    T edge_slack;     // the rounding of u0 and v0 (grid units): world x and y rounded, less the origin, over the cell
     bool finite;      // u0, v0 and z0 are finite
 };
 
@@ -85,6 +88,9 @@ template <Real T>
     o.z0 = origin.z;
     o.w0 = o.u0 - o.v0;
     o.finite = std::isfinite(o.u0) && std::isfinite(o.v0) && std::isfinite(o.z0);
+    o.edge_slack = T(8) * std::numeric_limits<T>::epsilon() *
+                   (T(1) + std::abs(o.u0) + std::abs(o.v0) +
+                    (std::abs(g.origin_m.x) + std::abs(g.origin_m.y)) * g.inv_cell_m);
     // The margin, far above rounding, by which setup_ray widens the height slab: below bottom_m a ray that was above
     // the surface has hit it already, above top_m nothing can be hit. It also makes s_hi finite for every unit ray.
     o.z_margin = T(1e-4) * (T(1) + std::abs(o.z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m)) +
@@ -116,8 +122,8 @@ SSS_FORCE_INLINE bool setup_ray(const height_grid_view<T>& g, height_bounds<T> h
     if (q.su == 0 && q.sv == 0 && q.dz == T(0)) return false; // not a direction
 
     T lo = T(0), hi = t_max_m;
-    if (!clip_slab(q.u0, q.du, q.inv_du, static_cast<T>(g.nx - 1), lo, hi)) return false;
-    if (!clip_slab(q.v0, q.dv, q.inv_dv, static_cast<T>(g.ny - 1), lo, hi)) return false;
+    if (!clip_slab(q.u0, q.du, q.inv_du, static_cast<T>(g.nx - 1), lo, hi, o.edge_slack)) return false;
+    if (!clip_slab(q.v0, q.dv, q.inv_dv, static_cast<T>(g.ny - 1), lo, hi, o.edge_slack)) return false;
     q.z_margin = o.z_margin;
     if (q.dz < T(0)) {
         hi = std::min(hi, (q.z0 - (hb.bottom_m - q.z_margin)) / -q.dz);
