@@ -9,6 +9,10 @@
 //   ping/K+noise+volume K speckle (nu = 2, 1 m texture patches), noise and volume reverberation.
 //   ping/hann speckle+noise  speckle and noise with a 100 us Hann pulse (cells summed one by one).
 //   stage/...         the stage alone on one ping's two lines (the mean lines rendered once beforehand).
+//   ping/chirp        ping/mean with a 10 ms LFM chirp of 20 kHz (a compressed envelope of 400 samples).
+//   line/chirp direct, line/chirp Fourier  one line's render (time_sampler::render) of 26,667 samples (200 m at
+//                     100 kHz) with a 20 ms LFM chirp of 40 kHz (4000 samples), deposits in every sub-bin: the direct
+//                     sum over the pulse's taps against the transforms (render_method; render() takes the cheaper).
 // The cost of speckle plus noise is ping/speckle+noise over ping/mean, less one.
 
 #include <benchmark/benchmark.h>
@@ -77,6 +81,33 @@ void ping_hann(benchmark::State& state) {
     run_pings(state, stat_simulator(speckle_noise, sss::pulse_shape::hann), "Hann pulse: speckle + noise");
 }
 BENCHMARK(ping_hann)->Name("ping/hann speckle+noise");
+
+void ping_chirp(benchmark::State& state) {
+    const sss::simulator<lambert, straight, fan, line_motion> sim(
+        lambert{}, straight{}, fan{}, line_motion{},
+        sss::receiver_params{.pulse = sss::pulse{.length_s = 10e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 20e3}});
+    run_pings(state, sim, "flat, 50 m/side, 10 ms LFM chirp: mean power only");
+}
+BENCHMARK(ping_chirp)->Name("ping/chirp");
+
+void line_chirp(benchmark::State& state, sss::render_method method) {
+    const double dt = 1e-5;
+    sss::time_sampler sampler(26667, dt, sss::pulse{.length_s = 20e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 40e3});
+    for (std::size_t i = 0; i < 26667 * sss::time_sampler::sub_bins; ++i) {
+        const double t = dt * (double(i) + 0.3) / double(sss::time_sampler::sub_bins);
+        sampler.add_span(t, t + 0.05 * dt, 1.0 / (1.0 + double(i)));
+    }
+    std::vector<double> line;
+    for (auto _ : state) {
+        sampler.render(line, method);
+        benchmark::DoNotOptimize(line.data());
+        benchmark::ClobberMemory();
+    }
+    state.counters["lines/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["fourier_by_default"] = sampler.renders_by_fourier() ? 1.0 : 0.0;
+}
+BENCHMARK_CAPTURE(line_chirp, direct, sss::render_method::direct)->Name("line/chirp direct")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(line_chirp, fourier, sss::render_method::fourier)->Name("line/chirp Fourier")->Unit(benchmark::kMillisecond);
 
 void stage_alone(benchmark::State& state, const sss::echo_statistics_params& p) {
     const auto sim = stat_simulator(p);

@@ -50,7 +50,8 @@ TEST_CASE("a chirp resolves two point targets c/(2B) apart that a CW pulse of th
     const double cw_dip = dip_db(two_points(cw, 1.0 / bandwidth));
     MESSAGE("dip between the two echoes: chirp " << chirp_dip << " dB, CW " << cw_dip << " dB");
     CHECK(chirp_dip > 0.5); // the sum of two sinc^2 a main-lobe half-width apart dips about 0.9 dB
-    CHECK(cw_dip == 0.0);
+    CHECK(cw_dip < 1e-9); // one plateau: flat to rounding (the Fourier path, which this 160-sample pulse takes,
+                          // ripples it by about 1e-15 dB)
     // Half as far apart, the chirp does not resolve them either.
     CHECK(dip_db(two_points(chirp, 0.5 / bandwidth)) == 0.0);
 }

@@ -111,3 +111,54 @@ TEST_CASE("echoes beyond the line's end and before time zero are dropped, never 
     CHECK(y[9] == doctest::Approx(0.1e-3 / 1.1e-3 * 0.5).epsilon(1e-9)); // first half-sample of the last bin
     for (std::size_t k = 0; k < 9; ++k) CHECK(y[k] == 0.0);
 }
+
+TEST_CASE("the Fourier path renders the direct sum's line to 1e-12 of its peak, with the same exact zeros, and is "
+          "taken for long pulses") {
+    const double dt = 1e-5;
+    struct case_t {
+        sss::pulse p;
+        bool long_pulse; // spans hundreds of samples: render() should take the Fourier path
+    };
+    const case_t cases[] = {
+        {{.length_s = 3.3e-5, .shape = sss::pulse_shape::rectangular}, false},        // not whole sub-bins: slopes clamped
+        {{.length_s = 4e-5, .shape = sss::pulse_shape::hann}, false},                // whole samples: exact
+        {{.length_s = 5.03e-3, .shape = sss::pulse_shape::rectangular}, true},       // 503 samples
+        {{.length_s = 4e-3, .shape = sss::pulse_shape::hann}, true},                 // 400 samples
+        {{.length_s = 2e-3, .shape = sss::pulse_shape::lfm, .bandwidth_hz = 2e4}, true}, // compressed: spans 2T, delayed T
+    };
+    for (const auto& c : cases) {
+        CAPTURE(c.p.length_s);
+        sss::time_sampler s(3000, dt, c.p);
+        CHECK(s.renders_by_fourier() == c.long_pulse);
+        // Its memory: a transform buffer per render where it takes the Fourier path, none where it sums directly.
+        CHECK((sss::time_sampler::memory_bytes(3000, dt, c.p).per_render > 0.0) == c.long_pulse);
+        // Spans and points over two stretches of the line, with an empty stretch between and after them, levels
+        // over 60 dB.
+        for (int i = 0; i < 400; ++i) {
+            const double t0 = 2e-3 + 1.3e-5 * i + 1e-7 * (i % 3), t1 = t0 + 1e-6 * (i % 11);
+            s.add_span(t0, t1, std::pow(10.0, -0.015 * i));
+            if (i % 5 == 0) s.add_point(t0 + 3.7e-6, 0.5);
+        }
+        for (int i = 0; i < 50; ++i) s.add_span(0.02 + 2e-5 * i, 0.02 + 2e-5 * i + 7e-6, 1e-3);
+        std::vector<double> direct, fourier;
+        s.render(direct, sss::render_method::direct);
+        s.render(fourier, sss::render_method::fourier);
+        REQUIRE(direct.size() == fourier.size());
+        const double peak = *std::max_element(direct.begin(), direct.end());
+        REQUIRE(peak > 0.0);
+        double worst = 0.0;
+        std::size_t zeros = 0, zeros_differ = 0;
+        for (std::size_t k = 0; k < direct.size(); ++k) {
+            worst = std::max(worst, std::abs(direct[k] - fourier[k]) / peak);
+            zeros += direct[k] == 0.0;
+            zeros_differ += (direct[k] == 0.0) != (fourier[k] == 0.0);
+        }
+        CHECK(worst < 1e-12);
+        CHECK(zeros > 100);         // before the first echo, between the stretches and after them
+        CHECK(zeros_differ == 0);
+        // Energy: both conserve it to rounding.
+        const double e_direct = std::accumulate(direct.begin(), direct.end(), 0.0);
+        const double e_fourier = std::accumulate(fourier.begin(), fourier.end(), 0.0);
+        CHECK(std::abs(e_fourier - e_direct) < 1e-12 * e_direct);
+    }
+}

@@ -18,6 +18,7 @@
 #include <sss/labels/ground_truth.hpp>
 #include <sss/receiver/ground_range.hpp>
 #include <sss/receiver/quantise.hpp>
+#include <sss/receiver/time_sampler.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -325,14 +326,18 @@ template <Real T> [[nodiscard]] memory_estimate estimate_memory(const descriptio
     m.ground = d.out.ground_range ? double(count) * 2.0 * std::ceil(d.sensor.max_range_m / d.out.ground_range_cell_m) *
                                         (9.0 + (labels ? double(sizeof(sss::sample_label)) : 0.0))
                                   : 0.0;
-    // A ping's working memory, measured (sss-render at 0.07 to 0.5 M samples a line): the simulator's time sampler
-    // and line stage, shared (152 bytes a sample: time_sampler::sub_bins sub-bins of two moments in double, and the
-    // stage's buffers); each thread's copy of the sampler (128 bytes a sample), its labels' sums (about 130 bytes a
-    // sample) and its rays' echoes and paths (about 40 MiB a thread once the columns reach their ray cap, less before).
+    // A ping's working memory (measured with sss-render at 0.07 to 0.5 M samples a line): the simulator's time
+    // sampler (time_sampler::memory_bytes: its sub-bins' moments, and for a long pulse its kernels' spectra) and line
+    // stage (about 24 bytes a sample); each thread's copy of the sampler with its render's transform, its labels' sums
+    // (about 130 bytes a sample) and its rays' echoes and paths (about 40 MiB a thread once the columns reach their
+    // ray cap, less before).
     m.threads = std::min(double(count), d.run.threads > 0 ? double(d.run.threads)
                                                           : double(std::max(1u, std::thread::hardware_concurrency())));
+    const auto sampler = sss::time_sampler::memory_bytes(static_cast<std::size_t>(m.samples), 1.0 / d.sensor.sample_rate_hz,
+                                                         receiver_of(d).pulse);
     const double rays = std::min(40.0 * double(1 << 20), 300.0 * m.samples * std::max(1.0, d.run.rays_per_sample));
-    m.working = m.samples * 152.0 + m.threads * (m.samples * (128.0 + (labels ? 130.0 : 0.0)) + rays);
+    m.working = sampler.per_copy + sampler.shared + 24.0 * m.samples +
+                m.threads * (sampler.per_copy + sampler.per_render + (labels ? 130.0 : 0.0) * m.samples + rays);
     return m;
 }
 
