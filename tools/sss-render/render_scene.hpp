@@ -586,6 +586,16 @@ template <Real T> int render_scene(const description& d, const render_request& r
                           "raise the seabed (mean_height_m) so that it lies above -altitude_m");
     if (const auto below = below_seabed(w, sampled ? track : motion_of(d, tow_z(d, w)), r.first, count); !below.empty())
         throw scene_error(r.scene_path + (sampled ? ": motion.trajectory_file: " : ": motion.altitude_m: ") + below);
+    if (const auto in = inside_object(w, sampled ? track : motion_of(d, tow_z(d, w)), r.first, count)) {
+        const auto& o = d.objects[in->object];
+        const auto p = (sampled ? track : motion_of(d, tow_z(d, w))).pose_at(in->ping).position;
+        throw scene_error((o.origin.empty() ? r.scene_path + ": object[" + std::to_string(in->object) + "]" : o.origin) +
+                          ": the towfish (at x " + detail::fmt(p.x) + " m, y " + detail::fmt(p.y) + " m, z " + detail::fmt(p.z) +
+                          " m) is inside this " + o.type + " at ping " + std::to_string(in->ping) +
+                          ": move it off the track, or the track (" +
+                          (sampled ? "motion.trajectory_file" : "motion.altitude_m, motion.start_m, motion.heading_deg") +
+                          ") off it");
+    }
     const auto t1 = std::chrono::steady_clock::now();
     if (r.dry_run) {
         // The simulator built as a render builds it, so that what its policies refuse is found here too.

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,38 @@ template <Real T>
                    detail::fmt(ground) + " m) at ping " + std::to_string(ping);
     }
     return "";
+}
+
+/// Where the towfish lies inside an object's solid (one of its spheres or cylinders): the object's index and the
+/// ping, the first such among [first, first + count). Rays from inside an object meet its surface from within
+/// (primitive.hpp), so that ping would image the inside of a casing: the scene is wrong (an object in the towfish's
+/// path, or the towfish too low).
+struct towfish_in_object {
+    std::size_t object = 0;
+    std::size_t ping = 0;
+};
+template <Real T>
+[[nodiscard]] std::optional<towfish_in_object> inside_object(const world<T>& w, const scene_motion<T>& tow, std::size_t first,
+                                                             std::size_t count) {
+    const auto& set = w.objects();
+    if (set.empty()) return std::nullopt;
+    const auto& objects = set.objects();
+    // Whether p is inside a solid: a ray from p (any direction: up) meets the solid from within.
+    const auto inside = [](const auto& solids, const sss::vec3<T>& p) {
+        const sss::ray<T> up{p, sss::vec3<T>{T(0), T(0), T(1)}};
+        for (const auto& s : solids)
+            if (s.bounds().contains(p))
+                if (const auto c = s.first_crossing(up, std::numeric_limits<T>::infinity()); c && c->from_inside) return true;
+        return false;
+    };
+    for (std::size_t ping = first; ping < first + count; ++ping) {
+        const sss::vec3<T> p = tow.pose_at(ping).position;
+        if (!set.bounds().contains(p)) continue;
+        for (std::size_t k = 0; k < objects.size(); ++k)
+            if (objects[k].bounds().contains(p) && (inside(objects[k].spheres(), p) || inside(objects[k].cylinders(), p)))
+                return towfish_in_object{.object = k, .ping = ping};
+    }
+    return std::nullopt;
 }
 
 } // namespace sss::scene_file
