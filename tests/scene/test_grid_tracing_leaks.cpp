@@ -175,15 +175,15 @@ TEST_CASE("Ten million rays aimed exactly at vertices, edges and diagonals all h
 namespace {
 
 // Vertical rays down through every vertex of an n x n grid at world x = origin + i cell (as a depth map samples
-// it), one by one and as a batch: the number that miss.
-template <class T> int vertical_misses(T cell, T origin, std::size_t n) {
+// it), shifted by `off` (m), one by one and as a batch: the number that miss.
+template <class T> int vertical_misses(T cell, vec2<T> origin, std::size_t n, vec2<T> off = {}) {
     std::vector<T> h(n * n);
     for (std::size_t k = 0; k < h.size(); ++k) h[k] = T(0.01) * static_cast<T>(k % 7);
-    const height_field<T> hf({.nx = n, .ny = n, .cell_m = cell, .origin_m = vec2<T>{origin, origin}, .heights_m = h});
+    const height_field<T> hf({.nx = n, .ny = n, .cell_m = cell, .origin_m = origin, .heights_m = h});
     std::vector<ray<T>> rays;
     for (std::size_t j = 0; j < n; ++j)
         for (std::size_t i = 0; i < n; ++i)
-            rays.push_back(ray<T>{vec3<T>{origin + static_cast<T>(i) * cell, origin + static_cast<T>(j) * cell, T(5)},
+            rays.push_back(ray<T>{vec3<T>{origin.x + static_cast<T>(i) * cell + off.x, origin.y + static_cast<T>(j) * cell + off.y, T(5)},
                                   vec3<T>{T(0), T(0), T(-1)}});
     std::vector<std::optional<sss::hit<T>>> batch(rays.size());
     hf.intersect_many(rays, T(100), batch);
@@ -206,7 +206,13 @@ TEST_CASE("Vertical rays through every vertex, the footprint's east and north ed
         for (const double origin : {0.0, 0.7, -13.3, 1234.5}) {
             CAPTURE(cell);
             CAPTURE(origin);
-            CHECK(vertical_misses<double>(cell, origin, 40) == 0);
-            CHECK(vertical_misses<float>(float(cell), float(origin), 40) == 0);
+            CHECK(vertical_misses<double>(cell, {origin, origin}, 40) == 0);
+            CHECK(vertical_misses<float>(float(cell), {float(origin), float(origin)}, 40) == 0);
         }
+    // In float at UTM coordinates (x rounds to 1.6 cm, y to 25 cm), and no wider: rays a cell beyond the footprint's
+    // edges (39 x 40 of the 1600 shifted rays lie over it) miss.
+    const vec2<float> utm{500000.0f, 5000000.0f};
+    CHECK(vertical_misses<float>(0.25f, utm, 40) == 0);
+    CHECK(vertical_misses<float>(1.0f, utm, 40, {1.0f, 0.0f}) == 2 * 40);
+    CHECK(vertical_misses<float>(1.0f, utm, 40, {0.0f, 1.0f}) == 2 * 40);
 }

@@ -74,8 +74,8 @@ template <Real T> inline bool clip_slab(T x0, T dx, T inv, T x_max, T& lo, T& hi
 template <Real T> struct grid_origin {
     T u0, v0, z0, w0; // as in grid_ray
     T z_margin;       // as in grid_ray: it depends on the origin's height alone
-    T edge_slack;     // the rounding of u0 and v0 (grid units): world x and y rounded, less the origin, over the cell
-    bool finite;      // u0, v0 and z0 are finite
+    T u_slack, v_slack; // the rounding of u0 and of v0 (grid units): world x (y) rounded, less the origin, over the cell
+    bool finite;        // u0, v0 and z0 are finite
 };
 
 /// The origin part of setup_ray for rays from `origin`.
@@ -88,9 +88,11 @@ template <Real T>
     o.z0 = origin.z;
     o.w0 = o.u0 - o.v0;
     o.finite = std::isfinite(o.u0) && std::isfinite(o.v0) && std::isfinite(o.z0);
-    o.edge_slack = T(8) * std::numeric_limits<T>::epsilon() *
-                   (T(1) + std::abs(o.u0) + std::abs(o.v0) +
-                    (std::abs(g.origin_m.x) + std::abs(g.origin_m.y)) * g.inv_cell_m);
+    // A world x on the grid rounds by at most eps/2 |x| <= eps/2 (|origin x| + |u0| cell), and u0's subtraction and
+    // scaling add at most 1.5 eps |u0|.
+    constexpr T eps = std::numeric_limits<T>::epsilon();
+    o.u_slack = eps * (T(1) + T(2) * std::abs(o.u0) + T(0.5) * std::abs(g.origin_m.x) * g.inv_cell_m);
+    o.v_slack = eps * (T(1) + T(2) * std::abs(o.v0) + T(0.5) * std::abs(g.origin_m.y) * g.inv_cell_m);
     // The margin, far above rounding, by which setup_ray widens the height slab: below bottom_m a ray that was above
     // the surface has hit it already, above top_m nothing can be hit. It also makes s_hi finite for every unit ray.
     o.z_margin = T(1e-4) * (T(1) + std::abs(o.z0) + std::abs(hb.top_m) + std::abs(hb.bottom_m)) +
@@ -122,8 +124,8 @@ SSS_FORCE_INLINE bool setup_ray(const height_grid_view<T>& g, height_bounds<T> h
     if (q.su == 0 && q.sv == 0 && q.dz == T(0)) return false; // not a direction
 
     T lo = T(0), hi = t_max_m;
-    if (!clip_slab(q.u0, q.du, q.inv_du, static_cast<T>(g.nx - 1), lo, hi, o.edge_slack)) return false;
-    if (!clip_slab(q.v0, q.dv, q.inv_dv, static_cast<T>(g.ny - 1), lo, hi, o.edge_slack)) return false;
+    if (!clip_slab(q.u0, q.du, q.inv_du, static_cast<T>(g.nx - 1), lo, hi, o.u_slack)) return false;
+    if (!clip_slab(q.v0, q.dv, q.inv_dv, static_cast<T>(g.ny - 1), lo, hi, o.v_slack)) return false;
     q.z_margin = o.z_margin;
     if (q.dz < T(0)) {
         hi = std::min(hi, (q.z0 - (hb.bottom_m - q.z_margin)) / -q.dz);
