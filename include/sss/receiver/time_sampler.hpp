@@ -24,8 +24,9 @@
 /// the deposits' two sequences (M0 and the slopes) as one complex sequence, one transform forward, the kernels'
 /// spectra (computed once, shared by copies of the sampler), one transform back, read every sub_bins-th value
 /// (Oppenheim & Schafer, "Discrete-Time Signal Processing", 3rd ed., 2010, sec. 8.7: linear convolution by the DFT).
-/// Its rounding is relative to the line's largest values (about 1e-15 of them); a sample with no deposit within the
-/// pulse's reach is exactly 0 either way, as the direct sum makes it. render() takes the cheaper of the two
+/// Its rounding is relative to the line's largest values (about 1e-16 of them), so a sample more than 90 dB below
+/// them is summed directly; a sample with no deposit within the pulse's reach is exactly 0 either way, as the direct
+/// sum makes it. render() takes the cheaper of the two
 /// (render_method), which for the default pulses (a few samples) is the direct sum.
 ///
 /// The line runs on the receiver's clock: sample k covers [k dt, (k + 1) dt) after the transmission less the
@@ -38,6 +39,7 @@
 #include <cmath>
 #include <complex>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -147,23 +149,7 @@ public:
             return;
         }
         out.assign(n_, T(0));
-        const std::size_t taps = k0_.size() / sub_bins;
-        for (std::size_t k = 0; k < n_; ++k) {
-            double y = 0.0;
-            const std::size_t kk = k + lead_; // the sample's place among the bins, which start lead_ samples early
-            const std::size_t dmax = std::min(taps - 1, kk);
-            for (std::size_t d = 0; d <= dmax; ++d) {
-                const std::size_t base = (kk - d) * sub_bins;
-                for (std::size_t r = 0; r < sub_bins; ++r) {
-                    const double m0 = m0_[base + r];
-                    double slope = m1_[base + r] - 0.5 * m0;
-                    // Keep the linear density non-negative (mean position within [1/3, 2/3] of the sub-bin).
-                    if (!exact_) slope = std::clamp(slope, -m0 / 6.0, m0 / 6.0);
-                    y += m0 * k0_[d * sub_bins + r] + slope * k1_[d * sub_bins + r];
-                }
-            }
-            out[k] = static_cast<T>(std::max(y, 0.0)); // only rounding can make y negative
-        }
+        for (std::size_t k = 0; k < n_; ++k) out[k] = static_cast<T>(direct_sample(k));
     }
 
     /// The memory a sampler for `samples` samples at dt_s with pulse p holds (bytes, roughly): its sub-bins' two
@@ -175,6 +161,12 @@ public:
         double per_render = 0; ///< a render's transform buffer
     };
     [[nodiscard]] static memory memory_bytes(std::size_t samples, double dt_s, const pulse& p) noexcept {
+        // Beyond any memory (and beyond size_t's range for the transform's length): unbounded.
+        const double bins = double(samples) + (p.filter_delay_s() + p.duration_s()) / dt_s + 3.0;
+        if (!(bins < 0x1p56)) {
+            constexpr double inf = std::numeric_limits<double>::infinity();
+            return {.per_copy = inf, .shared = inf, .per_render = inf};
+        }
         const std::size_t lead = lead_of(dt_s, p), taps = taps_of(dt_s, p);
         const double length = double(fourier_length(samples, lead, taps));
         const double complex_bytes = double(sizeof(std::complex<double>));
@@ -190,6 +182,25 @@ public:
     [[nodiscard]] bool renders_by_fourier() const noexcept { return fourier_pays_; }
 
 private:
+    /// Sample k by the direct sum over the taps (the file comment's y_k).
+    [[nodiscard]] double direct_sample(std::size_t k) const noexcept {
+        const std::size_t taps = k0_.size() / sub_bins;
+        double y = 0.0;
+        const std::size_t kk = k + lead_; // the sample's place among the bins, which start lead_ samples early
+        const std::size_t dmax = std::min(taps - 1, kk);
+        for (std::size_t d = 0; d <= dmax; ++d) {
+            const std::size_t base = (kk - d) * sub_bins;
+            for (std::size_t r = 0; r < sub_bins; ++r) {
+                const double m0 = m0_[base + r];
+                double slope = m1_[base + r] - 0.5 * m0;
+                // Keep the linear density non-negative (mean position within [1/3, 2/3] of the sub-bin).
+                if (!exact_) slope = std::clamp(slope, -m0 / 6.0, m0 / 6.0);
+                y += m0 * k0_[d * sub_bins + r] + slope * k1_[d * sub_bins + r];
+            }
+        }
+        return std::max(y, 0.0); // only rounding can make y negative
+    }
+
     [[nodiscard]] std::shared_ptr<const detail::sampler_spectra> make_spectra() const {
         const std::size_t taps = std::min(k0_.size() / sub_bins, n_ + lead_);
         const std::size_t length = transform_length(n_, lead_, k0_.size() / sub_bins);
@@ -276,6 +287,9 @@ private:
         out.assign(n_, T(0));
         if (sp.first > sp.last) return; // kernels of zeros
         const double scale = 1.0 / static_cast<double>(length);
+        std::vector<double> y(n_, 0.0);
+        std::vector<bool> reached(n_, false);
+        double top = 0.0;
         std::size_t lo = 0, hi = 0, held = 0; // bins [lo, hi) counted, `held` of them with a deposit
         for (std::size_t k = 0; k < n_; ++k) {
             const std::size_t at = (k + lead_ + 1) * sub_bins - 1;
@@ -284,9 +298,21 @@ private:
             for (; hi < end; ++hi) held += m0_[hi] != 0.0 || m1_[hi] != 0.0;
             for (; lo < std::min(begin, hi); ++lo) held -= m0_[lo] != 0.0 || m1_[lo] != 0.0;
             if (held == 0) continue;
-            out[k] = static_cast<T>(std::max(z[at].real() * scale, 0.0));
+            reached[k] = true;
+            y[k] = std::max(z[at].real() * scale, 0.0);
+            top = std::max(top, y[k]);
+        }
+        // The transforms' rounding is about 1e-16 of the line's largest values, whatever a sample's own level: a
+        // sample far below them (more than 90 dB: after time-varied gain the far range of a long line can be) is
+        // summed directly instead, so that every sample keeps its own relative accuracy (1e-6 or better).
+        const double floor = fourier_floor * top;
+        for (std::size_t k = 0; k < n_; ++k) {
+            if (reached[k] && y[k] < floor) y[k] = direct_sample(k);
+            out[k] = static_cast<T>(y[k]);
         }
     }
+    /// Below this fraction of the line's largest value, render_fourier sums a sample directly.
+    static constexpr double fourier_floor = 1e-9;
 
     void build_kernels(const pulse& p) {
         const double tau = p.duration_s() / dt_; // pulse length in samples (taps_of)
