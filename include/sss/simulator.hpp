@@ -762,7 +762,7 @@ private:
             auto keep = [&r](const tube_echo<T>& t) { r.echoes.push_back(t); };
             in_column(scene, f, lo, hi, [&](const Sc& col) { trace_column(col, f, lo, hi, scratch, &r, keep); });
             std::swap(r.angles, scratch.angles);
-            std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& a, const column_edge& b) { return a.t < b.t; });
+            std::sort(r.edges.begin(), r.edges.end(), [](const column_edge& e0, const column_edge& e1) { return e0.t < e1.t; });
             if (echo_check) echo_per_sample(r);
         };
         // How deep each column may be divided: by its weight under the beam, or alike.

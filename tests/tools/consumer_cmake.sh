@@ -36,6 +36,11 @@ install)
             echo "consumer_cmake.sh: pkg-config --cflags sss gives '$cflags', not the installed headers" >&2
             exit 1
         fi
+        # A pkg-config user sees sss's headers with -I, not as system headers: they stay free of the warnings strict
+        # users turn on.
+        # shellcheck disable=SC2046
+        "${CXX:-c++}" -std=c++20 -fsyntax-only -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Wdouble-promotion -Werror \
+            $(PKG_CONFIG_PATH="$work/prefix/share/pkgconfig" pkg-config --cflags sss) "$work/consumer/one_ping.cpp"
         # Where pkg-config knows no glm.pc (a GLM installed from its sources), sss.pc requires none: configured so,
         # it still answers.
         mkdir -p "$work/no-pc"

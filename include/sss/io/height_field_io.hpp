@@ -191,7 +191,9 @@ template <Real T> [[nodiscard]] scene::height_field<T> read_esri_ascii(const std
     // A centre and the cell size as written (write_esri_ascii: the shortest text of a T) read back exactly; a corner
     // is moved by half a cell in double first.
     const double half = 0.5 * *cellsize;
-    const auto as_t = [](std::string_view text, double v) { return sss::detail::parse_as<T>(text).value_or(static_cast<T>(v)); };
+    const auto as_t = [](std::string_view written, double v) {
+        return sss::detail::parse_as<T>(written).value_or(static_cast<T>(v));
+    };
     const vec2<T> origin{x_center ? as_t(x_text, *x_ll) : static_cast<T>(*x_ll + half),
                          y_center ? as_t(y_text, *y_ll) : static_cast<T>(*y_ll + half)};
     const T cell = as_t(cell_text, *cellsize);

@@ -171,12 +171,12 @@ template <Real T = double>
     std::string header;
     std::size_t i = 0;
     for (; i < lines.size(); ++i) {
-        const std::string_view text = lines[i].text;
-        const auto close = text.find(')');
+        const std::string_view line = lines[i].text;
+        const auto close = line.find(')');
         header += ' ';
-        header += text.substr(0, close);
+        header += line.substr(0, close);
         if (close != std::string_view::npos) {
-            if (!trim(text.substr(close + 1)).empty()) {
+            if (!trim(line.substr(close + 1)).empty()) {
                 throw file_error(name, lines[i].number, "unexpected text after the header's closing ')'");
             }
             break;

@@ -321,7 +321,7 @@ inline void write_xtf(const std::string& path, const xtf_file& f) {
             p.time_unix_s = double(days) * 86400.0 + q[18] * 3600.0 + q[19] * 60.0 + q[20] + q[21] / 100.0;
             const double sv = get_le<float>(q, 32);
             p.sound_speed_mps = sv < 1000.0 ? 2.0 * sv : sv;
-            p.speed_mps = get_le<float>(q, 152) / knots_per_mps;
+            p.speed_mps = double(get_le<float>(q, 152)) / knots_per_mps;
             p.y = get_le<double>(q, 160);
             p.x = get_le<double>(q, 168);
             p.altitude_m = get_le<float>(q, 196);

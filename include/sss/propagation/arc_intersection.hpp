@@ -206,7 +206,7 @@ bool visit_arc_hit(const S& scene, const arc_frame<T>& frame, T sin_phi0, T cos_
     }
     const T ds = n == 1 ? span : span / static_cast<T>(n);
     // Chord k spans arc lengths [s_at(k), s_at(k + 1)].
-    const auto s_at = [&](std::size_t k) { return k == n ? s_end_m : s_begin_m + ds * static_cast<T>(k); };
+    const auto s_at = [&](std::size_t i) { return i == n ? s_end_m : s_begin_m + ds * static_cast<T>(i); };
     const vec3<T> p0 = s_begin_m == T(0) ? frame.start : world(offset_along_arc(sin0, cos0, kappa, s_begin_m));
     // Chord k's end q, direction and length from its start p.
     const auto chord_from = [&](std::size_t k_chord, const vec3<T>& p, vec3<T>& q, vec3<T>& dir, T& len) {

@@ -139,8 +139,8 @@ SSS_FORCE_INLINE void trace_wedge(const height_grid_view<T>& g, const max_pyrami
         // asks for more gain, so the test is only stricter. Where the test fails, the pointer moves on for this ray
         // and the chain is tried once more from there.
         auto chain_holds = [&] {
-            const T turn = T(1.001) * std::abs(slopes[k].sin_turn - chain_sin) + T(8) * eps;
-            const T gain = (chain_tau - tau) - lipschitz * turn; // f gained over the previous ray per m of rho
+            const T turned = T(1.001) * std::abs(slopes[k].sin_turn - chain_sin) + T(8) * eps;
+            const T gain = (chain_tau - tau) - lipschitz * turned; // f gained over the previous ray per m of rho
             const T rho_lo_m = static_cast<T>(shared) * cell;
             return gain * rho_lo_m > chain_err * (T(1) + std::abs(chain_tau) * chain_rho_m);
         };

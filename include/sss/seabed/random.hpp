@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 
 namespace sss::seabed {
@@ -52,7 +53,7 @@ namespace sss::seabed {
 /// Accurate to a few ulp (at most 3 seen over (0, 1]). Returns -inf for 0 and NaN for negative or NaN
 /// input (callers pass values in (0, 1]).
 [[nodiscard]] inline double portable_log(double x) noexcept {
-    if (!(x > 0.0)) return x == 0.0 ? -HUGE_VAL : NAN;
+    if (!(x > 0.0)) return x == 0.0 ? -HUGE_VAL : std::numeric_limits<double>::quiet_NaN();
     if (x == HUGE_VAL) return x;
     int e = 0;
     double m = 0.0; // x = m 2^e, m in [0.5, 1): exact
