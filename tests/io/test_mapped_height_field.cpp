@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -182,4 +183,27 @@ TEST_CASE("a raw file whose size disagrees with its sidecar is refused, naming t
     }
     CHECK_THROWS_AS((void)sss::io::map_raw_f32("short.raw"), sss::file_error);
     CHECK_THROWS_AS((void)sss::io::map_raw_f32("missing.raw"), sss::file_error);
+}
+
+TEST_CASE("a sidecar whose cell size float cannot hold is refused, naming the sidecar; a bad height names the data") {
+    // A raw file and its sidecar as written by hand: grid g, heights h.
+    const auto put = [](const std::string& name, const sss::io::raw_grid& g, const std::vector<float>& h) {
+        std::ofstream(sss::io::raw_sidecar_path(name), std::ios::binary) << sss::io::raw_sidecar_text(g);
+        std::ofstream(name, std::ios::binary).write(reinterpret_cast<const char*>(h.data()), std::streamsize(4 * h.size()));
+    };
+    // The file map_raw_f32 names when it refuses `name`.
+    const auto refused = [](const std::string& name) {
+        try {
+            (void)sss::io::map_raw_f32(name);
+        } catch (const sss::file_error& e) {
+            return e.file();
+        }
+        return std::string("(accepted)");
+    };
+    put("tiny_cell.raw", {.nx = 4, .ny = 3, .cell_m = 1e-50, .origin_x_m = 0, .origin_y_m = 0}, std::vector<float>(12, 0.0f));
+    CHECK(refused("tiny_cell.raw") == "tiny_cell.raw.txt");
+    std::vector<float> heights(12, 0.0f);
+    heights[5] = std::numeric_limits<float>::quiet_NaN();
+    put("nan_height.raw", {.nx = 4, .ny = 3, .cell_m = 1, .origin_x_m = 0, .origin_y_m = 0}, heights);
+    CHECK(refused("nan_height.raw") == "nan_height.raw");
 }

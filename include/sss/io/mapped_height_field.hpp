@@ -127,7 +127,12 @@ private:
         file->release_resident();
         return hf;
     } catch (const invalid_parameter& e) {
-        throw file_error(path, 0, message_body(e));
+        // The grid's numbers come from the sidecar (a cell size that float rounds to 0, say), the heights from the data
+        // file: the message names the file at fault.
+        const std::string& what = e.parameter();
+        const bool grid = what == "height_field.nx" || what == "height_field.ny" || what == "height_field.cell_m" ||
+                          what.starts_with("height_field.origin_m");
+        throw file_error(grid ? raw_sidecar_path(path) : path, 0, message_body(e));
     }
 }
 

@@ -26,8 +26,8 @@
 /// (Oppenheim & Schafer, "Discrete-Time Signal Processing", 3rd ed., 2010, sec. 8.7: linear convolution by the DFT).
 /// Its rounding is relative to the line's largest values (about 1e-16 of them), so a sample more than 90 dB below
 /// them is summed directly; a sample with no deposit within the pulse's reach is exactly 0 either way, as the direct
-/// sum makes it. render() takes the cheaper of the two
-/// (render_method), which for the default pulses (a few samples) is the direct sum.
+/// sum makes it. render() takes the cheaper of the two (render_method), which for the default pulses (a few samples)
+/// is the direct sum.
 ///
 /// The line runs on the receiver's clock: sample k covers [k dt, (k + 1) dt) after the transmission less the
 /// pulse's filter delay d (pulse::filter_delay_s: a compressed chirp's T, so that an echo peaks at its arrival).
