@@ -52,10 +52,15 @@ int main(int argc, char** argv) {
         const auto w = sss::mpi::render(sim, seabed, 0, pings, sss::mpi::render_params{.threads = 1});
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (rank == 0) {
-            std::FILE* f = std::fopen(out.c_str(), "wb");
-            if (!f || std::fwrite(w.values.data(), sizeof(float), w.values.size(), f) != w.values.size())
+            // Written whole under a temporary name, then renamed: a failed write leaves no partial file behind.
+            const std::string part = out + ".part";
+            std::FILE* f = std::fopen(part.c_str(), "wb");
+            if (f == nullptr) throw std::runtime_error("cannot open " + part + " for writing");
+            const bool written = std::fwrite(w.values.data(), sizeof(float), w.values.size(), f) == w.values.size();
+            if (std::fclose(f) != 0 || !written || std::rename(part.c_str(), out.c_str()) != 0) {
+                std::remove(part.c_str());
                 throw std::runtime_error("cannot write " + out);
-            std::fclose(f);
+            }
             std::printf("%zu pings on %d rank(s), one thread each: %.2f s (%.1f pings/s) -> %s\n", pings, size, s,
                         double(pings) / s, out.c_str());
         }

@@ -6,13 +6,17 @@
 /// Work split. The pings [first, first + count) are cut into chunks of `chunk_pings` consecutive pings, and chunk k
 /// goes to rank k mod size: interleaved, so that slow stretches of a line (rough ground, objects, turns) are shared
 /// among all ranks rather than falling to one. Each rank renders all its pings as one job on its own threads (its
-/// pool, one ping at a time per thread, as simulator::render), then the root gathers every rank's rows
-/// (MPI_Gatherv) and puts them in ping order. A rank that fails (a bad ping, memory) does not leave the others
-/// waiting: the ranks agree on failure before the gather, and every rank throws (the failed one its own error). A ping
-/// depends only on its index, never on which process renders it or with what, so the root's waterfall has the same
-/// bytes as one process's simulator::render of the whole range. render_labelled does the same for the waterfall
-/// and its ground-truth labels (labels/ground_truth.hpp), gathered side by side; XTF and the other products are
-/// written on the root from these and the motion's poses, as from one process's render.
+/// pool, one ping at a time per thread, as simulator::render): the root into their places in the waterfall, the
+/// others into a buffer of their share. Then each other rank sends its chunks to the root, which receives them in
+/// their places: messages of whole rows (an MPI type of a row), at most `message_bytes` each, so an image of any size
+/// moves (no count of values need fit an int) and the root holds one image, not a gathered copy beside it. A rank
+/// that fails (a bad ping, memory) does not leave the others waiting: the ranks agree on failure before any row
+/// moves, and every rank throws (the failed one its own error). A ping depends only on its index, never on which
+/// process renders it or with what, so the root's waterfall has the same bytes as one process's simulator::render of
+/// the whole range. render_labelled does the same for the waterfall and its ground-truth labels
+/// (labels/ground_truth.hpp), sent side by side; XTF and the other products are written on the root from these and
+/// the motion's poses, as from one process's render. The messages go over a duplicate of the communicator, so they
+/// never match the caller's own.
 ///
 /// Launch: every rank runs the same program and calls render collectively, e.g. on one machine
 /// `mpirun -np 2 ./survey`, on a cluster `mpirun -np 8 --hostfile hosts --map-by node ./survey` (one rank per
@@ -46,6 +50,7 @@ struct render_params {
     int root = 0;                   ///< the rank that receives the waterfall
     std::size_t chunk_pings = 4;    ///< pings per chunk dealt to a rank, >= 1
     unsigned threads = 0;           ///< threads per rank (0: the machine's concurrency)
+    std::size_t message_bytes = std::size_t(1) << 28; ///< most bytes per message to the root (at least one row)
 };
 
 namespace detail {
@@ -92,40 +97,91 @@ template <class Work> void agree(const render_params& p, int rank, Work&& work) 
                          " failed to render its pings (its error is reported there); nothing was gathered");
 }
 
-/// Every rank's rows (`width` values of type V per ping, its chunks in order in `mine`) gathered on the root in
-/// ping order; empty elsewhere. `type` is V's MPI type.
-template <class V>
-[[nodiscard]] std::vector<V> gather_rows(const std::vector<V>& mine, std::size_t width, const chunking& c, int rank,
-                                         const render_params& p, MPI_Datatype type) {
-    const bool root = rank == p.root;
-    // Every rank works out every rank's share, so that all of them refuse a message too large together (none is
-    // left waiting in MPI_Gatherv for a root that threw).
-    std::vector<int> counts(c.ranks), displs(c.ranks);
-    std::size_t at = 0;
-    for (std::size_t r = 0; r < c.ranks; ++r) {
-        std::size_t rows = 0;
-        for (std::size_t k = r; k < c.chunks; k += c.ranks) rows += c.pings_in(k);
-        sss::require(rows * width <= static_cast<std::size_t>(INT_MAX) && at <= static_cast<std::size_t>(INT_MAX),
-                     "mpi::render.count", "gives more values than one MPI message can carry");
-        counts[r] = static_cast<int>(rows * width);
-        displs[r] = static_cast<int>(at);
-        at += rows * width;
+/// An MPI datatype or communicator of this call's own, freed when it goes out of scope (also when the call throws).
+struct owned_type {
+    MPI_Datatype type = MPI_DATATYPE_NULL;
+    owned_type() = default;
+    owned_type(const owned_type&) = delete;
+    owned_type& operator=(const owned_type&) = delete;
+    ~owned_type() {
+        if (type != MPI_DATATYPE_NULL) MPI_Type_free(&type);
     }
-    std::vector<V> gathered(root ? c.count * width : 0);
-    MPI_Gatherv(mine.data(), static_cast<int>(mine.size()), type, gathered.data(), counts.data(), displs.data(), type,
-                p.root, p.comm);
-    if (!root) return {};
-    std::vector<V> out(c.count * width);
-    for (std::size_t r = 0; r < c.ranks; ++r) {
-        auto from = static_cast<std::size_t>(displs[r]);
-        for (std::size_t k = r; k < c.chunks; k += c.ranks) {
-            const std::size_t n = c.pings_in(k) * width;
-            std::copy_n(gathered.begin() + static_cast<std::ptrdiff_t>(from), n,
-                        out.begin() + static_cast<std::ptrdiff_t>(k * c.chunk * width));
-            from += n;
+};
+struct owned_comm {
+    MPI_Comm comm = MPI_COMM_NULL;
+    explicit owned_comm(MPI_Comm of) { MPI_Comm_dup(of, &comm); }
+    owned_comm(const owned_comm&) = delete;
+    owned_comm& operator=(const owned_comm&) = delete;
+    ~owned_comm() {
+        if (comm != MPI_COMM_NULL) MPI_Comm_free(&comm);
+    }
+};
+
+/// `row`: one row of `width` values of the committed type `value`, so that messages count rows, not values (an
+/// image of more than 2^31 values moves whole).
+inline void make_row_type(owned_type& row, MPI_Datatype value, std::size_t width) {
+    sss::require(width <= static_cast<std::size_t>(INT_MAX), "mpi::render", "a line of more than 2^31 samples per side");
+    MPI_Type_contiguous(static_cast<int>(width), value, &row.type);
+    MPI_Type_commit(&row.type);
+}
+
+/// sample_label as one MPI type (its padding skipped), committed.
+inline void make_label_type(owned_type& label) {
+    const int lengths[4] = {1, 1, 1, 1};
+    const MPI_Aint at[4] = {offsetof(sample_label, kind), offsetof(sample_label, object), offsetof(sample_label, label),
+                            offsetof(sample_label, material)};
+    static_assert(sizeof(sample_class) == 1 && sizeof(sample_label::object) == 4 && sizeof(sample_label::label) == 4 &&
+                  sizeof(sample_label::material) == 4);
+    MPI_Datatype types[4] = {MPI_UINT8_T, MPI_UINT32_T, MPI_UINT32_T, MPI_UINT32_T};
+    owned_type packed;
+    MPI_Type_create_struct(4, lengths, at, types, &packed.type);
+    MPI_Type_create_resized(packed.type, 0, static_cast<MPI_Aint>(sizeof(sample_label)), &label.type);
+    MPI_Type_commit(&label.type);
+}
+
+/// One rank's rows of one image: `rows` of type `row` (`width` values of V each).
+template <class V> struct row_set {
+    V* data;
+    std::size_t width;
+    MPI_Datatype row;
+};
+
+/// Moves every other rank's rows to the root, straight into their places in the root's image (the root rendered its
+/// own there): chunk by chunk in ping order, each in messages of at most `message_rows` rows. `mine` holds a
+/// non-root rank's chunks in order; `whole` is the root's image (count x width). Each rank sends to the root alone,
+/// in the order the root receives from it, so no message can overtake another.
+template <class... V>
+void send_rows_to_root(const chunking& c, int rank, int root, MPI_Comm comm, std::size_t message_rows,
+                       const row_set<V>&... images) {
+    const auto r0 = static_cast<std::size_t>(root);
+    std::size_t at = 0; // a non-root rank: rows of `mine` sent so far
+    for (std::size_t k = 0; k < c.chunks; ++k) {
+        const std::size_t owner = k % c.ranks;
+        if (owner == r0) continue;
+        const bool receive = rank == root, send = static_cast<std::size_t>(rank) == owner;
+        if (!receive && !send) continue;
+        for (std::size_t done = 0; done < c.pings_in(k);) {
+            const std::size_t rows = std::min(message_rows, c.pings_in(k) - done);
+            const std::size_t row = receive ? k * c.chunk + done : at + done;
+            (
+                [&] {
+                    auto* p = images.data + row * images.width;
+                    if (receive)
+                        MPI_Recv(p, static_cast<int>(rows), images.row, static_cast<int>(owner), 0, comm, MPI_STATUS_IGNORE);
+                    else
+                        MPI_Send(p, static_cast<int>(rows), images.row, root, 0, comm);
+                }(),
+                ...);
+            done += rows;
         }
+        if (send) at += c.pings_in(k);
     }
-    return out;
+}
+
+/// Rows per message: as many as `message_bytes` holds, at least one, at most INT_MAX.
+[[nodiscard]] inline std::size_t rows_per_message(std::size_t message_bytes, std::size_t row_bytes) noexcept {
+    const std::size_t rows = row_bytes == 0 ? 1 : message_bytes / row_bytes;
+    return std::clamp<std::size_t>(rows, 1, static_cast<std::size_t>(INT_MAX));
 }
 
 template <class T> [[nodiscard]] MPI_Datatype value_type_of() noexcept {
@@ -143,33 +199,35 @@ template <class Sim, class Sc>
     using T = typename Sim::value_type;
     int rank = 0, size = 1;
     const detail::chunking c = detail::chunks_of(count, p, rank, size);
+    const detail::owned_comm comm(p.comm); // this call's messages never meet the caller's
+    const bool root = rank == p.root;
     const std::size_t width = 2 * sim.samples_per_line();
-    std::vector<T> mine;
+    waterfall<T> out, mine; // the root's whole; a non-root rank's chunks in order
+    out.samples = mine.samples = sim.samples_per_line();
+    out.dt_s = sim.dt_s();
+    detail::owned_type row;
     detail::agree(p, rank, [&] {
         // Every rank checks the whole range as one process's render would, so that all refuse it together.
         sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first",
                      "first + count overflows the ping index");
         (void)checked_elements(count, width, "render.count");
+        detail::make_row_type(row, detail::value_type_of<T>(), width);
         const std::vector<std::size_t> pings = detail::pings_of(c, rank);
-        waterfall<T> w;
-        w.pings = pings.size();
-        w.samples = sim.samples_per_line();
-        w.dt_s = sim.dt_s();
-        w.values.assign(pings.size() * width, T(0));
+        // The root renders its rows in their places in the waterfall; the others theirs one after the other.
+        waterfall<T>& into = root ? out : mine;
+        into.values.assign((root ? count : pings.size()) * width, T(0));
         run_pings(pings.size(), render_control{.threads = p.threads},
-                  [&](std::size_t j) { w.set_row(j, sim.ping(scene, first + pings[j])); });
-        mine = std::move(w.values);
+                  [&](std::size_t j) { into.set_row(root ? pings[j] : j, sim.ping(scene, first + pings[j])); });
     });
-    waterfall<T> out;
-    out.samples = sim.samples_per_line();
-    out.dt_s = sim.dt_s();
-    out.values = detail::gather_rows(mine, width, c, rank, p, detail::value_type_of<T>());
-    if (rank == p.root) out.pings = count;
+    waterfall<T>& from = root ? out : mine;
+    detail::send_rows_to_root(c, rank, p.root, comm.comm, detail::rows_per_message(p.message_bytes, width * sizeof(T)),
+                              detail::row_set<T>{from.values.data(), width, row.type});
+    if (root) out.pings = count;
     return out;
 }
 
 /// render_labelled (labels/ground_truth.hpp) across the ranks of p.comm, as render above: each rank renders its
-/// chunks' waterfall and labels in one pass, and the root gathers both. Returns on p.root the image and labels one
+/// chunks' waterfall and labels in one pass, and the root receives both. Returns on p.root the image and labels one
 /// process's render_labelled returns, to the bit; elsewhere both empty.
 template <class Sim, class Seabed>
 [[nodiscard]] labelled_waterfall<typename Sim::value_type> render_labelled(const Sim& sim, const scene::scene<Seabed>& sc,
@@ -179,37 +237,36 @@ template <class Sim, class Seabed>
     using T = typename Sim::value_type;
     int rank = 0, size = 1;
     const detail::chunking c = detail::chunks_of(count, p, rank, size);
+    const detail::owned_comm comm(p.comm);
+    const bool root = rank == p.root;
     const std::size_t width = 2 * sim.samples_per_line();
-    std::vector<T> mine;
-    std::vector<std::uint32_t> mine_labels; // four words per label: class, object, label, material
+    labelled_waterfall<T> out, mine; // the root's whole; a non-root rank's chunks in order
+    out.image.samples = out.labels.samples = sim.samples_per_line();
+    out.image.dt_s = out.labels.dt_s = sim.dt_s();
+    detail::owned_type row, label, label_row;
     detail::agree(p, rank, [&] {
         sss::detail::check_label_params(lp);
         sss::require(count <= std::numeric_limits<std::size_t>::max() - first, "render.first",
                      "first + count overflows the ping index");
         (void)checked_elements(count, width, "render.count");
+        detail::make_row_type(row, detail::value_type_of<T>(), width);
+        detail::make_label_type(label);
+        detail::make_row_type(label_row, label.type, width);
         const std::vector<std::size_t> pings = detail::pings_of(c, rank);
-        labelled_waterfall<T> both;
-        both.image.pings = both.labels.pings = pings.size();
-        both.image.samples = both.labels.samples = sim.samples_per_line();
-        both.image.dt_s = both.labels.dt_s = sim.dt_s();
-        both.image.values.assign(pings.size() * width, T(0));
-        both.labels.values.resize(both.image.values.size());
-        run_pings(pings.size(), render_control{.threads = p.threads},
-                  [&](std::size_t j) { sss::detail::labelled_ping(sim, sc, first + pings[j], j, both, lp); });
-        mine = std::move(both.image.values);
-        for (const sample_label& l : both.labels.values)
-            mine_labels.insert(mine_labels.end(), {static_cast<std::uint32_t>(l.kind), l.object, l.label, l.material});
+        labelled_waterfall<T>& into = root ? out : mine;
+        into.image.samples = into.labels.samples = sim.samples_per_line();
+        into.image.values.assign((root ? count : pings.size()) * width, T(0));
+        into.labels.values.resize(into.image.values.size());
+        run_pings(pings.size(), render_control{.threads = p.threads}, [&](std::size_t j) {
+            sss::detail::labelled_ping(sim, sc, first + pings[j], root ? pings[j] : j, into, lp);
+        });
     });
-    labelled_waterfall<T> out;
-    out.image.samples = out.labels.samples = sim.samples_per_line();
-    out.image.dt_s = out.labels.dt_s = sim.dt_s();
-    out.image.values = detail::gather_rows(mine, width, c, rank, p, detail::value_type_of<T>());
-    const std::vector<std::uint32_t> words = detail::gather_rows(mine_labels, 4 * width, c, rank, p, MPI_UINT32_T);
-    if (rank != p.root) return out;
-    out.image.pings = out.labels.pings = count;
-    out.labels.values.resize(count * width);
-    for (std::size_t i = 0; i < out.labels.values.size(); ++i)
-        out.labels.values[i] = {static_cast<sample_class>(words[4 * i]), words[4 * i + 1], words[4 * i + 2], words[4 * i + 3]};
+    labelled_waterfall<T>& from = root ? out : mine;
+    detail::send_rows_to_root(c, rank, p.root, comm.comm,
+                              detail::rows_per_message(p.message_bytes, width * (sizeof(T) + sizeof(sample_label))),
+                              detail::row_set<T>{from.image.values.data(), width, row.type},
+                              detail::row_set<sample_label>{from.labels.values.data(), width, label_row.type});
+    if (root) out.image.pings = out.labels.pings = count;
     return out;
 }
 

@@ -1,6 +1,7 @@
 // Rendering across processes (sss/mpi/render.hpp), run under `mpirun -np 2`: the root's waterfall has the same bytes
-// as one process's simulator::render, for chunk sizes that divide the pings among the ranks evenly and unevenly;
-// and the root's waterfall and labels those of one process's render_labelled.
+// as one process's simulator::render, for chunk sizes that divide the pings among the ranks evenly and unevenly, either
+// rank as the root, whole chunks or single rows per message; and the root's waterfall and labels those of one
+// process's render_labelled.
 // Built and registered only when MPI is found.
 
 #define DOCTEST_CONFIG_IMPLEMENT
@@ -60,21 +61,29 @@ TEST_CASE("pings rendered on two ranks and gathered give the bytes of one proces
     CHECK(size == 2);
     const auto hf = seabed();
     const auto sim = towed_simulator();
-    for (std::size_t chunk : {std::size_t(1), std::size_t(3), std::size_t(4)}) {
-        const auto w = sss::mpi::render(sim, hf, 5, 11, sss::mpi::render_params{.chunk_pings = chunk, .threads = 1});
-        if (rank != 0) {
-            CHECK(w.values.empty());
-            continue;
-        }
-        const auto one = sim.render(hf, 5, 11, 1);
-        REQUIRE(w.pings == one.pings);
-        REQUIRE(w.samples == one.samples);
-        REQUIRE(w.values.size() == one.values.size());
-        CHECK(std::memcmp(w.values.data(), one.values.data(), w.values.size() * sizeof(float)) == 0);
-        double energy = 0;
-        for (float v : one.values) energy += double(v);
-        CHECK(energy > 0);
-    }
+    const auto one = sim.render(hf, 5, 11, 1);
+    double energy = 0;
+    for (float v : one.values) energy += double(v);
+    CHECK(energy > 0);
+    // Even and uneven chunks; either rank as the root; whole chunks per message, and one row per message (1 byte).
+    for (std::size_t chunk : {std::size_t(1), std::size_t(3), std::size_t(4)})
+        for (int root : {0, 1})
+            for (std::size_t bytes : {std::size_t(1) << 28, std::size_t(1)}) {
+                CAPTURE(chunk);
+                CAPTURE(root);
+                CAPTURE(bytes);
+                const auto w = sss::mpi::render(sim, hf, 5, 11,
+                                                sss::mpi::render_params{.root = root, .chunk_pings = chunk, .threads = 1,
+                                                                        .message_bytes = bytes});
+                if (rank != root) {
+                    CHECK(w.values.empty());
+                    continue;
+                }
+                REQUIRE(w.pings == one.pings);
+                REQUIRE(w.samples == one.samples);
+                REQUIRE(w.values.size() == one.values.size());
+                CHECK(std::memcmp(w.values.data(), one.values.data(), w.values.size() * sizeof(float)) == 0);
+            }
 }
 
 TEST_CASE("waterfall and labels rendered on two ranks and gathered are one process's render_labelled, to the bit") {
@@ -93,18 +102,27 @@ TEST_CASE("waterfall and labels rendered on two ranks and gathered are one proce
                                          height));
     const sss::scene::scene world(std::move(hf), sss::scene::object_set<float>(std::move(objects)));
     const auto sim = towed_simulator();
-    const auto gathered = sss::mpi::render_labelled(sim, world, 5, 11, sss::mpi::render_params{.chunk_pings = 3, .threads = 1});
-    if (rank != 0) {
-        CHECK(gathered.image.values.empty());
-        CHECK(gathered.labels.values.empty());
-        return;
-    }
     const auto one = sss::render_labelled(sim, world, 5, 11, {.threads = 1});
-    REQUIRE(gathered.image.values.size() == one.image.values.size());
-    CHECK(std::memcmp(gathered.image.values.data(), one.image.values.data(), one.image.values.size() * sizeof(float)) == 0);
-    CHECK(gathered.labels.pings == 11u);
-    CHECK(gathered.labels.samples == one.labels.samples);
-    CHECK(gathered.labels.values == one.labels.values);
+    // Rank 1 as the root, and rows sent two at a time (a message of 2 rows of image and labels, not 3).
+    const std::size_t row_bytes = one.image.width() * (sizeof(float) + sizeof(sss::sample_label));
+    for (std::size_t bytes : {std::size_t(1) << 28, 2 * row_bytes + 1}) {
+        CAPTURE(bytes);
+        const auto gathered = sss::mpi::render_labelled(
+            sim, world, 5, 11, sss::mpi::render_params{.root = 1, .chunk_pings = 3, .threads = 1, .message_bytes = bytes});
+        if (rank != 1) {
+            CHECK(gathered.image.values.empty());
+            CHECK(gathered.labels.values.empty());
+            continue;
+        }
+        REQUIRE(gathered.image.values.size() == one.image.values.size());
+        CHECK(std::memcmp(gathered.image.values.data(), one.image.values.data(), one.image.values.size() * sizeof(float)) ==
+              0);
+        CHECK(gathered.image.pings == 11u);
+        CHECK(gathered.labels.pings == 11u);
+        CHECK(gathered.labels.samples == one.labels.samples);
+        CHECK(gathered.labels.values == one.labels.values);
+    }
+    if (rank != 1) return;
     // Both cylinders are in view: the labels compared hold highlights of each.
     std::size_t first_object = 0, second_object = 0;
     for (const sss::sample_label& l : one.labels.values) {
