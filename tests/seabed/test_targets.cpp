@@ -379,6 +379,54 @@ TEST_CASE("Builders reject bad parameters, naming them") {
     CHECK(param_of<double>([&] { return sb::debris_cluster(d, flat); }) == "debris.first_object_id");
 }
 
+TEST_CASE("A seabed that is not a number or infinite under a mine's anchor or a debris piece is named as the builder's") {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    // Not a number on one side of the anchor's rim only (its centre and the other rim points are fine): it was
+    // dropped by the rim's maximum, and the anchor rested on the rest.
+    const auto nan_east = [&](double x, double) { return x > 0.3 ? nan : -20.0; };
+    sb::tethered_mine_params<double> m;
+    m.anchor_m = {0.0, 0.0};
+    CHECK(param_of<double>([&] { return sb::tethered_mine(m, nan_east); }) == "tethered_mine.seabed_height_m(anchor rim)");
+    // Beyond the seabed (-infinity) on one side of the rim: the anchor rests on the rest of it.
+    const auto edge_east = [&](double x, double) { return x > 0.3 ? -inf : -20.0; };
+    CHECK(param_of<double>([&] { return sb::tethered_mine(m, edge_east); }) == "(none)");
+    // Every kind of piece (rock, bar, drum) over a seabed that is not a number, or infinite, names the cluster, not
+    // the sphere or cylinder it was building.
+    for (const double bad : {nan, inf, -inf}) {
+        CAPTURE(bad);
+        const auto nowhere = [&](double, double) { return bad; };
+        sb::debris_params<double> d;
+        d.count = 12;
+        try {
+            (void)sb::debris_cluster(d, nowhere);
+            FAIL("no exception");
+        } catch (const sss::invalid_parameter& e) {
+            CHECK(e.parameter() == "debris.seabed_height_m");
+            CHECK(std::string(e.what()).find("under piece 0") != std::string::npos);
+        }
+    }
+    // Each kind on its own: the first piece of a seed is a rock, a bar or a drum; the cluster's first few seeds give
+    // all three, each named as the cluster's.
+    const auto flat = [](double, double) { return -20.0; };
+    bool kinds[3] = {false, false, false};
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+        sb::debris_params<double> d;
+        d.count = 1;
+        d.seed = seed;
+        const auto one = sb::debris_cluster(d, flat);
+        REQUIRE(one.size() == 1u);
+        const bool rock = !one[0].spheres().empty(), drum = one[0].cylinders().size() == 1 && !rock &&
+                                                            std::abs(one[0].cylinders()[0].axis().z) > 0.99;
+        const int kind = rock ? 0 : drum ? 2 : 1;
+        if (kinds[kind]) continue;
+        kinds[kind] = true;
+        const auto hole = [&](double, double) { return nan; };
+        CAPTURE(kind);
+        CHECK(param_of<double>([&] { return sb::debris_cluster(d, hole); }) == "debris.seabed_height_m");
+    }
+    CHECK((kinds[0] && kinds[1] && kinds[2]));
+}
+
 TEST_CASE("A scene's seabed serves as the builders' height function") {
     const sss::scene::flat_seabed<double> bed(-7.5);
     sb::lying_cylinder_params<double> p;

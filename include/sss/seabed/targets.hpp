@@ -93,10 +93,12 @@ template <Real T, HeightFunction<T> F>
     T base = ground;
     for (int k = 0; k < 16; ++k) {
         const T a = two_pi_v<T> * static_cast<T>(k) / T(16);
-        base = std::max(base, static_cast<T>(seabed_height_m(x + p.anchor_radius_m * std::cos(a),
-                                                             y + p.anchor_radius_m * std::sin(a))));
+        const T rx = x + p.anchor_radius_m * std::cos(a), ry = y + p.anchor_radius_m * std::sin(a);
+        const T rim = static_cast<T>(seabed_height_m(rx, ry)); // -infinity beyond the seabed: nothing to rest on
+        sss::require(!std::isnan(rim) && rim != std::numeric_limits<T>::infinity(), "tethered_mine.seabed_height_m(anchor rim)",
+                     [&] { return "is " + std::to_string(rim) + " at (" + std::to_string(rx) + ", " + std::to_string(ry) + ")"; });
+        base = std::max(base, rim);
     }
-    sss::require_finite(base, "tethered_mine.seabed_height_m(anchor rim)");
     const T center_z = ground + p.case_height_m, anchor_top = base + p.anchor_height_m;
     require(center_z - down_m > anchor_top, "tethered_mine.case_height_m",
             [&] { return "the case must clear the anchor: its lowest point " + std::to_string(center_z - down_m) +
@@ -335,6 +337,16 @@ template <Real T, HeightFunction<T> F>
     sss::require_in_range(p.max_burial, T(0), T(0.9), "debris.max_burial");
     sss::require(std::uint64_t(p.first_object_id) + p.count <= std::uint64_t(no_object), "debris.first_object_id",
                          "the pieces' ids would reach sss::no_object");
+    // The seabed under piece k: finite (a drum's rim may also lie beyond the seabed, -infinity), or an error naming
+    // the cluster and the piece rather than the primitive the piece would have been built as.
+    const auto ground = [&](std::size_t k, T qx, T qy, bool rim = false) {
+        const T z = static_cast<T>(seabed_height_m(qx, qy));
+        sss::require(std::isfinite(z) || (rim && z == -std::numeric_limits<T>::infinity()), "debris.seabed_height_m", [&] {
+            return "is " + std::to_string(z) + " at (" + std::to_string(qx) + ", " + std::to_string(qy) + ") under piece " +
+                   std::to_string(k) + ": every piece must lie on the seabed";
+        });
+        return z;
+    };
     rng g(p.seed);
     std::vector<scene::object<T>> out;
     out.reserve(p.count);
@@ -347,7 +359,7 @@ template <Real T, HeightFunction<T> F>
             .material = p.material, .object = p.first_object_id + static_cast<std::uint32_t>(k), .label = p.class_id};
         if (kind < 1.0 / 3.0) { // rock
             const T r = d / T(2), buried = static_cast<T>(u1) * p.max_burial * d;
-            const T zc = static_cast<T>(seabed_height_m(x, y)) + r - buried;
+            const T zc = ground(k, x, y) + r - buried;
             out.emplace_back(std::vector<scene::sphere<T>>{scene::sphere<T>(vec3<T>{x, y, zc}, r, ids)},
                              std::vector<scene::cylinder<T>>{});
         } else if (kind < 2.0 / 3.0) { // bar
@@ -358,13 +370,14 @@ template <Real T, HeightFunction<T> F>
             c.radius_m = d * static_cast<T>(0.06 + 0.14 * u2);
             c.profile_step_m = std::min(c.radius_m, d / T(8));
             c.ids = ids;
-            out.push_back(detail::lying_cylinder_along(c, vec2<T>{std::cos(az_piece), std::sin(az_piece)}, seabed_height_m));
+            out.push_back(detail::lying_cylinder_along(c, vec2<T>{std::cos(az_piece), std::sin(az_piece)},
+                                                       [&](T qx, T qy) { return ground(k, qx, qy); }));
         } else { // drum
             const T r = d * static_cast<T>(0.25 + 0.2 * u1);
-            T base = static_cast<T>(seabed_height_m(x, y));
+            T base = ground(k, x, y);
             for (int j = 0; j < 8; ++j) {
                 const T a = two_pi_v<T> * static_cast<T>(j) / T(8);
-                base = std::max(base, static_cast<T>(seabed_height_m(x + r * std::cos(a), y + r * std::sin(a))));
+                base = std::max(base, ground(k, x + r * std::cos(a), y + r * std::sin(a), true));
             }
             out.emplace_back(std::vector<scene::sphere<T>>{},
                              std::vector<scene::cylinder<T>>{scene::cylinder<T>(vec3<T>{x, y, base}, vec3<T>{x, y, base + d}, r, ids)});
