@@ -72,6 +72,44 @@ TEST_CASE("a height field's top over a rectangle bounds every cell there and nev
     CHECK(f.top_m({0.0, 40.0}, {0.0, 40.0}) >= highest_under(f, {0.0, 40.0}, {0.0, 40.0}));
 }
 
+TEST_CASE_TEMPLATE("a rectangle on the grid's last vertex line has the top of its cells, also in float at survey coordinates",
+                   T, float, double) {
+    // A point on the east or north edge line, computed as origin + (n - 1) cell, rounds a few cells' worth of eps past
+    // the line in float at coordinates of 10^5 m: it was taken for off the grid, and its top was -infinity.
+    std::mt19937 g(1);
+    std::uniform_real_distribution<double> coordinate(-5e5, 5e5), cell(0.01, 3.0);
+    int no_top = 0, beyond_has_top = 0, checked_beyond = 0, points = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const T c = T(cell(g));
+        const vec2<T> origin{T(coordinate(g)), T(coordinate(g))};
+        const std::size_t n = 5 + std::size_t(trial % 37);
+        const sss::scene::height_field<T> f(
+            {.nx = n, .ny = n, .cell_m = c, .origin_m = origin, .heights_m = std::vector<T>(n * n, T(-10))});
+        const T east = origin.x + T(n - 1) * c, north = origin.y + T(n - 1) * c;
+        for (std::size_t i = 0; i < n; ++i, ++points) {
+            const T x = origin.x + T(i) * c, y = origin.y + T(i) * c;
+            no_top += !(f.top_m({east, y}, {east, y}) == T(-10)) + !(f.top_m({x, north}, {x, north}) == T(-10));
+            // A cell beyond the edge lines is off the grid, where the scalar resolves an eighth of a cell there.
+            const T east_out = origin.x + T(n) * c, north_out = origin.y + T(n) * c;
+            const auto resolved = [&](T a, T b) {
+                return std::numeric_limits<T>::epsilon() * (std::abs(a) + std::abs(b)) < c / T(8);
+            };
+            if (resolved(east_out, origin.x)) {
+                ++checked_beyond;
+                beyond_has_top += std::isfinite(f.top_m({east_out, y}, {east_out, y}));
+            }
+            if (resolved(north_out, origin.y)) {
+                ++checked_beyond;
+                beyond_has_top += std::isfinite(f.top_m({x, north_out}, {x, north_out}));
+            }
+        }
+    }
+    CHECK(points > 5000);
+    CHECK(no_top == 0);
+    CHECK(checked_beyond > 2000);
+    CHECK(beyond_has_top == 0);
+}
+
 TEST_CASE("objects count over a rectangle only where their boxes reach over it") {
     auto seabed = [](double, double) { return 0.0; };
     std::vector<sss::scene::object<double>> objs;

@@ -363,14 +363,22 @@ private:
     };
     /// The cells holding the rectangle [lo, hi] (world x, y, m): [u0, u1 - 1] in cells from vertex (0, 0), and the cell
     /// before u0 when the rectangle starts on a vertex line (its vertices are the same, but rounding of the world
-    /// coordinate could put it there); none for a rectangle off the grid (or NaN).
+    /// coordinate could put it there); none for a rectangle off the grid (or NaN). A rectangle within rounding of the
+    /// grid's edge lines is on the grid: a world coordinate computed as origin + i cell rounds by about eps (|x| +
+    /// |origin|), in cells eps (|x| + |origin|) / cell, and in float at survey coordinates that is many times eps.
     [[nodiscard]] std::optional<cell_span> cells_under(const vec2<T>& lo, const vec2<T>& hi) const noexcept {
         const double fu0 = double(lo.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
         const double fu1 = double(hi.x - grid_.origin_m.x) * double(grid_.inv_cell_m);
         const double fv0 = double(lo.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
         const double fv1 = double(hi.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
         const double cx = double(grid_.nx - 2), cy = double(grid_.ny - 2); // last cell index
-        if (!(fu1 >= 0.0) || !(fv1 >= 0.0) || !(fu0 <= cx + 1.0) || !(fv0 <= cy + 1.0)) return std::nullopt;
+        constexpr double eps = double(std::numeric_limits<T>::epsilon());
+        const auto slack = [&](T world, T origin, double f) {
+            return eps * (2.0 + std::abs(f) + (std::abs(double(world)) + std::abs(double(origin))) * double(grid_.inv_cell_m));
+        };
+        if (!(fu1 >= -slack(hi.x, grid_.origin_m.x, fu1)) || !(fv1 >= -slack(hi.y, grid_.origin_m.y, fv1)) ||
+            !(fu0 <= cx + 1.0 + slack(lo.x, grid_.origin_m.x, fu0)) || !(fv0 <= cy + 1.0 + slack(lo.y, grid_.origin_m.y, fv0)))
+            return std::nullopt;
         const double u0 = std::floor(fu0), u1 = std::ceil(fu1), v0 = std::floor(fv0), v1 = std::ceil(fv1);
         return cell_span{static_cast<std::int32_t>(std::clamp(u0 - 1.0, 0.0, cx)),
                          static_cast<std::int32_t>(std::clamp(u1, 0.0, cx)),
