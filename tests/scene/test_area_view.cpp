@@ -89,8 +89,8 @@ TEST_CASE_TEMPLATE("a rectangle on the grid's last vertex line has the top of it
         for (std::size_t i = 0; i < n; ++i, ++points) {
             const T x = origin.x + T(i) * c, y = origin.y + T(i) * c;
             no_top += !(f.top_m({east, y}, {east, y}) == T(-10)) + !(f.top_m({x, north}, {x, north}) == T(-10));
-            // A cell beyond the edge lines is off the grid, where the scalar resolves an eighth of a cell there.
-            const T east_out = origin.x + T(n) * c, north_out = origin.y + T(n) * c;
+            // Half a cell beyond the edge lines is off the grid, where the scalar resolves an eighth of a cell there.
+            const T east_out = origin.x + (T(n) - T(0.5)) * c, north_out = origin.y + (T(n) - T(0.5)) * c;
             const auto resolved = [&](T a, T b) {
                 return std::numeric_limits<T>::epsilon() * (std::abs(a) + std::abs(b)) < c / T(8);
             };
@@ -106,6 +106,13 @@ TEST_CASE_TEMPLATE("a rectangle on the grid's last vertex line has the top of it
     }
     CHECK(points > 5000);
     CHECK(no_top == 0);
+    // A point at infinity is off the grid; a rectangle from -infinity to +infinity covers it.
+    constexpr T big = std::numeric_limits<T>::infinity();
+    const sss::scene::height_field<T> f({.nx = 5, .ny = 5, .cell_m = T(1), .heights_m = std::vector<T>(25, T(-10))});
+    CHECK(f.top_m({big, T(2)}, {big, T(2)}) == -big);
+    CHECK(f.top_m({-big, T(2)}, {-big, T(2)}) == -big);
+    CHECK(f.top_m({T(2), big}, {T(2), big}) == -big);
+    CHECK(f.top_m({-big, -big}, {big, big}) == T(-10));
     CHECK(checked_beyond > 2000);
     CHECK(beyond_has_top == 0);
 }

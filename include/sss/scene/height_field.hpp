@@ -373,8 +373,10 @@ private:
         const double fv1 = double(hi.y - grid_.origin_m.y) * double(grid_.inv_cell_m);
         const double cx = double(grid_.nx - 2), cy = double(grid_.ny - 2); // last cell index
         constexpr double eps = double(std::numeric_limits<T>::epsilon());
-        const auto slack = [&](T world, T origin, double f) {
-            return eps * (2.0 + std::abs(f) + (std::abs(double(world)) + std::abs(double(origin))) * double(grid_.inv_cell_m));
+        const auto slack = [&](T world, T origin, double f) { // none for an infinite coordinate: off stays off
+            return std::isfinite(f) ? eps * (2.0 + std::abs(f) + (std::abs(double(world)) + std::abs(double(origin))) *
+                                                                       double(grid_.inv_cell_m))
+                                    : 0.0;
         };
         if (!(fu1 >= -slack(hi.x, grid_.origin_m.x, fu1)) || !(fv1 >= -slack(hi.y, grid_.origin_m.y, fv1)) ||
             !(fu0 <= cx + 1.0 + slack(lo.x, grid_.origin_m.x, fu0)) || !(fv0 <= cy + 1.0 + slack(lo.y, grid_.origin_m.y, fv0)))
