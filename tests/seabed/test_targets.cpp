@@ -387,9 +387,11 @@ TEST_CASE("A seabed that is not a number or infinite under a mine's anchor or a 
     sb::tethered_mine_params<double> m;
     m.anchor_m = {0.0, 0.0};
     CHECK(param_of<double>([&] { return sb::tethered_mine(m, nan_east); }) == "tethered_mine.seabed_height_m(anchor rim)");
-    // Beyond the seabed (-infinity) on one side of the rim: the anchor rests on the rest of it.
+    // Beyond the seabed (-infinity) on one side of the rim: the anchor rests on the rest of it; +infinity is no seabed.
     const auto edge_east = [&](double x, double) { return x > 0.3 ? -inf : -20.0; };
     CHECK(param_of<double>([&] { return sb::tethered_mine(m, edge_east); }) == "(none)");
+    const auto wall_east = [&](double x, double) { return x > 0.3 ? inf : -20.0; };
+    CHECK(param_of<double>([&] { return sb::tethered_mine(m, wall_east); }) == "tethered_mine.seabed_height_m(anchor rim)");
     // Every kind of piece (rock, bar, drum) over a seabed that is not a number, or infinite, names the cluster, not
     // the sphere or cylinder it was building.
     for (const double bad : {nan, inf, -inf}) {
@@ -425,6 +427,25 @@ TEST_CASE("A seabed that is not a number or infinite under a mine's anchor or a 
         CHECK(param_of<double>([&] { return sb::debris_cluster(d, hole); }) == "debris.seabed_height_m");
     }
     CHECK((kinds[0] && kinds[1] && kinds[2]));
+    // A drum whose centre is on the seabed and whose rim is not: not a number there is an error naming the cluster;
+    // beyond the seabed (-infinity) it stands on what is there.
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+        sb::debris_params<double> d;
+        d.count = 1;
+        d.seed = seed;
+        const auto one = sb::debris_cluster(d, flat);
+        if (!one[0].spheres().empty() || std::abs(one[0].cylinders()[0].axis().z) < 0.99) continue;
+        const auto& drum = one[0].cylinders()[0];
+        const vec3<double> c = drum.end0_m(); // the base, at the seabed under its centre
+        const double r = drum.radius_m();
+        const auto ring = [&](double value) {
+            return [=](double x, double y) { return std::hypot(x - c.x, y - c.y) > 0.5 * r ? value : -20.0; };
+        };
+        CHECK(param_of<double>([&] { return sb::debris_cluster(d, ring(nan)); }) == "debris.seabed_height_m");
+        CHECK(param_of<double>([&] { return sb::debris_cluster(d, ring(inf)); }) == "debris.seabed_height_m");
+        CHECK(param_of<double>([&] { return sb::debris_cluster(d, ring(-inf)); }) == "(none)");
+        break;
+    }
 }
 
 TEST_CASE("A scene's seabed serves as the builders' height function") {
