@@ -378,6 +378,20 @@ TEST_CASE("A label deposit shows wholly in the line, on a sample's boundary too,
             CHECK(std::abs(double(first) - t0 / dt) <= 1.0); // the arrival's sample, or the one before by rounding
         }
     }
+    // A pulse just long enough for the table (its step's inverse near 1e308): a deposit spread over 3 to 3.01 s shows
+    // evenly in the 100 samples of its arrivals. Scaling x and t by the inverse step apart overflowed there (x / step
+    // beyond 1.8 s), and the whole deposit landed in its last sample.
+    const detail::echo_smear tiny(pulse{.length_s = 1e-305, .shape = pulse_shape::rectangular});
+    const detail::label_accumulator long_line(40000, 1e-4, &tiny);
+    std::size_t samples = 0;
+    double most = 0.0;
+    long_line.spread(3.0, 3.01, [&](std::size_t, double share) {
+        ++samples;
+        most = std::max(most, share);
+    });
+    CHECK(samples >= 100u);
+    CHECK(samples <= 102u);
+    CHECK(most == doctest::Approx(0.01).scale(0).epsilon(1e-6));
 }
 
 TEST_CASE("Ground-range labels of a ping with no seabed under it (altitude +infinity) are no coverage, as its image") {

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "sss/core/detail/force_inline.hpp"
 #include "sss/receiver/pulse.hpp"
 
 namespace sss::detail {
@@ -43,13 +44,15 @@ public:
         }
         const double energy = c_.back();
         g_.assign(steps + 1, 0.0);
-        if (!(step_ > 0.0) || !(energy > 0.0) || !std::isfinite(energy)) { // a pulse too short to hold: at arrival
+        if (!(step_ > 0.0) || !std::isfinite(1.0 / step_) || !(energy > 0.0) || !std::isfinite(energy)) {
+            // A pulse too short to hold: shown at arrival (inverse_step() stays 0).
             w1_ = w0_;
             std::fill(c_.begin(), c_.end(), 0.0);
             return;
         }
         for (double& c : c_) c /= energy;
         for (std::size_t i = 0; i < steps; ++i) g_[i + 1] = g_[i] + 0.5 * step_ * (c_[i] + c_[i + 1]);
+        inv_step_ = 1.0 / step_;
     }
 
     /// The clock's delay d and the window [w0, w1] (s).
@@ -67,17 +70,23 @@ public:
     }
     /// Its integral from w0 to y (s).
     [[nodiscard]] double energy_integral(double y) const noexcept {
-        if (!(y > w0_)) return 0.0;
-        if (!(y < w1_)) return g_.back() + (y - w1_);
-        const double x = (y - w0_) / step_;
+        if (inv_step_ == 0.0) return y > w0_ ? y - w0_ : 0.0; // no window: all of the energy at w0
+        return integral_at_step((y - w0_) * inv_step_);
+    }
+    /// The same integral at x = (y - w0) / step, the table's own coordinate (label_accumulator::spread steps in it).
+    [[nodiscard]] SSS_FORCE_INLINE double integral_at_step(double x) const noexcept {
+        if (!(x > 0.0)) return 0.0;
+        if (!(x < double(steps))) return g_[steps] + (x - double(steps)) * step_;
         const auto i = std::min<std::size_t>(static_cast<std::size_t>(x), steps - 1);
         const double f = x - double(i);
         return g_[i] + step_ * f * (c_[i] + 0.5 * f * (c_[i + 1] - c_[i]));
     }
+    /// 1 / the table's step (1/s; 0 for a pulse too short to hold).
+    [[nodiscard]] double inverse_step() const noexcept { return inv_step_; }
 
 private:
     static constexpr std::size_t steps = 1024;
-    double d_ = 0.0, w0_ = 0.0, w1_ = 0.0, step_ = 0.0;
+    double d_ = 0.0, w0_ = 0.0, w1_ = 0.0, step_ = 0.0, inv_step_ = 0.0;
     std::vector<double> c_, g_;
 };
 
@@ -140,13 +149,18 @@ struct label_accumulator {
             const double t_mid = 0.5 * (t0 + t1);
             const double shown_from = point ? t_mid - d + smear->window_begin_s() : t0 - d + smear->window_begin_s();
             const double shown_to = point ? t_mid - d + smear->window_end_s() : t1 - d + smear->window_end_s();
+            // G(x + d - t) in the table's coordinate, (x - (t - d + w0)) / step: the difference first, so that it
+            // stays finite for any pulse the table holds.
+            const double inv = smear->inverse_step(), from1 = t1 - d + smear->window_begin_s(),
+                         per_width = point ? 0.0 : 1.0 / width;
             // The share shown before x (s): none up to where the echo shows from, all of it past where it ends.
             const auto before = [&](double x) {
                 if (x <= shown_from) return 0.0;
                 if (x > shown_to) return 1.0;
                 if (point) return smear->energy_before(x + d - t_mid);
-                return std::clamp((smear->energy_integral(x + d - t0) - smear->energy_integral(x + d - t1)) / width,
-                                  0.0, 1.0);
+                if (inv == 0.0) return std::clamp((x - shown_from) * per_width, 0.0, 1.0); // no window: as it arrives
+                return std::clamp((smear->integral_at_step((x - shown_from) * inv) -
+                                   smear->integral_at_step((x - from1) * inv)) * per_width, 0.0, 1.0);
             };
             // One sample more than b reaches: the rounding of b must not cut off the last share.
             const auto k0 = static_cast<std::size_t>(std::max(0.0, a));
