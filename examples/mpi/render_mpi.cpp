@@ -9,9 +9,11 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <stdexcept>
 #include <span>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <sss/mpi/render.hpp>
@@ -57,7 +59,10 @@ int main(int argc, char** argv) {
             std::FILE* f = std::fopen(part.c_str(), "wb");
             if (f == nullptr) throw std::runtime_error("cannot open " + part + " for writing");
             const bool written = std::fwrite(w.values.data(), sizeof(float), w.values.size(), f) == w.values.size();
-            if (std::fclose(f) != 0 || !written || std::rename(part.c_str(), out.c_str()) != 0) {
+            const bool closed = std::fclose(f) == 0;
+            std::error_code renamed; // std::filesystem::rename replaces an existing file, on Windows too
+            if (closed && written) std::filesystem::rename(part, out, renamed);
+            if (!closed || !written || renamed) {
                 std::remove(part.c_str());
                 throw std::runtime_error("cannot write " + out);
             }

@@ -50,7 +50,8 @@ struct render_params {
     int root = 0;                   ///< the rank that receives the waterfall
     std::size_t chunk_pings = 4;    ///< pings per chunk dealt to a rank, >= 1
     unsigned threads = 0;           ///< threads per rank (0: the machine's concurrency)
-    std::size_t message_bytes = std::size_t(1) << 28; ///< most bytes per message to the root (at least one row)
+    /// Most bytes per message to the root (at least one row). Some MPI transports mishandle messages over 2 GiB.
+    std::size_t message_bytes = std::size_t(1) << 28;
 };
 
 namespace detail {
