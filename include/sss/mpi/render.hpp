@@ -140,7 +140,7 @@ inline void make_label_type(owned_type& label) {
     MPI_Type_commit(&label.type);
 }
 
-/// One rank's rows of one image: `rows` of type `row` (`width` values of V each).
+/// One image's rows on one rank: `width` values of V each, sent and received as MPI type `row`.
 template <class V> struct row_set {
     V* data;
     std::size_t width;
@@ -148,9 +148,9 @@ template <class V> struct row_set {
 };
 
 /// Moves every other rank's rows to the root, straight into their places in the root's image (the root rendered its
-/// own there): chunk by chunk in ping order, each in messages of at most `message_rows` rows. `mine` holds a
-/// non-root rank's chunks in order; `whole` is the root's image (count x width). Each rank sends to the root alone,
-/// in the order the root receives from it, so no message can overtake another.
+/// own there): chunk by chunk in ping order, each in messages of at most `message_rows` rows. Each of `images` is, on
+/// the root, its whole image (count x width), and on another rank that rank's chunks one after the other. Each rank
+/// sends to the root alone, in the order the root receives from it, so no message can overtake another.
 template <class... V>
 void send_rows_to_root(const chunking& c, int rank, int root, MPI_Comm comm, std::size_t message_rows,
                        const row_set<V>&... images) {
